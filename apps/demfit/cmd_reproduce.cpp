@@ -1,0 +1,11 @@
+// Placeholder until its module lands: the subcommand exists and says it is not built yet.
+#include <stdexcept>
+#include "commands.hpp"
+
+namespace demfit::apps {
+void register_reproduce(CLI::App& app) {
+  auto* cmd = app.add_subcommand("reproduce", "(not available in this build yet)");
+  cmd->allow_extras();
+  cmd->callback([] { throw std::runtime_error("'reproduce' is not implemented in this build yet"); });
+}
+}  // namespace demfit::apps

@@ -1,0 +1,27 @@
+// demfit: identify DEM contact parameters from measured curves.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "demfit — identify Discrete Element Method contact parameters (NORMK, SHEARK, damping, "
+      "friction) from measured curves.\nAll quantities are SI unless a name states its unit "
+      "(e.g. volume_cm3, pressure_MPa)."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "demfit 0.1.0");
+  demfit::apps::register_simulate(app);
+  demfit::apps::register_identify(app);
+  demfit::apps::register_reproduce(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "demfit: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,42 @@
+#pragma once
+// The only thing identify knows about a simulation: parameters in, named curves out.
+// cases/ implements this for DEM cases; tests implement it with analytic curve families.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace demfit::identify {
+
+// One sampled response curve, e.g. pressure [MPa] against bed volume [cm3].
+// Units are part of the labels ("volume_cm3", "pressure_MPa"), as in the CSV header.
+struct Curve {
+  std::string x_label;
+  std::string y_label;
+  std::vector<double> x;
+  std::vector<double> y;
+};
+
+// Parameter values by name, in the units the model declares (SI unless the name says otherwise).
+using ParameterSet = std::map<std::string, double>;
+
+// Named curves produced by one evaluation ("pressure_volume", "torque", "free_surface", ...).
+using CurveSet = std::map<std::string, Curve>;
+
+struct EvaluationContext {
+  int threads = 1;          // OpenMP threads this evaluation may use
+  unsigned long seed = 0;   // study seed, for models with stochastic set-up (kept fixed per study)
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+  // Names of the parameters evaluate() accepts (anything else is an error).
+  virtual std::vector<std::string> parameter_names() const = 0;
+  // Values used for parameters a study does not vary.
+  virtual ParameterSet default_parameters() const = 0;
+  // Runs one evaluation. Must be safe to call concurrently from several threads on one object.
+  // Throws std::runtime_error on failure (instability, NaN...); the loop records and skips it.
+  virtual CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const = 0;
+};
+
+}  // namespace demfit::identify
