@@ -1,11 +1,133 @@
-// Placeholder until its module lands: the subcommand exists and says it is not built yet.
+// demfit identify / report / export: the identification loop on a study file, reports rebuilt
+// from a study store, and LS-DYNA keyword export of the identified parameters.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
+#include <string>
+
 #include "commands.hpp"
+#include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/lsdyna_export.hpp"
+#include "demfit/identify/report.hpp"
+#include "demfit/identify/study.hpp"
+#include "demfit/identify/study_store.hpp"
+#if defined(DEMFIT_HAVE_CASES)
+#include "demfit/cases/model_factory.hpp"
+#endif
 
 namespace demfit::apps {
-void register_identify(CLI::App& app) {
-  auto* cmd = app.add_subcommand("identify", "(not available in this build yet)");
-  cmd->allow_extras();
-  cmd->callback([] { throw std::runtime_error("'identify' is not implemented in this build yet"); });
+namespace {
+
+struct IdentifyOptions {
+  std::string study_file;
+  std::string out;
+  int jobs = 1;
+  int threads_per_job = 1;
+  bool resume = false;
+  bool no_plots = false;
+};
+
+std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
+  if (spec.model_reference == "analytic" && spec.model_overrides.empty())
+    return std::make_unique<identify::AnalyticCurveModel>();
+#if defined(DEMFIT_HAVE_CASES)
+  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+#else
+  throw std::runtime_error("study: model.case: '" + spec.model_reference +
+                           "' needs the cases module, which is not in this build; use \"analytic\"");
+#endif
 }
+
+void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
+  std::printf("best objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective, result.runs,
+              result.failed_runs, result.iterations, result.converged ? "converged" : "iteration limit reached");
+  for (const auto& v : spec.variables) {
+    const auto ci = result.ci_half_width.find(v.name);
+    std::printf("  %-12s %.9g", v.name.c_str(), result.best.at(v.name));
+    if (ci != result.ci_half_width.end()) std::printf("  +- %.3g (95 %% CI)", ci->second);
+    std::printf("\n");
+  }
+  for (const auto& name : result.unidentifiable)
+    std::printf("  warning: '%s' is not identifiable from these targets (interval too wide or J^T J singular)\n",
+                name.c_str());
+  std::printf("results: %s\n", (out / "report.md").string().c_str());
+}
+
+void run_identify(const IdentifyOptions& o) {
+  if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
+  if (o.threads_per_job < 1) throw std::runtime_error("--threads-per-job: must be >= 1");
+  const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  const auto model = make_model(spec);
+  identify::RunOptions options;
+  options.jobs = o.jobs;
+  options.threads_per_job = o.threads_per_job;
+  options.resume = o.resume;
+  options.plots = !o.no_plots;
+  options.output_dir = o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_results")
+                                     : std::filesystem::path(o.out);
+  const auto result = identify::run_study(spec, *model, options);
+  print_summary(spec, result, options.output_dir);
+}
+
+}  // namespace
+
+void register_identify(CLI::App& app) {
+  auto options = std::make_shared<IdentifyOptions>();
+  auto* identify = app.add_subcommand(
+      "identify",
+      "Identify model parameters from measured curves (study JSON, format in docs/study_format.md). "
+      "Writes study.db (SQLite store), best_parameters.json, histories (CSV), plots (PNG) and report.md.");
+  identify->add_option("study", options->study_file, "Study file (JSON)")->required()->check(CLI::ExistingFile);
+  identify->add_option("--out", options->out, "Output folder (default: <study name>_results in the current folder)");
+  identify->add_option("--jobs", options->jobs,
+                       "Simulations evaluated at once (default 1). Results do not depend on it.");
+  identify->add_option("--threads-per-job", options->threads_per_job,
+                       "OpenMP threads per simulation (default 1); keep jobs x threads-per-job <= cores");
+  identify->add_flag("--resume", options->resume,
+                     "Continue the study stored in <out>/study.db without repeating finished runs");
+  identify->add_flag("--no-plots", options->no_plots, "Do not call gnuplot");
+  identify->callback([options] { run_identify(*options); });
+
+  auto report_db = std::make_shared<std::string>();
+  auto report_out = std::make_shared<std::string>();
+  auto report_no_plots = std::make_shared<bool>(false);
+  auto* report = app.add_subcommand("report", "Rebuild the result files and report.md of a study from its study.db alone");
+  report->add_option("store", *report_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
+  report->add_option("--out", *report_out, "Output folder (default: the store's folder)");
+  report->add_flag("--no-plots", *report_no_plots, "Do not call gnuplot");
+  report->callback([report_db, report_out, report_no_plots] {
+    const auto store = identify::StudyStore::open_existing(*report_db);
+    const std::filesystem::path out =
+        report_out->empty() ? std::filesystem::absolute(*report_db).parent_path() : std::filesystem::path(*report_out);
+    const auto summary = identify::write_report(store, out, !*report_no_plots);
+    if (!summary.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", summary.plot_warning.c_str());
+    std::printf("%d files written to %s\n", summary.files_written, out.string().c_str());
+  });
+
+  auto export_db = std::make_shared<std::string>();
+  auto export_k = std::make_shared<std::string>();
+  auto* exporter = app.add_subcommand(
+      "export", "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
+                "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
+  exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
+  exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
+  exporter->callback([export_db, export_k] {
+    const auto store = identify::StudyStore::open_existing(*export_db);
+    const identify::EvaluationRecord* best = nullptr;
+    const auto runs = store.evaluations();
+    for (const auto& r : runs)
+      if (r.ok && (!best || r.objective < best->objective)) best = &r;
+    if (!best) throw std::runtime_error("study store '" + *export_db + "' has no successful run to export");
+    char objective[32];
+    std::snprintf(objective, sizeof objective, "%.6g", best->objective);
+    const std::string title = "study '" + store.study_json().value("name", std::string("study")) + "', run " +
+                              std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
+                              objective;
+    identify::write_lsdyna_keywords(*export_k, best->parameters, title);
+    std::printf("wrote %s\n", export_k->c_str());
+  });
+}
+
 }  // namespace demfit::apps

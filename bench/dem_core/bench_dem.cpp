@@ -1,0 +1,77 @@
+// bench_dem: throughput of the DEM kernel (particle-steps per second) on the SPEC 2.2 drum and the
+// SPEC 2.1 pellet bed with 1 and 2 threads, peak memory per particle, the cost of one case
+// evaluation, and the ratio to LIGGGHTS on an equivalent problem. Prints numbers; asserts nothing.
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "bench_scenarios.hpp"
+#include "demfit/dem_core/dem_core.hpp"
+#include "liggghts_compare.hpp"
+
+using namespace demfit;
+
+namespace {
+
+double rate(const dem_core::Simulation& sim, std::uint64_t steps, double seconds) {
+  return static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds;
+}
+
+void throughput(const char* name, const dem_core::Simulation& prepared, std::uint64_t steps) {
+  double rates[2] = {0, 0};
+  for (int threads = 1; threads <= 2; ++threads) {
+    dem_core::Simulation sim = prepared;  // same state for both thread counts
+    sim.set_threads(threads);
+    rates[threads - 1] = rate(sim, steps, bench::time_steps(sim, steps));
+  }
+  std::printf("%-28s N=%6zu dt=%.3g s  1 thread: %.3g particle-steps/s  2 threads: %.3g  speed-up %.2f\n", name,
+              prepared.particle_count(), prepared.time_step(), rates[0], rates[1], rates[1] / rates[0]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  std::printf("bench_dem (dem_core); use --quick for a shorter run\n");
+  const dem_core::Simulation drum = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
+  throughput("drum s=1, 60 RPM", drum, quick ? 100 : 400);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("peak memory (maxrss) %.1f MB = %.0f bytes per drum particle (includes the process baseline)\n",
+              usage.ru_maxrss / 1024.0, usage.ru_maxrss * 1024.0 / static_cast<double>(drum.particle_count()));
+  const dem_core::Simulation bed = bench::make_pellet_bed(0.01, 2.0 / 7.0, quick ? 0.05 : 0.25, 2);
+  throughput("pellet bed (settled)", bed, quick ? 200 : 1000);
+
+  // One case evaluation each, 1 thread: s = 4 drum (3 s simulated) and a pellet compression.
+  {
+    dem_core::Simulation s4 = bench::make_drum(4.0, 0.3, 1);
+    const double t = bench::time_steps(s4, static_cast<std::uint64_t>(2.7 / s4.time_step()));
+    std::printf("drum s=4: N=%zu, 0.3 s settle + 2.7 s at 60 RPM took %.2f s wall (1 thread) [target < 15 s]\n",
+                s4.particle_count(), t);
+  }
+  for (double normk : {0.01, 0.875046}) {
+    dem_core::Simulation p = bed;
+    p.set_threads(1);
+    dem_core::ContactParameters c = p.settings().contact;
+    c.normk = normk;
+    c.sheark = normk > 0.1 ? 0.299582 : 2.0 / 7.0;
+    p.set_contact_parameters(c);
+    double simulated = 0.0, reached = 0.0;
+    const double t = bench::time_compression(p, 0.05, 3.0e6, simulated, reached);
+    std::printf("pellet compression NORMK=%g: dt=%.3g s, %.4f s simulated to %.2f MPa took %.2f s wall (1 thread) "
+                "[target < 30 s]\n", normk, p.time_step(), simulated, reached / 1e6, t);
+  }
+
+  const bench::LiggghtsComparison cmp = bench::compare_with_liggghts(quick ? 200 : 1000);
+  std::printf("box settle, Hertz-Mindlin, N=%ld, dt=%.3g s, %ld steps: demfit %.2f s (1 thread)\n", cmp.particles,
+              cmp.time_step, cmp.steps, cmp.demfit_seconds);
+  if (cmp.ran)
+    std::printf("LIGGGHTS (%ld atoms) %.2f s -> speed ratio demfit/LIGGGHTS = %.2f [target >= 1.0] (%s)\n",
+                cmp.liggghts_particles, cmp.liggghts_seconds, cmp.liggghts_seconds / cmp.demfit_seconds,
+                cmp.note.c_str());
+  else
+    std::printf("LIGGGHTS comparison skipped: %s\n", cmp.note.c_str());
+  return EXIT_SUCCESS;
+}

@@ -1,0 +1,156 @@
+// Evaluations needed to reach a target accuracy: demfit SRSM + RBF, demfit adaptive infill, and
+// baselines from scipy (differential evolution, Nelder-Mead) and scikit-learn (GP expected improvement)
+// run by baselines.py. Prints one table with ratios. Usage:
+//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)]
+// Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3,
+// Hartmann-6 within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative
+// Gaussian noise) f* + 1e-2.
+#include "demfit/rbf_surrogate/design.hpp"
+#include "demfit/rbf_surrogate/expensive.hpp"
+#include "test_functions.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace demfit::rbf_surrogate;
+
+namespace {
+
+struct Problem {
+    std::string name;
+    std::function<double(const VectorXd&)> f;
+    std::vector<Variable> vars;
+    double target;
+    int budget;
+    bool noisy;
+};
+
+std::vector<Problem> problems() {
+    std::vector<Variable> h6, r4;
+    for (int i = 0; i < 6; ++i) h6.push_back({"x", 0.0, 1.0});
+    for (int i = 0; i < 4; ++i) r4.push_back({"x", -2.0, 2.0});
+    const std::vector<Variable> br{{"x1", -5.0, 10.0}, {"x2", 0.0, 15.0}};
+    return {{"branin", testfn::branin, br, testfn::kBraninMinimum + 1e-3, 100, false},
+            {"hartmann6", testfn::hartmann6, h6, 0.99 * testfn::kHartmann6Minimum, 300, false},
+            {"rosenbrock4", testfn::rosenbrock, r4, 0.1, 300, false},
+            {"branin_noisy", testfn::branin, br, testfn::kBraninMinimum + 1e-2, 100, true}};
+}
+
+// Evaluations until the incumbent's true value meets the target (-1: never), and run time.
+std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std::uint64_t seed) {
+    std::mt19937_64 rng(1000 + seed);
+    int n = 0, hit = -1;
+    double best_observed = INFINITY;
+    auto wrapped = [&](const VectorXd& x) {
+        const double truth = p.f(x);
+        double obs = truth;
+        if (p.noisy) {  // Box-Muller with the library's reproducible uniform mapping
+            const double u1 = 1.0 - uniform01(rng), u2 = uniform01(rng);
+            obs = truth * (1 + 0.01 * std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2));
+        }
+        ++n;
+        if (obs < best_observed) {
+            best_observed = obs;
+            if (hit < 0 && truth <= p.target) hit = n;
+        }
+        return obs;
+    };
+    ExpensiveOptions o;
+    o.strategy = strategy;
+    o.max_evaluations = p.budget;
+    o.seed = seed;
+    o.rbf.smoothing = p.noisy;
+    o.clip_above_median = std::getenv("DEMFIT_BENCH_CLIP") != nullptr;
+    if (!p.noisy) o.target = p.target;
+    const auto t0 = std::chrono::steady_clock::now();
+    minimise_expensive(wrapped, p.vars, o);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return {hit, seconds};
+}
+
+// Median with failures counted as infinite; -1 when at least half the runs failed.
+double median_evals(std::vector<int> v) {
+    for (auto& x : v)
+        if (x < 0) x = 1 << 30;
+    std::sort(v.begin(), v.end());
+    const double m = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    return m >= (1 << 29) ? -1.0 : m;
+}
+
+std::map<std::pair<std::string, std::string>, std::vector<int>> run_baselines(int seeds) {
+    std::map<std::pair<std::string, std::string>, std::vector<int>> out;
+    const std::string cmd = std::string("/usr/bin/python3 ") + DEMFIT_BASELINES_SCRIPT + " " + std::to_string(seeds);
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return out;
+    char line[512];
+    while (fgets(line, sizeof line, pipe)) {
+        std::istringstream is(line);
+        std::string tag, method, problem;
+        int seed = 0, evals = -1;
+        is >> tag;
+        if (tag == "SKIPPED") std::cout << "python baselines skipped: " << line;
+        if (tag != "RESULT") continue;
+        is >> method >> problem >> seed >> evals;
+        out[{method, problem}].push_back(evals);
+    }
+    pclose(pipe);
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const int seeds = argc > 1 ? std::atoi(argv[1]) : 5;
+    const int baseline_seeds = argc > 2 ? std::atoi(argv[2]) : 3;
+    std::map<std::pair<std::string, std::string>, std::vector<int>> results;
+    std::map<std::pair<std::string, std::string>, double> seconds;
+    for (const Problem& p : problems())
+        for (auto [name, strategy] : {std::pair{"demfit_srsm", InfillStrategy::srsm},
+                                      std::pair{"demfit_adaptive", InfillStrategy::adaptive}}) {
+            for (int s = 1; s <= seeds; ++s) {
+                const auto [hit, secs] = run_demfit(p, strategy, static_cast<std::uint64_t>(s));
+                results[{name, p.name}].push_back(hit);
+                seconds[{name, p.name}] += secs / seeds;
+            }
+            std::cerr << name << " " << p.name << " done\n";
+        }
+    const bool have_python = baseline_seeds > 0 && std::system("/usr/bin/python3 -c 'import scipy, sklearn' 2>/dev/null") == 0;
+    if (have_python)
+        for (auto& [key, v] : run_baselines(baseline_seeds)) results[key] = v;
+    const std::vector<std::string> methods{"demfit_srsm", "demfit_adaptive", "scipy_de", "scipy_nelder_mead",
+                                           "sklearn_gp_ei"};
+    std::printf("%-13s %-18s %8s %8s %10s %18s %10s\n", "problem", "method", "success", "budget", "median_ev",
+                "ratio_vs_adaptive", "s/run");
+    for (const Problem& p : problems()) {
+        const double ref = median_evals(results[{"demfit_adaptive", p.name}]);
+        for (const auto& m : methods) {
+            const auto it = results.find({m, p.name});
+            if (it == results.end()) {
+                std::printf("%-13s %-18s %8s\n", p.name.c_str(), m.c_str(), "skipped");
+                continue;
+            }
+            const auto& v = it->second;
+            const int ok = static_cast<int>(std::count_if(v.begin(), v.end(), [](int x) { return x > 0; }));
+            const double med = median_evals(v);
+            const int budget = (m.rfind("scipy", 0) == 0) ? 20 * p.budget : p.budget;
+            char ratio[32] = "-", median[32] = "fail";
+            if (med > 0) std::snprintf(median, sizeof median, "%.1f", med);
+            if (med > 0 && ref > 0) std::snprintf(ratio, sizeof ratio, "%.2f", med / ref);
+            char secs[32] = "-";
+            if (seconds.count({m, p.name})) std::snprintf(secs, sizeof secs, "%.2f", seconds[{m, p.name}]);
+            std::printf("%-13s %-18s %5d/%-2zu %8d %10s %18s %10s\n", p.name.c_str(), m.c_str(), ok, v.size(), budget,
+                        median, ratio, secs);
+        }
+    }
+    return 0;
+}

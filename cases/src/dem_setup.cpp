@@ -1,0 +1,111 @@
+// CaseSpec -> dem_core conversions (see dem_setup.hpp).
+#include "dem_setup.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "demfit/dem_core/snapshot.hpp"
+
+namespace demfit::cases::detail {
+
+dem_core::Material to_material(const MaterialSpec& spec) {
+  dem_core::Material m;
+  m.bulk_modulus = spec.bulk_modulus();
+  m.density = spec.density;
+  m.poisson_ratio = spec.poisson_ratio;
+  return m;
+}
+
+dem_core::ContactParameters to_contact(const ContactSpec& spec) {
+  dem_core::ContactParameters c;
+  c.normk = spec.normk;
+  c.sheark = spec.sheark;
+  c.ndamp = spec.ndamp;
+  c.tdamp = spec.tdamp;
+  c.frics = spec.frics;
+  c.fricd = spec.fricd;
+  c.dc = spec.dc;
+  c.fricr = spec.fricr;
+  return c;
+}
+
+dem_core::WallContactParameters to_wall_contact(const WallContactSpec& spec) {
+  dem_core::WallContactParameters w;
+  w.frics = spec.frics;
+  w.fricd = spec.fricd;
+  w.damp = spec.damp;
+  w.sfp = spec.sfp;
+  return w;
+}
+
+CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters) {
+  CaseSpec spec = base;
+  for (const auto& [name, value] : parameters) {
+    if (name == "normk") spec.contact.normk = value;
+    else if (name == "sheark") spec.contact.sheark = value;
+    else if (name == "ndamp") spec.contact.ndamp = value;
+    else if (name == "tdamp") spec.contact.tdamp = value;
+    else if (name == "frics") spec.contact.frics = value;
+    else if (name == "fricd") spec.contact.fricd = value;
+    else if (name == "dc") spec.contact.dc = value;
+    else if (name == "fricr") spec.contact.fricr = value;
+    else if (name == "wall_frics") spec.wall.frics = value;
+    else if (name == "wall_fricd") spec.wall.fricd = value;
+    else if (name == "wall_damp") spec.wall.damp = value;
+    else if (name == "wall_sfp") spec.wall.sfp = value;
+    else throw std::runtime_error("parameter '" + name + "' is unknown (known: normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp wall_sfp)");
+  }
+  return spec;
+}
+
+identify::ParameterSet parameters_of(const CaseSpec& spec) {
+  return {{"normk", spec.contact.normk}, {"sheark", spec.contact.sheark}, {"ndamp", spec.contact.ndamp},
+          {"tdamp", spec.contact.tdamp}, {"frics", spec.contact.frics}, {"fricd", spec.contact.fricd},
+          {"dc", spec.contact.dc}, {"fricr", spec.contact.fricr}, {"wall_frics", spec.wall.frics},
+          {"wall_fricd", spec.wall.fricd}, {"wall_damp", spec.wall.damp}, {"wall_sfp", spec.wall.sfp}};
+}
+
+void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simulation) {
+  if (spec.time_step.value <= 0.0) return;
+  const double limit = simulation.stable_time_step();
+  if (spec.time_step.value > limit) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer,
+                  "'time_step.value' = %.3g s exceeds the stable limit %.3g s: lower it or set 0 (automatic)",
+                  spec.time_step.value, limit);
+    throw std::runtime_error(buffer);
+  }
+}
+
+void precheck_user_time_step(const CaseSpec& spec, double radius, double density) {
+  if (spec.time_step.value <= 0.0) return;
+  dem_core::SimulationSettings settings;
+  settings.contact = to_contact(spec.contact);
+  settings.time_step_factor = spec.time_step.factor;
+  dem_core::Simulation probe(settings);
+  dem_core::Material material = to_material(spec.material);
+  material.density = density;
+  probe.add_material(material);
+  probe.add_particle({0, 0, 0}, radius);
+  probe.add_wall({dem_core::PlaneGeometry{{0, 0, -radius}, {0, 0, 1}}, dem_core::FixedMotion{},
+                  to_wall_contact(spec.wall), {}, "probe"});
+  check_user_time_step(spec, probe);
+}
+
+SnapshotSchedule::SnapshotSchedule(std::vector<double> times, std::string directory, std::string stage)
+    : times_(std::move(times)), directory_(std::move(directory)), stage_(std::move(stage)) {
+  std::sort(times_.begin(), times_.end());
+  if (directory_.empty()) times_.clear();
+}
+
+void SnapshotSchedule::maybe_write(const dem_core::Simulation& simulation, double stage_time) {
+  while (next_ < times_.size() && stage_time >= times_[next_]) {
+    char name[128];
+    std::snprintf(name, sizeof name, "/%s_%08.4fs.vtk", stage_.c_str(), times_[next_]);
+    dem_core::write_vtk_snapshot(simulation, directory_ + name);
+    ++next_;
+  }
+}
+
+}  // namespace demfit::cases::detail

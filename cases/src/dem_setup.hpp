@@ -1,0 +1,51 @@
+#pragma once
+// Internal: CaseSpec pieces -> dem_core inputs, and the evaluated-parameter overrides.
+#include <string>
+
+#include "demfit/cases/case_spec.hpp"
+#include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/simulation.hpp"
+#include "demfit/identify/model.hpp"
+
+namespace demfit::cases::detail {
+
+// Time-step factor of fill generation (pouring, settling, densification): fixed, so a fill does
+// not depend on the case's time_step.factor (which is not part of the fill cache key). dem_core's
+// automatic step also applies its packing/damping bounds (dem_core/time_step.hpp).
+inline constexpr double kFillTimeStepFactor = 0.15;
+
+dem_core::Material to_material(const MaterialSpec& spec);
+dem_core::ContactParameters to_contact(const ContactSpec& spec);
+dem_core::WallContactParameters to_wall_contact(const WallContactSpec& spec);
+
+// Copies `base` with the identified parameters in `parameters` applied (names as in
+// parameter_names()); unknown names are errors naming the parameter.
+CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters);
+
+// The identified-parameter values of a spec, by name.
+identify::ParameterSet parameters_of(const CaseSpec& spec);
+
+// Throws "'time_step.value' = ... exceeds the stable limit ..." when the user step is too large
+// for the simulation's current particles and walls.
+void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simulation);
+
+// The same check before any expensive work: a probe simulation with one particle of the given
+// radius [m] and density [kg/m^3] and one wall with the spec's wall parameters (the stable
+// step depends on particle size, material and contact parameters, not on positions).
+void precheck_user_time_step(const CaseSpec& spec, double radius, double density);
+
+// Writes VTK snapshots of `simulation` named <dir>/<stage>_<time>.vtk for every time in
+// `times` that the stage crossed since the last call (times measured from the stage start).
+class SnapshotSchedule {
+ public:
+  SnapshotSchedule(std::vector<double> times, std::string directory, std::string stage);
+  void maybe_write(const dem_core::Simulation& simulation, double stage_time);
+
+ private:
+  std::vector<double> times_;
+  std::string directory_;
+  std::string stage_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace demfit::cases::detail

@@ -1,0 +1,77 @@
+#pragma once
+// Hertz–Mindlin (no-slip) law with restitution-based damping (the form used by LIGGGHTS'
+// hertz model; Tsuji et al. 1992 / Antypov & Elliott 2011):
+//   a = sqrt(R* delta), S_n = 2 E* a, F_n = 4/3 E* a delta + c_n v_n,
+//   S_t = 8 G* a,       F_t = -S_t xi - c_t v_t (Coulomb-limited),
+//   c = -2 sqrt(5/6) beta sqrt(S m*), beta = ln e / sqrt(ln^2 e + pi^2).
+// E* = 1/sum((1-nu^2)/E), G* = 1/sum((2-nu)/G) come in through ContactGeometry's compliances.
+#include <cmath>
+#include <numbers>
+
+#include "demfit/dem_core/contact_law_parts.hpp"
+#include "demfit/dem_core/parameters.hpp"
+
+namespace demfit::dem_core {
+
+/// beta(e) of the restitution-based damping; 0 for e = 1 (no damping).
+inline double hertz_damping_beta(double restitution) {
+  if (restitution >= 1.0) return 0.0;
+  const double log_e = std::log(restitution);
+  return log_e / std::sqrt(log_e * log_e + std::numbers::pi * std::numbers::pi);
+}
+
+struct HertzNormal {
+  double beta = 0.0;  ///< from hertz_damping_beta(e), <= 0
+
+  struct Result {
+    double force;            ///< repulsive magnitude along -normal on i [N]
+    double contact_radius;   ///< a = sqrt(R* delta) [m]
+    double energy;           ///< 8/15 E* sqrt(R*) delta^{5/2} [J]
+  };
+  Result evaluate(const ContactGeometry& g) const {
+    const double e_star = 1.0 / g.normal_compliance;
+    const double a = std::sqrt(g.effective_radius * g.overlap);
+    const double elastic = (4.0 / 3.0) * e_star * a * g.overlap;
+    const double s_n = 2.0 * e_star * a;
+    const double c_n = -2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(s_n * g.effective_mass);
+    return {elastic + c_n * dot(g.contact_velocity, g.normal), a, 0.4 * elastic * g.overlap};
+  }
+};
+
+struct HertzMindlinLaw {
+  HertzNormal normal{};
+  CoulombTangentialSpring tangential{};
+  ConstantTorqueRolling rolling{};
+
+  ContactForce force(const ContactGeometry& g, ContactHistory& history, double dt) const {
+    const HertzNormal::Result n = normal.evaluate(g);
+    ContactForce out;
+    out.elastic_energy = n.energy;
+    const double s_t = 8.0 * n.contact_radius / g.shear_compliance;
+    const double c_t = -2.0 * std::sqrt(5.0 / 6.0) * normal.beta * std::sqrt(s_t * g.effective_mass);
+    out.tangential_force = tangential.evaluate(g, s_t, c_t, n.force, history, dt, out.elastic_energy);
+    out.force = out.tangential_force - n.force * g.normal;
+    out.rolling_torque = rolling.evaluate(g, n.force, dt);
+    return out;
+  }
+};
+
+inline HertzMindlinLaw make_hertz_pair_law(const ContactParameters& p) {
+  HertzMindlinLaw law;
+  law.normal.beta = hertz_damping_beta(p.restitution);
+  law.tangential = {p.frics, p.dynamic_friction(), p.dc};
+  law.rolling.coefficient = p.rotation_enabled() ? p.fricr : 0.0;
+  return law;
+}
+
+/// Wall: rigid body (adds no compliance); same restitution as the pairs, wall FRICS sliding,
+/// wall FRICD rolling. SFP scales E* as it scales the linear wall spring.
+inline HertzMindlinLaw make_hertz_wall_law(const ContactParameters& p, const WallContactParameters& w) {
+  HertzMindlinLaw law;
+  law.normal.beta = hertz_damping_beta(p.restitution);
+  law.tangential = {w.frics, w.frics, 0.0};
+  law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
+  return law;
+}
+
+}  // namespace demfit::dem_core

@@ -1,0 +1,15 @@
+#pragma once
+// Umbrella header of the DEM kernel (std + OpenMP only).
+#include "demfit/dem_core/contact_geometry.hpp"
+#include "demfit/dem_core/contact_law_hertz.hpp"
+#include "demfit/dem_core/contact_law_linear.hpp"
+#include "demfit/dem_core/neighbor_list.hpp"
+#include "demfit/dem_core/packing.hpp"
+#include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/particle_state.hpp"
+#include "demfit/dem_core/probes.hpp"
+#include "demfit/dem_core/simulation.hpp"
+#include "demfit/dem_core/snapshot.hpp"
+#include "demfit/dem_core/time_step.hpp"
+#include "demfit/dem_core/vec3.hpp"
+#include "demfit/dem_core/wall.hpp"

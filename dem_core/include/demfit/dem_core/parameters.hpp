@@ -1,0 +1,56 @@
+#pragma once
+// Physical parameters at the API (SPEC section 1). Derived numbers (springs, damping
+// coefficients, time steps) are computed inside dem_core from these.
+// LS-DYNA names (NORMK, SHEARK, ...) appear here only as field names of the input structs,
+// because they are the quantities the user identifies; the kernel uses physical names.
+
+namespace demfit::dem_core {
+
+/// Which contact law the pair/wall loops are instantiated with (chosen once per simulation;
+/// the loops are templates on the law type, so there is no per-contact dispatch).
+enum class ContactLawKind {
+  lsdyna_linear,  ///< LS-DYNA *CONTROL_DISCRETE_ELEMENT linear spring-dashpot (SPEC 1)
+  hertz_mindlin,  ///< Hertz normal + Mindlin no-slip tangential, restitution-based damping
+};
+
+/// Particle material (solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2).
+struct Material {
+  double bulk_modulus = 1.0e9;  ///< K [Pa]; LS-DYNA spring k_i = NORMK * K * R_i
+  double density = 2500.0;      ///< true (solid) density rho [kg/m^3]
+  double poisson_ratio = 0.3;   ///< nu [-]; used only by Hertz–Mindlin (E = 3K(1-2nu))
+};
+
+/// Particle–particle contact parameters, LS-DYNA *CONTROL_DISCRETE_ELEMENT semantics, with the
+/// LS-DYNA defaults. One set for the whole simulation (as in LS-DYNA).
+struct ContactParameters {
+  double normk = 0.01;        ///< NORMK [-]: particle spring k_i = NORMK*K_i*R_i; pair = springs in series
+  double sheark = 2.0 / 7.0;  ///< SHEARK [-]: tangential spring k_t = SHEARK*k_n
+  double ndamp = 0.0;         ///< NDAMP [-]: normal damping as a fraction of critical, in [0,1)
+  double tdamp = 0.0;         ///< TDAMP [-]: tangential damping as a fraction of critical, in [0,1)
+  double frics = 0.0;         ///< FRICS [-]: static friction; FRICS = 0 disables ALL particle rotation
+                              ///<   (LS-DYNA behaviour: no rotational DOF, no torques, no rolling friction)
+  double fricd = -1.0;        ///< FRICD [-]: dynamic friction; negative means "same as FRICS" (LS-DYNA default)
+  double dc = 0.0;            ///< DC [s/m]: mu = FRICD + (FRICS-FRICD) exp(-DC |v_t|)
+  double fricr = 0.0;         ///< FRICR [-]: rolling friction, constant-torque model
+  double restitution = 1.0;   ///< e [-], Hertz–Mindlin only (the linear law uses NDAMP/TDAMP)
+
+  /// FRICD with the LS-DYNA default resolved (FRICD unset => FRICS).
+  [[nodiscard]] double dynamic_friction() const { return fricd < 0.0 ? frics : fricd; }
+  [[nodiscard]] bool rotation_enabled() const { return frics > 0.0; }
+};
+
+/// Particle-to-wall parameters (*DEFINE_DE_TO_SURFACE_COUPLING card 2 semantics).
+/// Wall springs: k_n,w = SFP*NORMK*K*R (no series partner), k_t,w = SHEARK*k_n,w.
+struct WallContactParameters {
+  double frics = 0.0;  ///< FRICS [-]: sliding (Coulomb) friction particle–wall
+  double fricd = 0.0;  ///< FRICD [-]: ROLLING friction particle–wall (its meaning on this card)
+  double damp = 0.0;   ///< DAMP [-]: damping fraction of critical, normal AND tangential, c = 2 DAMP sqrt(m k)
+  double sfp = 1.0;    ///< SFP [-]: scale factor on the wall normal spring
+};
+
+/// Throw std::runtime_error (one line naming the field) if a parameter is out of range or NaN.
+void validate(const Material& material);
+void validate(const ContactParameters& parameters);
+void validate(const WallContactParameters& parameters);
+
+}  // namespace demfit::dem_core

@@ -1,0 +1,35 @@
+#pragma once
+// Particle state as a structure of arrays: one contiguous array per quantity, indexed by the
+// particle index (the layout of the hot loops). Solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2.
+#include <cstddef>
+#include <vector>
+
+#include "demfit/dem_core/vec3.hpp"
+
+namespace demfit::dem_core {
+
+struct ParticleState {
+  // kinematics (global frame)
+  std::vector<Vec3> position{};          ///< centre [m]
+  std::vector<Vec3> velocity{};          ///< [m/s]
+  std::vector<Vec3> angular_velocity{};  ///< [rad/s]
+  // resultant loads of the last force evaluation (contacts + gravity)
+  std::vector<Vec3> force{};   ///< [N]
+  std::vector<Vec3> torque{};  ///< [N·m] about the particle centre
+  // constant properties
+  std::vector<double> radius{};            ///< [m]
+  std::vector<double> mass{};              ///< [kg]
+  std::vector<double> inverse_mass{};      ///< [1/kg]
+  std::vector<double> inverse_inertia{};   ///< 1/I [1/(kg m^2)], I = 2/5 m R^2
+  std::vector<std::size_t> material{};     ///< index into Simulation's material table
+  /// Normal compliance of the particle's own "half" of a contact; a pair's stiffness is the
+  /// inverse of the sum of both compliances (springs in series). Linear law: 1/(NORMK K R) [m/N];
+  /// Hertz: (1-nu^2)/E [1/Pa].
+  std::vector<double> normal_compliance{};
+  /// Hertz–Mindlin only: (2-nu)/G [1/Pa] (series sum gives 1/G*). Unused by the linear law.
+  std::vector<double> shear_compliance{};
+
+  [[nodiscard]] std::size_t size() const { return position.size(); }
+};
+
+}  // namespace demfit::dem_core

@@ -1,0 +1,148 @@
+#pragma once
+// Simulation: owns particles, walls, neighbour list and contact histories, and orchestrates one
+// velocity-Verlet step: half kick -> drift -> walls move -> neighbours -> pair forces -> wall
+// forces -> half kick. Units SI throughout; one global inertial frame.
+//
+// Determinism: pair loads are computed per pair into a pair array (in parallel), then gathered
+// per particle in the fixed CSR order; wall loads are reduced serially in particle order. The
+// result is therefore bit-identical for repeated runs AND for any thread count (measured in
+// tests/dem_core/test_determinism.cpp: 1 and 2 threads agree bitwise).
+//
+// FRICS = 0 (ContactParameters::frics) disables rotation entirely, as in LS-DYNA: angular
+// velocities stay zero, tangential forces (walls may still have friction) act on the centres only.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "demfit/dem_core/contact_geometry.hpp"
+#include "demfit/dem_core/neighbor_list.hpp"
+#include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/particle_state.hpp"
+#include "demfit/dem_core/vec3.hpp"
+#include "demfit/dem_core/wall.hpp"
+
+namespace demfit::dem_core {
+
+struct SimulationSettings {
+  ContactLawKind law = ContactLawKind::lsdyna_linear;
+  ContactParameters contact{};            ///< particle–particle parameters (SPEC 1)
+  Vec3 gravity{0.0, 0.0, -9.81};        ///< [m/s^2], global frame
+  int threads = 1;                      ///< OpenMP threads used by this simulation (>= 1)
+  /// User time step [s]; 0 = automatic. A user step above stable_time_step() is refused.
+  double time_step = 0.0;
+  /// Automatic step = factor * 2 pi sqrt(m*/k_n) of the stiffest contact (LS-DYNA uses 0.15;
+  /// see time_step.hpp for the rotational correction and the Hertz variant).
+  double time_step_factor = 0.15;
+  /// Verlet skin [m]; <= 0 means 0.3 x the largest radius (set when the first step runs).
+  double skin = 0.0;
+};
+
+class Simulation;
+
+/// Called by run_until every `every` steps with the simulation (which it may modify, e.g. change
+/// a wall's motion); return false to stop the run.
+using StepCallback = std::function<bool(Simulation&)>;
+
+class Simulation {
+ public:
+  explicit Simulation(SimulationSettings settings = {});
+
+  // ---- building -----------------------------------------------------------------------------
+  /// Register a material; returns its index (first material is 0).
+  std::size_t add_material(const Material& material);
+  /// Add a solid sphere: centre [m], radius [m] > 0, material index, velocity [m/s], angular
+  /// velocity [rad/s]. Returns the particle index. Throws std::runtime_error on bad input.
+  std::size_t add_particle(const Vec3& position, double radius, std::size_t material = 0,
+                           const Vec3& velocity = {}, const Vec3& angular_velocity = {});
+  /// Remove the particles whose flag is true (flags.size() == particle_count()); indices of the
+  /// remaining particles are compacted in order; contact histories are dropped.
+  void remove_particles(const std::vector<bool>& flags);
+  std::size_t add_wall(const WallSpec& spec);  ///< returns the wall index
+
+  // ---- settings changeable between steps ----------------------------------------------------
+  void set_gravity(const Vec3& gravity);
+  void set_contact_parameters(const ContactParameters& parameters);
+  void set_wall_contact_parameters(std::size_t wall, const WallContactParameters& parameters);
+  void set_time_step(double time_step);  ///< [s]; 0 = automatic
+  void set_threads(int threads);
+  void set_wall_motion(std::size_t wall, const WallMotion& motion);
+  /// Velocity of a translating wall [m/s] (makes the wall translating if it was fixed).
+  void set_wall_velocity(std::size_t wall, const Vec3& velocity);
+  /// Angular velocity of a rotating wall [rad/s]; throws unless the wall rotates.
+  void set_wall_angular_velocity(std::size_t wall, double angular_velocity);
+  void set_particle_velocity(std::size_t particle, const Vec3& velocity, const Vec3& angular_velocity = {});
+  void zero_velocities();  ///< all particle velocities and angular velocities to zero
+
+  // ---- running -------------------------------------------------------------------------------
+  void step();
+  void run_steps(std::uint64_t steps);
+  /// Step until time() >= t_end [s] (or the callback returns false); callback every `every` steps.
+  void run_until(double t_end, const StepCallback& callback = {}, std::uint64_t every = 1);
+
+  // ---- state ---------------------------------------------------------------------------------
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::uint64_t step_count() const { return step_count_; }
+  /// Step in use [s]: the user step, or the automatic one (resolved from the current particles).
+  [[nodiscard]] double time_step() const;
+  /// Stability limit [s] of the current particles/walls/parameters (see time_step.hpp).
+  [[nodiscard]] double stable_time_step() const;
+  [[nodiscard]] std::size_t particle_count() const { return particles_.size(); }
+  [[nodiscard]] std::size_t wall_count() const { return walls_.size(); }
+  [[nodiscard]] std::span<const Vec3> positions() const { return particles_.position; }
+  [[nodiscard]] std::span<const Vec3> velocities() const { return particles_.velocity; }
+  [[nodiscard]] std::span<const Vec3> angular_velocities() const { return particles_.angular_velocity; }
+  [[nodiscard]] std::span<const double> radii() const { return particles_.radius; }
+  [[nodiscard]] std::span<const double> masses() const { return particles_.mass; }
+  [[nodiscard]] const ParticleState& particles() const { return particles_; }
+  [[nodiscard]] const Wall& wall(std::size_t index) const;
+  /// Force [N] exerted by the particles on wall i during the last force evaluation.
+  [[nodiscard]] Vec3 wall_force(std::size_t index) const { return wall(index).force; }
+  /// Torque [N·m] of the particles on wall i about its torque axis (right-handed).
+  [[nodiscard]] double wall_torque(std::size_t index) const { return wall(index).torque; }
+  [[nodiscard]] const SimulationSettings& settings() const { return settings_; }
+  [[nodiscard]] const std::vector<Material>& materials() const { return materials_; }
+
+  // ---- diagnostics ---------------------------------------------------------------------------
+  [[nodiscard]] double kinetic_energy() const;                ///< translational + rotational [J]
+  [[nodiscard]] double elastic_energy() const { return elastic_energy_; }  ///< springs, last force evaluation [J]
+  [[nodiscard]] double gravitational_potential_energy() const;  ///< -sum m g·x [J] (zero at the origin)
+  [[nodiscard]] std::size_t contact_count() const { return contact_count_; }  ///< particle pairs touching
+  [[nodiscard]] std::size_t wall_contact_count() const;       ///< particle–wall contacts
+  [[nodiscard]] const NeighborList& neighbor_list() const { return neighbors_; }
+  [[nodiscard]] double skin() const;  ///< Verlet skin in use [m]
+
+ private:
+  void invalidate_forces() { forces_valid_ = false; }
+  void update_compliances();
+  void compute_forces(double dt);
+  void ensure_neighbors();
+  void reduce_diagnostics();
+  [[nodiscard]] double resolved_step() const;
+
+  SimulationSettings settings_;
+  std::vector<Material> materials_{};
+  ParticleState particles_;
+  std::vector<Wall> walls_{};
+  NeighborList neighbors_;
+  // Pair arrays aligned with neighbors_ pair indices.
+  std::vector<ContactHistory> pair_history_{};
+  std::vector<Vec3> pair_force_, pair_torque_first_, pair_torque_second_;
+  std::vector<double> pair_energy_{};
+  std::vector<std::uint8_t> pair_touching_{};
+  // Particle–wall arrays, index particle * wall_count() + wall.
+  std::vector<ContactHistory> wall_history_{};
+  std::vector<Vec3> wall_force_on_particle_, wall_contact_point_, wall_rolling_torque_;
+  std::vector<double> wall_energy_{};
+  std::vector<std::uint8_t> wall_touching_{};
+  double time_ = 0.0;
+  std::uint64_t step_count_ = 0;
+  double elastic_energy_ = 0.0;
+  std::size_t contact_count_ = 0;
+  bool forces_valid_ = false;
+  mutable double cached_step_ = 0.0;
+  mutable bool step_cache_valid_ = false;
+};
+
+}  // namespace demfit::dem_core

@@ -1,0 +1,150 @@
+// Cell-grid construction of the Verlet half list (O(N)): particles are counting-sorted into cells
+// of edge >= 2 R_max + skin, so all partners of a particle lie in its 27 surrounding cells.
+#include "demfit/dem_core/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace demfit::dem_core {
+namespace {
+
+struct CellGrid {
+  Vec3 origin;
+  double inverse_edge = 0.0;
+  std::int64_t nx = 1, ny = 1, nz = 1;
+  std::vector<std::uint32_t> cell_start;      // size cells + 1
+  std::vector<std::uint32_t> cell_particles;  // particle indices, ascending inside each cell
+
+  [[nodiscard]] std::int64_t coordinate(double value, double origin_value, std::int64_t n) const {
+    const auto c = static_cast<std::int64_t>((value - origin_value) * inverse_edge);
+    return std::clamp<std::int64_t>(c, 0, n - 1);
+  }
+  [[nodiscard]] std::int64_t cell_of(const Vec3& p) const {
+    return (coordinate(p.z, origin.z, nz) * ny + coordinate(p.y, origin.y, ny)) * nx + coordinate(p.x, origin.x, nx);
+  }
+};
+
+CellGrid make_grid(std::span<const Vec3> positions, double edge) {
+  Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  Vec3 hi = -lo;
+  for (const Vec3& p : positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  // Cap the cell count (escaped particles would otherwise blow up the grid): at most ~4N cells.
+  const double limit = 4.0 * static_cast<double>(positions.size()) + 64.0;
+  auto count = [&](double e) {
+    return (std::floor((hi.x - lo.x) / e) + 1) * (std::floor((hi.y - lo.y) / e) + 1) * (std::floor((hi.z - lo.z) / e) + 1);
+  };
+  while (count(edge) > limit) edge *= 1.26;
+  CellGrid grid;
+  grid.origin = lo;
+  grid.inverse_edge = 1.0 / edge;
+  grid.nx = static_cast<std::int64_t>(std::floor((hi.x - lo.x) / edge)) + 1;
+  grid.ny = static_cast<std::int64_t>(std::floor((hi.y - lo.y) / edge)) + 1;
+  grid.nz = static_cast<std::int64_t>(std::floor((hi.z - lo.z) / edge)) + 1;
+  const std::size_t cells = static_cast<std::size_t>(grid.nx * grid.ny * grid.nz);
+  std::vector<std::uint32_t> cell_of(positions.size());
+  grid.cell_start.assign(cells + 1, 0);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    cell_of[i] = static_cast<std::uint32_t>(grid.cell_of(positions[i]));
+    ++grid.cell_start[cell_of[i] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) grid.cell_start[c + 1] += grid.cell_start[c];
+  grid.cell_particles.resize(positions.size());
+  std::vector<std::uint32_t> fill(grid.cell_start.begin(), grid.cell_start.end() - 1);
+  for (std::size_t i = 0; i < positions.size(); ++i) grid.cell_particles[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  return grid;
+}
+
+/// Visit every j > i within the cutoff of i; `emit(j)` is called in a deterministic order.
+template <class Emit>
+void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<const double> r, double skin,
+                      std::size_t i, Emit&& emit) {
+  const Vec3& p = x[i];
+  const std::int64_t cx = g.coordinate(p.x, g.origin.x, g.nx);
+  const std::int64_t cy = g.coordinate(p.y, g.origin.y, g.ny);
+  const std::int64_t cz = g.coordinate(p.z, g.origin.z, g.nz);
+  for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, g.nz - 1); ++z)
+    for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, g.ny - 1); ++y)
+      for (std::int64_t xx = std::max<std::int64_t>(cx - 1, 0); xx <= std::min(cx + 1, g.nx - 1); ++xx) {
+        const std::size_t c = static_cast<std::size_t>((z * g.ny + y) * g.nx + xx);
+        for (std::uint32_t k = g.cell_start[c]; k < g.cell_start[c + 1]; ++k) {
+          const std::uint32_t j = g.cell_particles[k];
+          if (j <= i) continue;
+          const double cutoff = r[i] + r[j] + skin;
+          if (norm2(x[j] - p) < cutoff * cutoff) emit(j);
+        }
+      }
+}
+
+}  // namespace
+
+void NeighborList::build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads) {
+  if (!(skin > 0.0)) throw std::runtime_error("neighbour list skin must be > 0");
+  const std::size_t n = positions.size();
+  skin_ = skin;
+  ++build_count_;
+  reference_positions_.assign(positions.begin(), positions.end());
+  row_offsets_.assign(n + 1, 0);
+  first_.clear();
+  second_.clear();
+  column_offsets_.assign(n + 1, 0);
+  column_pairs_.clear();
+  if (n == 0) return;
+  const double r_max = *std::max_element(radii.begin(), radii.end());
+  const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (std::int64_t i = 0; i < count; ++i) {
+    std::uint32_t c = 0;
+    for_each_partner(grid, positions, radii, skin, static_cast<std::size_t>(i), [&](std::uint32_t) { ++c; });
+    row_offsets_[static_cast<std::size_t>(i) + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) row_offsets_[i + 1] += row_offsets_[i];
+  const std::size_t pairs = row_offsets_[n];
+  first_.resize(pairs);
+  second_.resize(pairs);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const auto ii = static_cast<std::size_t>(i);
+    std::uint32_t k = row_offsets_[ii];
+    for_each_partner(grid, positions, radii, skin, ii, [&](std::uint32_t j) {
+      first_[k] = static_cast<std::uint32_t>(ii);
+      second_[k++] = j;
+    });
+    std::sort(second_.begin() + row_offsets_[ii], second_.begin() + row_offsets_[ii + 1]);
+  }
+  // Transposed index; pairs are visited in ascending first member, so columns come out sorted.
+  for (std::size_t p = 0; p < pairs; ++p) ++column_offsets_[second_[p] + 1];
+  for (std::size_t j = 0; j < n; ++j) column_offsets_[j + 1] += column_offsets_[j];
+  column_pairs_.resize(pairs);
+  std::vector<std::uint32_t> fill(column_offsets_.begin(), column_offsets_.end() - 1);
+  for (std::size_t p = 0; p < pairs; ++p) column_pairs_[fill[second_[p]]++] = static_cast<std::uint32_t>(p);
+}
+
+bool NeighborList::needs_rebuild(std::span<const Vec3> positions, int threads) const {
+  if (build_count_ == 0 || positions.size() != reference_positions_.size()) return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  const auto n = static_cast<std::int64_t>(positions.size());
+  double worst = 0.0;  // max is order-independent, so the reduction is deterministic
+#pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double d2 = norm2(positions[static_cast<std::size_t>(i)] - reference_positions_[static_cast<std::size_t>(i)]);
+    worst = std::max(worst, d2);
+  }
+  return worst > limit2;
+}
+
+std::size_t NeighborList::find(std::size_t i, std::size_t j) const {
+  if (i + 1 >= row_offsets_.size()) return npos;
+  const auto begin = second_.begin() + row_offsets_[i];
+  const auto end = second_.begin() + row_offsets_[i + 1];
+  const auto it = std::lower_bound(begin, end, static_cast<std::uint32_t>(j));
+  if (it == end || *it != j) return npos;
+  return static_cast<std::size_t>(it - second_.begin());
+}
+
+}  // namespace demfit::dem_core

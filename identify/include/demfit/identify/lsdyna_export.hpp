@@ -1,0 +1,32 @@
+#pragma once
+// LS-DYNA keyword export of identified DEM parameters, fixed 10-character fields (SPEC 4).
+// Parameter names (lowercase LS-DYNA names, shared with cases/):
+//   particle: ndamp tdamp frics fricr normk sheark fricd dc
+//   wall:     wall_frics wall_fricd wall_damp wall_sfp
+// Missing names take the LS-DYNA defaults (ndamp 0, tdamp 0, frics 0, fricr 0, normk 0.01,
+// sheark 2/7, fricd = frics, dc 0, wall_frics 0, wall_fricd 0, wall_damp 0, wall_sfp 1).
+// Card layout written (LS-DYNA Keyword User's Manual, Vol. I; blank fields = LS-DYNA default):
+//   *CONTROL_DISCRETE_ELEMENT
+//     card 1: NDAMP TDAMP FRICS FRICR NORMK SHEARK CAP MXNSC   (CAP, MXNSC blank)
+//     card 2: GAMMA VOL ANG GAP IGNORE NBUF PARALLEL           (all blank)
+//     card 3: LNORM LSHEAR (unused) FRICD DC                   (LNORM, LSHEAR blank)
+//   *DEFINE_DE_TO_SURFACE_COUPLING
+//     card 1: SLAVE MASTER STYPE MTYPE     placeholders 1 2 0 0 (edit for your model)
+//     card 2: FRICS FRICD DAMP BSORT ...   wall_frics wall_fricd wall_damp
+//   wall_sfp is written as a comment: its field position differs between LS-DYNA versions.
+#include <filesystem>
+#include <string>
+
+#include "demfit/identify/model.hpp"
+
+namespace demfit::identify {
+
+// Formats a number into exactly 10 characters, right-aligned, with as many significant digits
+// as fit (exponent shortened to e-5 style when needed). Throws if it cannot fit.
+std::string lsdyna_field(double value);
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title);
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title);
+// Reads the cards written above back into parameter names (tests, round trips).
+ParameterSet parse_lsdyna_keywords(const std::string& text);
+
+}  // namespace demfit::identify

@@ -1,0 +1,48 @@
+#pragma once
+// The identification loop (issue #4): design -> evaluate -> fit RBF networks -> minimise the
+// predicted composite objective -> reduce the region (SRSM) -> repeat until the SPEC 3 stopping
+// rule. Every evaluation is committed to a SQLite store as it finishes; --resume replays it.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "demfit/identify/model.hpp"
+#include "demfit/identify/study_spec.hpp"
+
+namespace demfit::identify {
+
+struct RunOptions {
+  int jobs = 1;              // simulations evaluated at once (threads of the evaluator pool)
+  int threads_per_job = 1;   // OpenMP threads given to each simulation (EvaluationContext)
+  bool resume = false;       // continue the study found in output_dir/study.db
+  std::filesystem::path output_dir;  // results + study.db; created if missing
+  bool plots = true;         // PNG plots via gnuplot (skipped with a warning if missing)
+  bool progress = true;      // progress lines on stderr
+  // Test hook: called (serialised) after each evaluation has been committed to the store, with
+  // the number of evaluations done in this process. An exception thrown here stops the study
+  // at once and propagates out of run_study (simulates a kill after k runs).
+  std::function<void(int evaluations_done)> after_evaluation;
+};
+
+struct StudyResult {
+  ParameterSet best;                    // all model parameters of the best evaluated run
+  double best_objective = 0.0;
+  int runs = 0;                         // evaluations in the store (finished + failed)
+  int failed_runs = 0;
+  int iterations = 0;
+  std::map<std::string, double> ci_half_width;  // ~95 % confidence half-width per variable
+  std::map<std::string, double> standard_error;
+  std::vector<std::string> unidentifiable;      // variables the data cannot pin down
+  std::vector<std::vector<double>> correlation; // variables x variables, study order
+  double wall_seconds = 0.0;
+  CurveSet best_curves;                 // the best run's curves as simulated
+  bool converged = false;               // stopped by the tolerances, not the iteration limit
+};
+
+// Runs (or resumes) a study. Throws std::runtime_error when every run failed, when the store
+// belongs to another study, or when a store exists and resume is false.
+StudyResult run_study(const StudySpec& spec, const Model& model, const RunOptions& options);
+
+}  // namespace demfit::identify

@@ -1,0 +1,101 @@
+#pragma once
+// The study file, typed. A study says which model to run (case reference + fixed settings),
+// which parameters to vary and within which bounds, which measured curves to match and how,
+// and how the LS-OPT-like loop samples, reduces its region and stops (SPEC section 3).
+// The JSON format is documented in docs/study_format.md; parsing is strict: unknown keys,
+// wrong types and inconsistent values are errors naming the field (one line).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/model.hpp"
+
+namespace demfit::identify {
+
+// Current version of the study-file format ("demfit_study_version").
+inline constexpr int kStudyFormatVersion = 1;
+
+// One identified variable. Bounds and initial value in the model's parameter units.
+struct VariableSpec {
+  std::string name;
+  double lower = 0.0;
+  double upper = 1.0;
+  double initial = 0.5;
+  bool log_scale = false;        // sample and fit in log(value) (needs lower > 0)
+  double initial_range = 1.0;    // width of the iteration-0 region as a fraction of the bounds
+};
+
+enum class CurveMetric {
+  mse,            // SPEC 3 MSE composite at the target abscissae (needs monotone x)
+  curve_mapping,  // area-like distance to the best-aligned equal-arc-length segment
+};
+
+// One measured curve to match.
+struct TargetSpec {
+  std::string name;              // unique; used in file names and reports
+  std::string curve;             // simulated curve name in the model's CurveSet
+  Curve data;                    // measured points (loaded from CSV or given inline)
+  std::filesystem::path csv;     // where data came from (empty when inline)
+  CurveMetric metric = CurveMetric::mse;
+  double weight = 1.0;           // weight of this target in the composite objective
+  double scale = 0.0;            // s_p of SPEC 3; 0 = max|G| of the target
+  int mapping_points = 0;        // curve mapping: stations along the curve; 0 = target size
+};
+
+enum class SamplingStrategy {
+  srsm,             // SPEC 3 domain reduction: optimum + maximin points in the subregion
+  adaptive_infill,  // full region; optimum + infill points chosen from the objective model
+};
+
+enum class ResponseMode {
+  curve_points,         // one RBF output per resampled curve value (shared factorisation)
+  principal_components, // RBF outputs = PCA scores of the stacked curves
+};
+
+struct StudySpec {
+  int version = kStudyFormatVersion;
+  std::string name;
+  // Model: a case reference understood by cases::make_model ("pellet_compression",
+  // "rotary_drum", "analytic" or a case JSON path) plus fixed case settings.
+  std::string model_reference;
+  nlohmann::json model_overrides = nlohmann::json::object();
+  ParameterSet fixed_parameters;          // parameters held at given values (not varied)
+  std::vector<VariableSpec> variables;
+  std::vector<TargetSpec> targets;
+  // Sampling.
+  int points_per_iteration = 0;           // 0 before defaulting; parse fills ceil(1.5(n+1)+1)
+  SamplingStrategy strategy = SamplingStrategy::srsm;
+  // Domain reduction (SPEC 3 / Stander & Craig 2002).
+  double gamma_pan = 1.0;
+  double gamma_osc = 0.6;
+  double eta = 0.6;
+  // Surrogate.
+  std::string basis = "multiquadric";     // "multiquadric" or "gaussian"
+  ResponseMode responses = ResponseMode::curve_points;
+  double smoothing = 0.0;                 // ridge term of the RBF fit (noisy responses)
+  // Stopping.
+  int max_iterations = 20;
+  double design_tolerance = 0.01;         // change of the optimum, fraction of each range
+  double objective_tolerance = 0.01;      // relative change of the optimum's objective
+  std::uint64_t seed = 1;
+  std::filesystem::path base_dir;         // for relative paths (CSV files, case files)
+};
+
+// Parses a study JSON (strict). Relative paths resolve against base_dir. Throws
+// std::runtime_error "study: <field>: <problem>; <fix>" on the first error.
+StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& base_dir);
+// Reads and parses a study file; base_dir = the file's folder.
+StudySpec load_study_file(const std::filesystem::path& path);
+// The resolved study as JSON (targets inline, defaults filled in). parse_study() of this
+// gives back an equal spec; it is what the study store keeps and hashes.
+nlohmann::json to_json(const StudySpec& spec);
+// Stable 64-bit hash (FNV-1a of the resolved JSON text) identifying a study in its store.
+std::uint64_t study_hash(const StudySpec& spec);
+
+// Default points per iteration: 1.5(n+1)+1 rounded up (SPEC 3; 16 for n = 9).
+int default_points_per_iteration(int variables);
+
+}  // namespace demfit::identify

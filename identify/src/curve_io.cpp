@@ -1,0 +1,99 @@
+// Curve CSV reading/writing (SPEC 4: header names each column with its unit).
+#include "demfit/identify/curve_io.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "atomic_file.hpp"
+
+namespace demfit::identify {
+namespace {
+
+std::string trim(const std::string& text) {
+  const auto begin = text.find_first_not_of(" \t\r\n\"");
+  if (begin == std::string::npos) return {};
+  const auto end = text.find_last_not_of(" \t\r\n\"");
+  return text.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream stream(line);
+  std::string field;
+  while (std::getline(stream, field, ',')) fields.push_back(trim(field));
+  return fields;
+}
+
+std::size_t column_index(const std::vector<std::string>& header, const std::string& name,
+                         const std::filesystem::path& path) {
+  for (std::size_t i = 0; i < header.size(); ++i)
+    if (header[i] == name) return i;
+  std::string known;
+  for (const auto& h : header) known += (known.empty() ? "" : ", ") + h;
+  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name +
+                           "'; the header has: " + known);
+}
+
+double parse_number(const std::string& text, const std::filesystem::path& path, int line) {
+  double value = 0.0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (!text.empty() && *first == '+') ++first;
+  const auto result = std::from_chars(first, last, value);
+  if (result.ec != std::errc() || result.ptr != last)
+    throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line) +
+                             ": '" + text + "' is not a number; fix the value");
+  return value;
+}
+
+}  // namespace
+
+Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column,
+                     const std::string& y_column) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("curve file '" + path.string() + "' cannot be opened; check the path");
+  Curve curve{x_column, y_column, {}, {}};
+  std::string line;
+  std::vector<std::string> header;
+  std::size_t ix = 0, iy = 0;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const std::string content = trim(line);
+    if (content.empty() || content[0] == '#') continue;
+    const auto fields = split_fields(content);
+    if (header.empty()) {
+      header = fields;
+      ix = column_index(header, x_column, path);
+      iy = column_index(header, y_column, path);
+      continue;
+    }
+    if (fields.size() != header.size())
+      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) +
+                               ": " + std::to_string(fields.size()) + " fields, header has " +
+                               std::to_string(header.size()));
+    curve.x.push_back(parse_number(fields[ix], path, line_number));
+    curve.y.push_back(parse_number(fields[iy], path, line_number));
+  }
+  if (curve.x.size() < 2)
+    throw std::runtime_error("curve file '" + path.string() + "': fewer than 2 points; a curve needs at least 2");
+  return curve;
+}
+
+void write_curve_csv(const std::filesystem::path& path, const Curve& curve) {
+  if (curve.x.size() != curve.y.size())
+    throw std::runtime_error("write_curve_csv: x and y sizes differ for '" + path.string() + "'");
+  std::string text = curve.x_label + "," + curve.y_label + "\n";
+  char buffer[64];
+  for (std::size_t i = 0; i < curve.x.size(); ++i) {
+    std::snprintf(buffer, sizeof buffer, "%.17g,%.17g\n", curve.x[i], curve.y[i]);
+    text += buffer;
+  }
+  detail::write_file_atomically(path, text);
+}
+
+}  // namespace demfit::identify

@@ -1,0 +1,68 @@
+#include "demfit/identify/evaluator.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace demfit::identify {
+
+EvaluationOutcome evaluate_safely(const Model& model, const ParameterSet& parameters, const EvaluationContext& context) {
+  EvaluationOutcome outcome;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    outcome.curves = model.evaluate(parameters, context);
+    outcome.ok = true;
+  } catch (const std::exception& e) {
+    outcome.error = e.what();
+  } catch (...) {
+    outcome.error = "unknown exception in the model";
+  }
+  // One line: error messages go into CSV files and progress lines.
+  for (char& c : outcome.error)
+    if (c == '\n' || c == '\r') c = ' ';
+  outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return outcome;
+}
+
+ThreadPoolEvaluator::ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed)
+    : model_(model), jobs_(jobs < 1 ? 1 : jobs), threads_per_job_(threads_per_job < 1 ? 1 : threads_per_job), seed_(seed) {}
+
+std::vector<EvaluationOutcome> ThreadPoolEvaluator::evaluate_batch(const std::vector<ParameterSet>& batch,
+                                                                   const DoneCallback& on_done) {
+  std::vector<EvaluationOutcome> outcomes(batch.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex callback_mutex;
+  std::exception_ptr failure;
+  const EvaluationContext context{threads_per_job_, seed_};
+  auto worker = [&] {
+    while (!stop.load()) {
+      const std::size_t index = next.fetch_add(1);
+      if (index >= batch.size()) return;
+      outcomes[index] = evaluate_safely(model_, batch[index], context);
+      std::lock_guard<std::mutex> lock(callback_mutex);
+      if (stop.load()) return;
+      try {
+        if (on_done) on_done(index, outcomes[index]);
+      } catch (...) {
+        failure = std::current_exception();
+        stop.store(true);
+        return;
+      }
+    }
+  };
+  const int workers = static_cast<int>(std::min<std::size_t>(jobs_, batch.size()));
+  if (workers <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> threads;
+    for (int i = 0; i < workers; ++i) threads.emplace_back(worker);
+    for (auto& t : threads) t.join();
+  }
+  if (failure) std::rethrow_exception(failure);
+  return outcomes;
+}
+
+}  // namespace demfit::identify

@@ -1,0 +1,72 @@
+#include "json_reader.hpp"
+
+#include <cmath>
+
+namespace demfit::identify::detail {
+
+JsonReader::JsonReader(const nlohmann::json& object, std::string path)
+    : object_(object), path_(std::move(path)) {
+  if (!object_.is_object())
+    throw std::runtime_error("study: " + (path_.empty() ? std::string("top level") : path_) +
+                             ": expected a JSON object {...}");
+}
+
+void JsonReader::fail(const std::string& key, const std::string& problem) const {
+  throw std::runtime_error("study: " + field(key) + ": " + problem);
+}
+
+const nlohmann::json& JsonReader::raw(const std::string& key) {
+  if (!object_.contains(key)) fail(key, "missing; this field is required");
+  used_.insert(key);
+  return object_.at(key);
+}
+
+double JsonReader::number(const std::string& key) {
+  const auto& value = raw(key);
+  if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
+  const double result = value.get<double>();
+  if (!std::isfinite(result)) fail(key, "must be finite");
+  return result;
+}
+
+double JsonReader::number_or(const std::string& key, double fallback) {
+  return has(key) ? number(key) : fallback;
+}
+
+int JsonReader::integer_or(const std::string& key, int fallback) {
+  if (!has(key)) return fallback;
+  const auto& value = raw(key);
+  if (!value.is_number_integer()) fail(key, "expected an integer, got " + value.dump());
+  return value.get<int>();
+}
+
+std::string JsonReader::text(const std::string& key) {
+  const auto& value = raw(key);
+  if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
+  return value.get<std::string>();
+}
+
+std::string JsonReader::text_or(const std::string& key, const std::string& fallback) {
+  return has(key) ? text(key) : fallback;
+}
+
+bool JsonReader::boolean_or(const std::string& key, bool fallback) {
+  if (!has(key)) return fallback;
+  const auto& value = raw(key);
+  if (!value.is_boolean()) fail(key, "expected true or false, got " + value.dump());
+  return value.get<bool>();
+}
+
+JsonReader JsonReader::object(const std::string& key) {
+  const auto& value = raw(key);
+  if (!value.is_object()) fail(key, "expected a JSON object {...}");
+  return JsonReader(value, field(key));
+}
+
+void JsonReader::finish() const {
+  for (const auto& item : object_.items())
+    if (!used_.count(item.key()))
+      fail(item.key(), "unknown key; remove it or check its spelling (see docs/study_format.md)");
+}
+
+}  // namespace demfit::identify::detail

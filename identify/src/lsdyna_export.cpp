@@ -1,0 +1,131 @@
+#include "demfit/identify/lsdyna_export.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "atomic_file.hpp"
+
+namespace demfit::identify {
+namespace {
+
+constexpr int kField = 10;
+
+ParameterSet with_defaults(const ParameterSet& given) {
+  ParameterSet p = {{"ndamp", 0.0}, {"tdamp", 0.0}, {"frics", 0.0}, {"fricr", 0.0}, {"normk", 0.01},
+                    {"sheark", 2.0 / 7.0}, {"dc", 0.0}, {"wall_frics", 0.0}, {"wall_fricd", 0.0},
+                    {"wall_damp", 0.0}, {"wall_sfp", 1.0}};
+  for (const auto& [name, value] : given) p[name] = value;
+  if (!given.count("fricd")) p["fricd"] = p["frics"];   // LS-DYNA: FRICD defaults to FRICS
+  return p;
+}
+
+std::string shorten_exponent(std::string text) {
+  const auto e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string mantissa = text.substr(0, e), exponent = text.substr(e + 1);
+  std::string sign;
+  if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) {
+    if (exponent[0] == '-') sign = "-";
+    exponent.erase(0, 1);
+  }
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  return mantissa + "e" + sign + exponent;
+}
+
+std::string blank() { return std::string(kField, ' '); }
+
+std::string card(const std::vector<std::string>& fields) {
+  std::string line;
+  for (const auto& f : fields) line += f;
+  return line + "\n";
+}
+
+std::vector<std::string> data_lines_after(const std::string& text, const std::string& keyword) {
+  std::istringstream in(text);
+  std::string line;
+  std::vector<std::string> lines;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '*') {
+      if (inside) break;
+      inside = line.rfind(keyword, 0) == 0 && line.size() >= keyword.size();
+      continue;
+    }
+    if (inside && !line.empty() && line[0] != '$') lines.push_back(line);
+  }
+  return lines;
+}
+
+double field_value(const std::string& line, int index, double fallback) {
+  if (static_cast<int>(line.size()) <= index * kField) return fallback;
+  const std::string text = line.substr(index * kField, kField);
+  if (text.find_first_not_of(' ') == std::string::npos) return fallback;
+  return std::stod(text);
+}
+
+}  // namespace
+
+std::string lsdyna_field(double value) {
+  if (!std::isfinite(value)) throw std::runtime_error("LS-DYNA export: a parameter value is not finite");
+  for (int digits = 10; digits >= 1; --digits) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    std::string text = shorten_exponent(buffer);
+    // Fortran reads ".0048707" as 0.0048707: dropping the leading zero buys one digit.
+    if (text.rfind("0.", 0) == 0) text.erase(0, 1);
+    else if (text.rfind("-0.", 0) == 0) text.erase(1, 1);
+    // One leading blank keeps neighbouring fields apart for the human reader.
+    if (static_cast<int>(text.size()) <= kField - 1) return std::string(kField - text.size(), ' ') + text;
+  }
+  throw std::runtime_error("LS-DYNA export: value " + std::to_string(value) + " does not fit a 10-character field");
+}
+
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title) {
+  const ParameterSet p = with_defaults(parameters);
+  std::ostringstream out;
+  out << "*KEYWORD\n$ demfit export: " << title << "\n"
+      << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
+      << "*CONTROL_DISCRETE_ELEMENT\n"
+      << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
+      << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),
+               lsdyna_field(p.at("fricr")), lsdyna_field(p.at("normk")), lsdyna_field(p.at("sheark"))})
+      << "$    GAMMA       VOL       ANG       GAP    IGNORE      NBUF  PARALLEL\n"
+      << card({blank()})
+      << "$    LNORM    LSHEAR    unused     FRICD        DC\n"
+      << card({blank(), blank(), blank(), lsdyna_field(p.at("fricd")), lsdyna_field(p.at("dc"))})
+      << "*DEFINE_DE_TO_SURFACE_COUPLING\n"
+      << "$ SLAVE/MASTER/STYPE/MTYPE are placeholders: set them to your DES and surface sets.\n"
+      << "$    SLAVE    MASTER     STYPE     MTYPE\n"
+      << card({lsdyna_field(1), lsdyna_field(2), lsdyna_field(0), lsdyna_field(0)})
+      << "$    FRICS     FRICD      DAMP     BSORT\n"
+      << card({lsdyna_field(p.at("wall_frics")), lsdyna_field(p.at("wall_fricd")), lsdyna_field(p.at("wall_damp"))})
+      << "$ wall stiffness scale factor SFP used by demfit: " << lsdyna_field(p.at("wall_sfp")) << "\n"
+      << "*END\n";
+  return out.str();
+}
+
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title) {
+  detail::write_file_atomically(path, lsdyna_keywords(parameters, title));
+}
+
+ParameterSet parse_lsdyna_keywords(const std::string& text) {
+  const auto control = data_lines_after(text, "*CONTROL_DISCRETE_ELEMENT");
+  const auto coupling = data_lines_after(text, "*DEFINE_DE_TO_SURFACE_COUPLING");
+  if (control.size() < 3 || coupling.size() < 2)
+    throw std::runtime_error("LS-DYNA keywords: *CONTROL_DISCRETE_ELEMENT needs 3 cards and "
+                             "*DEFINE_DE_TO_SURFACE_COUPLING 2 cards");
+  ParameterSet p;
+  const char* card1[] = {"ndamp", "tdamp", "frics", "fricr", "normk", "sheark"};
+  for (int i = 0; i < 6; ++i) p[card1[i]] = field_value(control[0], i, NAN);
+  p["fricd"] = field_value(control[2], 3, p["frics"]);
+  p["dc"] = field_value(control[2], 4, 0.0);
+  p["wall_frics"] = field_value(coupling[1], 0, 0.0);
+  p["wall_fricd"] = field_value(coupling[1], 1, 0.0);
+  p["wall_damp"] = field_value(coupling[1], 2, 0.0);
+  return p;
+}
+
+}  // namespace demfit::identify

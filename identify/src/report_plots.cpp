@@ -1,0 +1,157 @@
+#include "report_plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "gnuplot.hpp"
+#include "study_support.hpp"
+
+namespace demfit::identify::detail {
+
+std::pair<std::vector<double>, std::vector<double>> region_band(const std::vector<rbf_surrogate::Variable>& variables,
+                                                                const IterationRecord& iteration) {
+  const int n = static_cast<int>(variables.size());
+  Eigen::VectorXd lower(n), upper(n);
+  for (int j = 0; j < n; ++j) {
+    lower(j) = std::clamp(iteration.region_center[j] - 0.5 * iteration.region_range[j], 0.0, 1.0);
+    upper(j) = std::clamp(iteration.region_center[j] + 0.5 * iteration.region_range[j], 0.0, 1.0);
+  }
+  return {to_std(rbf_surrogate::from_unit(variables, lower)), to_std(rbf_surrogate::from_unit(variables, upper))};
+}
+
+std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
+                                                             const std::vector<IterationRecord>& iterations,
+                                                             const EvaluationRecord* best,
+                                                             const std::filesystem::path& output_dir) {
+  std::vector<std::string> images;
+  std::string warning;
+  auto plot = [&](const std::string& name, const std::string& commands) {
+    const std::string problem = gnuplot_png(output_dir / name, commands);
+    if (problem.empty()) images.push_back(name);
+    else if (warning.empty()) warning = problem;
+  };
+  const std::string csv_setup = "set datafile separator ','\nset key autotitle columnhead\n";
+  auto file = [&](const std::string& name) { return gnuplot_quote((output_dir / name).string()); };
+  if (best) {
+    for (const auto& t : spec.targets) {
+      if (!best->curves.count(t.curve)) continue;
+      plot("target_" + t.name + ".png",
+           csv_setup + "set title " + gnuplot_quote("target '" + t.name + "' vs best run (objective " +
+                                                    format_number(best->objective) + ")") +
+               "\nset xlabel " + gnuplot_quote(t.data.x_label) + "\nset ylabel " + gnuplot_quote(t.data.y_label) +
+               "\nplot " + file("target_" + t.name + ".csv") + " using 1:2 with points pt 7 ps 0.6 title 'target', " +
+               file("best_" + t.name + ".csv") + " using 1:2 with lines lw 2 title 'best run'");
+    }
+  }
+  bool positive = false;
+  for (const auto& r : runs) positive = positive || (r.ok && r.objective > 0.0);
+  if (!runs.empty()) {
+    plot("objective_history.png",
+         csv_setup + "set title 'objective per run and best per iteration'\nset xlabel 'iteration'\n"
+                     "set ylabel 'composite objective (-)'\n" +
+             (positive ? "set logscale y\n" : "") + "plot " + file("evaluations.csv") +
+             " using 1:5 with points pt 6 title 'evaluated runs', " + file("iterations.csv") +
+             " using 1:3 with linespoints lw 2 title 'best so far', " + file("iterations.csv") +
+             " using 1:4 with linespoints dt 2 title 'predicted optimum'");
+  }
+  if (!iterations.empty()) {
+    for (std::size_t j = 0; j < spec.variables.size(); ++j) {
+      const auto& v = spec.variables[j];
+      const int optimum = 7 + 3 * static_cast<int>(j);
+      plot("variable_" + v.name + ".png",
+           csv_setup + "set title " + gnuplot_quote("variable " + v.name + ": predicted optimum and subregion") +
+               "\nset xlabel 'iteration'\nset ylabel " + gnuplot_quote(v.name) + "\n" +
+               (v.log_scale ? "set logscale y\n" : "") + "set style fill transparent solid 0.25 noborder\nplot " +
+               file("iterations.csv") + " using 1:" + std::to_string(optimum + 1) + ":" + std::to_string(optimum + 2) +
+               " with filledcurves title 'subregion', " + file("iterations.csv") + " using 1:" +
+               std::to_string(optimum) + " with linespoints lw 2 title 'predicted optimum', " +
+               file("evaluations.csv") + " using 1:" + std::to_string(7 + j) + " with points pt 1 title 'runs'");
+    }
+  }
+  return {images, warning};
+}
+
+namespace {
+
+std::string number_or_dash(const nlohmann::json& value) {
+  return value.is_number() ? format_number(value.get<double>()) : "-";
+}
+
+}  // namespace
+
+std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
+                            const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
+                            const std::optional<nlohmann::json>& result, const std::vector<std::string>& images) {
+  std::ostringstream md;
+  int failed = 0;
+  for (const auto& r : runs) failed += r.ok ? 0 : 1;
+  md << "# demfit identification report: " << spec.name << "\n\n"
+     << "- model: `" << spec.model_reference << "`\n"
+     << "- status: "
+     << (result ? (result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
+                                                     : "finished, iteration limit reached")
+                : "NOT finished (report built from the runs stored so far)")
+     << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
+     << ", points per iteration: " << spec.points_per_iteration << "\n"
+     << "- strategy: " << (spec.strategy == SamplingStrategy::srsm ? "SRSM domain reduction" : "adaptive infill")
+     << ", surrogate: RBF " << spec.basis << " ("
+     << (spec.responses == ResponseMode::curve_points ? "one output per curve point" : "principal-component scores")
+     << "), seed " << spec.seed << "\n";
+  if (!best) {
+    md << "\nNo successful run yet.\n";
+    return md.str();
+  }
+  md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
+     << ", " << best->kind << ")\n\n## Identified variables\n\n"
+     << "| variable | initial | identified | ±95 % CI | bounds | identifiable |\n|---|---|---|---|---|---|\n";
+  const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
+  for (const auto& v : spec.variables) {
+    std::string ci = "-", identifiable = "-";
+    if (uncertainty.is_object()) {
+      ci = number_or_dash(uncertainty["ci_half_width"].value(v.name, nlohmann::json()));
+      const auto& flags = uncertainty["unidentifiable"];
+      identifiable = std::find(flags.begin(), flags.end(), v.name) == flags.end() ? "yes" : "**no**";
+    }
+    md << "| " << v.name << " | " << format_number(v.initial) << " | " << format_number(best->parameters.at(v.name))
+       << " | " << ci << " | [" << format_number(v.lower) << ", " << format_number(v.upper) << "]"
+       << (v.log_scale ? " log" : "") << " | " << identifiable << " |\n";
+  }
+  if (uncertainty.is_object()) {
+    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = surrogate Jacobian of the residual vector at "
+          "the best run, s² = residual variance, "
+       << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
+    for (const auto& v : spec.variables) md << " " << v.name << " |";
+    md << "\n|---|";
+    for (std::size_t j = 0; j < spec.variables.size(); ++j) md << "---|";
+    md << "\n";
+    for (std::size_t i = 0; i < spec.variables.size(); ++i) {
+      md << "| " << spec.variables[i].name << " |";
+      for (std::size_t j = 0; j < spec.variables.size(); ++j) md << " " << number_or_dash(uncertainty["correlation"][i][j]) << " |";
+      md << "\n";
+    }
+  }
+  md << "\n## Targets\n\n";
+  for (const auto& t : spec.targets)
+    md << "- `" << t.name << "`: simulated curve `" << t.curve << "`, " << t.data.x.size() << " points, metric "
+       << (t.metric == CurveMetric::mse ? "MSE" : "curve mapping") << ", weight " << format_number(t.weight) << "\n";
+  if (!images.empty()) {
+    md << "\n## Plots\n\n";
+    for (const auto& image : images) md << "![" << image << "](" << image << ")\n\n";
+  }
+  if (failed) {
+    md << "## Failed runs\n\n| iteration/point | error |\n|---|---|\n";
+    int listed = 0;
+    for (const auto& r : runs)
+      if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << r.error << " |\n";
+    md << "\n";
+  }
+  md << "## Files\n\n- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
+        "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
+        "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
+        "- `study.db`: the study store (`demfit report study.db` rebuilds these files, "
+        "`demfit export study.db --lsdyna out.k` writes LS-DYNA cards)\n";
+  return md.str();
+}
+
+}  // namespace demfit::identify::detail

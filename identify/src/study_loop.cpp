@@ -1,0 +1,392 @@
+// The identification loop of SPEC 3 (LS-OPT-like): iteration 0 is a space-filling design over the
+// initial region including the initial point; every later iteration evaluates the previous
+// predicted optimum plus maximin points in the SRSM subregion (or adaptive infill points),
+// refits the RBF networks and minimises the predicted composite objective. Every run is looked
+// up in the store first, so a resumed study regenerates the same points (all randomness is
+// seeded from the study seed and the iteration) and repeats no finished run.
+#include "demfit/identify/study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <set>
+#include <stdexcept>
+
+#include "demfit/identify/evaluator.hpp"
+#include "demfit/identify/objective.hpp"
+#include "demfit/identify/report.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "demfit/identify/uncertainty.hpp"
+#include "demfit/rbf_surrogate/adaptive_infill.hpp"
+#include "demfit/rbf_surrogate/design.hpp"
+#include "demfit/rbf_surrogate/optimize.hpp"
+#include "demfit/rbf_surrogate/srsm.hpp"
+#include "atomic_file.hpp"
+#include "response_surrogate.hpp"
+#include "study_support.hpp"
+
+namespace demfit::identify {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using rbf_surrogate::Box;
+
+struct Run {
+  int iteration = 0, point = 0;
+  VectorXd unit;
+  VectorXd responses;
+  double objective = 0.0;
+};
+
+class StudyLoop {
+ public:
+  StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
+      : spec_(spec), model_(model), options_(options), objective_(spec.targets),
+        variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
+        evaluator_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
+        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume)) {}
+
+  StudyResult run();
+
+ private:
+  void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
+  EvaluationRecord make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
+                               const ParameterSet& parameters, const EvaluationOutcome& outcome) const;
+  std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
+  Box fit_box(const Box& region) const;
+  const Run* best_run() const;
+  MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
+                  std::vector<std::string>& kinds) const;
+  IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
+                           std::uint64_t seed) const;
+  MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
+  StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
+  void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
+
+  const StudySpec& spec_;
+  const Model& model_;
+  const RunOptions& options_;
+  CompositeObjective objective_;
+  std::vector<rbf_surrogate::Variable> variables_;
+  int dims_;
+  ThreadPoolEvaluator evaluator_;
+  StudyStore store_;
+  std::vector<Run> runs_;                 // successful runs, in (iteration, point) order
+  std::vector<VectorXd> all_points_;      // every run (failed ones too), in order
+  int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
+  double evaluated_wall_ = 0.0;
+  std::string first_error_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+EvaluationRecord StudyLoop::make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
+                                        const ParameterSet& parameters, const EvaluationOutcome& outcome) const {
+  EvaluationRecord r;
+  r.iteration = iteration;
+  r.point = point;
+  r.kind = kind;
+  r.unit_x.assign(unit.data(), unit.data() + unit.size());
+  r.parameters = parameters;
+  r.wall_seconds = outcome.wall_seconds;
+  r.ok = outcome.ok;
+  r.error = outcome.error;
+  r.objective = std::numeric_limits<double>::quiet_NaN();
+  if (r.ok) {
+    try {  // a curve that cannot be compared (missing, NaN, non-monotone) fails the run
+      r.objective = objective_.objective(objective_.responses(outcome.curves));
+      r.curves = outcome.curves;
+      if (!std::isfinite(r.objective)) throw std::runtime_error("objective is not finite");
+    } catch (const std::exception& e) {
+      r.ok = false;
+      r.error = e.what();
+      r.curves.clear();
+    }
+  }
+  return r;
+}
+
+void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds) {
+  std::vector<ParameterSet> pending;
+  std::vector<int> pending_point;
+  for (int i = 0; i < points.rows(); ++i) {
+    const VectorXd unit = points.row(i).transpose();
+    if (const EvaluationRecord* stored = store_.find_evaluation(iteration, i)) {
+      if (stored->unit_x != std::vector<double>(unit.data(), unit.data() + unit.size()))
+        throw std::runtime_error("study store: run " + std::to_string(iteration) + "/" + std::to_string(i) +
+                                 " differs from the regenerated design; the store was written by another "
+                                 "demfit build, start the study in a new --out folder");
+      continue;  // finished (or failed) before: never repeated
+    }
+    pending.push_back(detail::model_parameters(spec_, model_, variables_, unit));
+    pending_point.push_back(i);
+  }
+  if (!pending.empty()) {
+    evaluator_.evaluate_batch(pending, [&](std::size_t index, const EvaluationOutcome& outcome) {
+      const int i = pending_point[index];
+      const EvaluationRecord record =
+          make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[index], outcome);
+      store_.add_evaluation(record);
+      ++evaluated_here_;
+      evaluated_wall_ += outcome.wall_seconds;
+      if (options_.progress)
+        std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s; %d runs in this session)\n", iteration,
+                     i + 1, static_cast<int>(points.rows()), record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
+                     record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
+                     record.wall_seconds, evaluated_here_);
+      if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
+    });
+  }
+  // Collect this batch in point order (independent of the order runs finished in).
+  for (int i = 0; i < points.rows(); ++i) {
+    const EvaluationRecord* r = store_.find_evaluation(iteration, i);
+    ++total_runs_;
+    all_points_.push_back(points.row(i).transpose());
+    if (!r->ok) {
+      ++failed_runs_;
+      if (first_error_.empty()) first_error_ = r->error;
+      continue;
+    }
+    Run run{iteration, i, points.row(i).transpose(), objective_.responses(r->curves), r->objective};
+    runs_.push_back(std::move(run));
+  }
+  if (runs_.empty())
+    throw std::runtime_error("every run failed (" + std::to_string(total_runs_) + " runs); first error: " +
+                             first_error_ + "; fix the model settings or narrow the variable bounds");
+}
+
+Box StudyLoop::fit_box(const Box& region) const {
+  if (spec_.strategy == SamplingStrategy::adaptive_infill) return Box::unit(dims_);
+  // Twice the subregion, shifted inside the unit box: neighbours just outside the subregion
+  // still shape the fit, far-away early runs do not spoil the conditioning.
+  Box box{region.lower, region.upper};
+  for (int j = 0; j < dims_; ++j) {
+    const double width = std::min(1.0, 2.0 * (region.upper(j) - region.lower(j)));
+    double lower = 0.5 * (region.lower(j) + region.upper(j)) - 0.5 * width;
+    lower = std::clamp(lower, 0.0, 1.0 - width);
+    box.lower(j) = lower;
+    box.upper(j) = lower + width;
+  }
+  return box;
+}
+
+std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
+  // Runs inside the fit box, topped up with the nearest others to at least 2P (and n + 2).
+  const int minimum = std::max(2 * spec_.points_per_iteration, dims_ + 2);
+  const int maximum = std::max(minimum, 300);
+  std::vector<std::pair<double, int>> order;
+  const VectorXd center = box.center(), width = box.width();
+  for (int i = 0; i < static_cast<int>(runs_.size()); ++i)
+    order.push_back({((runs_[i].unit - center).array() / width.array()).abs().maxCoeff(), i});
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<int> chosen;
+  for (const auto& [distance, i] : order) {
+    if (static_cast<int>(chosen.size()) >= maximum) break;
+    if (distance > 0.5 + 1e-12 && static_cast<int>(chosen.size()) >= minimum) break;
+    bool duplicate = false;  // a re-run of the same point adds nothing and breaks the fit
+    for (int c : chosen) duplicate = duplicate || (runs_[c].unit - runs_[i].unit).cwiseAbs().maxCoeff() < 1e-14;
+    if (!duplicate) chosen.push_back(i);
+  }
+  if (static_cast<int>(chosen.size()) < dims_ + 2) return std::nullopt;
+  std::sort(chosen.begin(), chosen.end());  // fit in run order: deterministic
+  MatrixXd x(chosen.size(), dims_), y(chosen.size(), objective_.response_size());
+  for (std::size_t r = 0; r < chosen.size(); ++r) {
+    x.row(r) = runs_[chosen[r]].unit.transpose();
+    y.row(r) = runs_[chosen[r]].responses.transpose();
+  }
+  try {
+    return detail::ResponseSurrogate(x, y, box, spec_);
+  } catch (const std::exception& e) {
+    if (options_.progress) std::fprintf(stderr, "demfit: warning: surrogate fit failed (%s); using the best run\n", e.what());
+    return std::nullopt;
+  }
+}
+
+const Run* StudyLoop::best_run() const {
+  const Run* best = nullptr;
+  for (const Run& r : runs_)
+    if (!best || r.objective < best->objective) best = &r;
+  return best;
+}
+
+void StudyLoop::progress_iteration(int iteration, const IterationRecord& record, const Box& region) const {
+  if (!options_.progress) return;
+  const double mean_here = evaluated_here_ ? evaluated_wall_ / evaluated_here_ : 0.0;
+  const int remaining = (spec_.max_iterations - iteration - 1) * spec_.points_per_iteration + 1;
+  const double eta = mean_here * remaining / std::max(1, evaluator_.concurrency());
+  std::fprintf(stderr,
+               "demfit: iteration %d done: best objective %s, predicted %s, subregion size %.3g (mean range), "
+               "runs %d (%d failed), ETA <= %s\n",
+               iteration, detail::format_number(record.best_objective).c_str(),
+               detail::format_number(record.predicted_objective).c_str(), region.width().mean(), total_runs_,
+               failed_runs_, detail::format_duration(eta).c_str());
+}
+
+MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed,
+                           int iteration) const {
+  // Points already run (failed ones too: they are not worth repeating) plus the optimum about
+  // to be run; SRSM spreads the new points by maximin distance to those inside the subregion.
+  std::vector<VectorXd> existing;
+  for (const VectorXd& p : all_points_)
+    if (spec_.strategy != SamplingStrategy::srsm || region.contains(p, 1e-12)) existing.push_back(p);
+  existing.push_back(optimum);
+  MatrixXd existing_rows(existing.size(), dims_);
+  for (std::size_t i = 0; i < existing.size(); ++i) existing_rows.row(i) = existing[i].transpose();
+  if (spec_.strategy == SamplingStrategy::srsm)
+    return rbf_surrogate::space_filling_augment(existing_rows, count, region, seed);
+  // Adaptive infill: a scalar RBF model of the evaluated objective over the whole box.
+  std::vector<int> unique;
+  for (int i = 0; i < static_cast<int>(runs_.size()); ++i) {
+    bool duplicate = false;
+    for (int u : unique) duplicate = duplicate || (runs_[u].unit - runs_[i].unit).cwiseAbs().maxCoeff() < 1e-14;
+    if (!duplicate) unique.push_back(i);
+  }
+  if (static_cast<int>(unique.size()) < dims_ + 2)
+    return rbf_surrogate::space_filling_augment(existing_rows, count, region, seed);
+  MatrixXd x(unique.size(), dims_), y(unique.size(), 1);
+  for (std::size_t r = 0; r < unique.size(); ++r) {
+    x.row(r) = runs_[unique[r]].unit.transpose();
+    y(r, 0) = runs_[unique[r]].objective;
+  }
+  const auto model = rbf_surrogate::RbfNetwork::fit(x, y, detail::rbf_options(spec_));
+  return rbf_surrogate::adaptive_infill(model, existing_rows, count, region, seed, iteration);
+}
+
+StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
+  const Run& best = *best_run();
+  StudyResult result;
+  result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
+  result.best_objective = best.objective;
+  result.best_curves = store_.find_evaluation(best.iteration, best.point)->curves;
+  result.runs = total_runs_;
+  result.failed_runs = failed_runs_;
+  result.iterations = verification_iteration;
+  result.converged = converged;
+  nlohmann::json uncertainty = nullptr;
+  // Uncertainty at the best run: surrogate Jacobian of the residuals (all runs, including the
+  // verification run), evaluated residuals for the variance.
+  if (const auto surrogate = fit(fit_box(final_region))) {
+    const MatrixXd jacobian_unit = surrogate->residual_jacobian(best.unit, objective_);
+    const MatrixXd jacobian = jacobian_unit * detail::unit_per_physical(spec_, variables_, best.unit).asDiagonal();
+    const auto estimate = estimate_uncertainty(jacobian, objective_.residuals(best.responses), spec_.variables);
+    uncertainty = detail::uncertainty_json(spec_, estimate);
+    for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
+      const std::string& name = spec_.variables[j].name;
+      result.ci_half_width[name] = estimate.ci_half_width[j];
+      result.standard_error[name] = estimate.standard_error[j];
+      if (estimate.unidentifiable[j]) result.unidentifiable.push_back(name);
+    }
+    result.correlation.assign(dims_, std::vector<double>(dims_));
+    for (int i = 0; i < dims_; ++i)
+      for (int j = 0; j < dims_; ++j) result.correlation[i][j] = estimate.correlation(i, j);
+  }
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  store_.put_result({{"best_iteration", best.iteration}, {"best_point", best.point},
+                     {"best_objective", best.objective}, {"best_parameters", result.best},
+                     {"best_variables", detail::variable_values(spec_, variables_, best.unit)},
+                     {"runs", result.runs}, {"failed_runs", result.failed_runs},
+                     {"iterations", result.iterations}, {"converged", converged},
+                     {"wall_seconds", result.wall_seconds}, {"uncertainty", uncertainty}});
+  const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);
+  if (options_.progress) {
+    if (!report.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", report.plot_warning.c_str());
+    std::fprintf(stderr, "demfit: study done: best objective %s after %d runs (%d failed), %s; results in %s\n",
+                 detail::format_number(best.objective).c_str(), result.runs, result.failed_runs,
+                 converged ? "converged" : "iteration limit reached", options_.output_dir.string().c_str());
+  }
+  return result;
+}
+
+MatrixXd StudyLoop::design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
+                           std::vector<std::string>& kinds) const {
+  const int P = spec_.points_per_iteration;
+  MatrixXd points(P, dims_);
+  kinds.assign(P, "design");
+  if (iteration == 0) {  // the initial point plus a maximin Latin hypercube over the initial region
+    points.row(0) = rbf_surrogate::to_unit(variables_, detail::initial_values(spec_)).transpose();
+    points.bottomRows(P - 1) = rbf_surrogate::latin_hypercube_maximin(P - 1, dims_, seed, region);
+    kinds[0] = "initial";
+  } else {  // the previous predicted optimum plus space-filling / infill points
+    points.row(0) = previous_optimum.transpose();
+    points.bottomRows(P - 1) = infill(previous_optimum, P - 1, region, seed, iteration);
+    kinds[0] = "optimum";
+  }
+  return points;
+}
+
+IterationRecord StudyLoop::optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
+                                    std::uint64_t seed) const {
+  IterationRecord record;
+  record.iteration = iteration;
+  record.region_center = detail::to_std(state.region.center);
+  record.region_range = detail::to_std(state.region.range);
+  VectorXd optimum;
+  if (const auto surrogate = fit(fit_box(region))) {
+    const auto result = detail::minimize_prediction(*surrogate, objective_, region, seed);
+    optimum = result.x;
+    record.predicted_objective = result.value;
+  } else {  // too few successful runs to fit: stay at the best run
+    optimum = best_run()->unit;
+    record.predicted_objective = best_run()->objective;
+  }
+  record.predicted_optimum = detail::to_std(optimum);
+  record.predicted_parameters = detail::variable_values(spec_, variables_, optimum);
+  record.best_objective = best_run()->objective;
+  record.runs_done = total_runs_;
+  return record;
+}
+
+StudyResult StudyLoop::run() {
+  const Box unit_box = Box::unit(dims_);
+  const rbf_surrogate::SrsmSettings srsm{spec_.gamma_pan, spec_.gamma_osc, spec_.eta};
+  rbf_surrogate::SrsmState state = rbf_surrogate::srsm_start(detail::initial_region(spec_, variables_));
+  VectorXd previous_optimum;
+  double previous_predicted = std::numeric_limits<double>::quiet_NaN();
+  double objective_floor = std::numeric_limits<double>::min();
+  bool converged = false;
+  int iteration = 0;
+  for (;; ++iteration) {
+    const Box region = spec_.strategy == SamplingStrategy::srsm || iteration == 0 ? state.region.box() : unit_box;
+    const std::uint64_t seed = detail::iteration_seed(spec_.seed, iteration);
+    std::vector<std::string> kinds;
+    evaluate_points(iteration, design(iteration, region, previous_optimum, seed, kinds), kinds);
+    // Relative objective changes are measured against at least 1e-12 of the best objective of
+    // iteration 0: a noiseless synthetic target drives the objective towards round-off, where
+    // relative changes are meaningless.
+    if (iteration == 0) objective_floor = std::max(1e-12 * best_run()->objective, objective_floor);
+    IterationRecord record = optimise(iteration, region, state, seed);
+    const VectorXd optimum = Eigen::Map<const VectorXd>(record.predicted_optimum.data(), dims_);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    record.design_change = iteration == 0 ? nan : (optimum - previous_optimum).cwiseAbs().maxCoeff();
+    record.objective_change = iteration == 0 ? nan
+                                             : std::abs(record.predicted_objective - previous_predicted) /
+                                                   std::max(std::abs(previous_predicted), objective_floor);
+    store_.put_iteration(record);
+    progress_iteration(iteration, record, region);
+    previous_optimum = optimum;
+    previous_predicted = record.predicted_objective;
+    // SPEC 3 stopping rule: design change and objective change both below tolerance.
+    converged = iteration > 0 && record.design_change < spec_.design_tolerance &&
+                record.objective_change < spec_.objective_tolerance;
+    if (converged || iteration + 1 >= spec_.max_iterations) break;
+    if (spec_.strategy == SamplingStrategy::srsm) state = rbf_surrogate::srsm_update(state, optimum, srsm, unit_box);
+  }
+  // Verification run at the final predicted optimum: the answer is always an evaluated point.
+  evaluate_points(iteration + 1, previous_optimum.transpose(), {"verification"});
+  return finish(iteration + 1, converged, state.region.box());
+}
+
+}  // namespace
+
+StudyResult run_study(const StudySpec& spec, const Model& model, const RunOptions& options) {
+  detail::check_parameter_names(spec, model);
+  StudyLoop loop(spec, model, options);
+  // The resolved input beside the results (targets inline, defaults filled in).
+  detail::write_file_atomically(options.output_dir / "study_resolved.json", to_json(spec).dump(2) + "\n");
+  return loop.run();
+}
+
+}  // namespace demfit::identify

@@ -1,0 +1,268 @@
+// Strict study-file parsing (format: docs/study_format.md). Parse once at the door: JSON ->
+// StudySpec, every problem reported as one line naming the field and the fix.
+#include "demfit/identify/study_spec.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+
+#include "demfit/identify/curve_io.hpp"
+#include "json_reader.hpp"
+
+namespace demfit::identify {
+namespace {
+
+using detail::JsonReader;
+
+VariableSpec parse_variable(const nlohmann::json& json, const std::string& path) {
+  JsonReader in(json, path);
+  VariableSpec v;
+  v.name = in.text("name");
+  v.lower = in.number("lower");
+  v.upper = in.number("upper");
+  v.initial = in.number_or("initial", 0.5 * (v.lower + v.upper));
+  v.log_scale = in.boolean_or("log_scale", false);
+  v.initial_range = in.number_or("initial_range", 1.0);
+  in.finish();
+  if (v.name.empty()) in.fail("name", "must not be empty");
+  if (!(v.upper > v.lower)) in.fail("upper", "must be greater than lower (" + std::to_string(v.lower) + ")");
+  if (v.initial < v.lower || v.initial > v.upper) in.fail("initial", "must lie within [lower, upper]");
+  if (v.log_scale && v.lower <= 0.0) in.fail("log_scale", "needs lower > 0; raise lower or set log_scale false");
+  if (!(v.initial_range > 0.0 && v.initial_range <= 1.0))
+    in.fail("initial_range", "must be in (0, 1] (fraction of upper - lower)");
+  return v;
+}
+
+CurveMetric parse_metric(JsonReader& in) {
+  const std::string name = in.text_or("metric", "mse");
+  if (name == "mse") return CurveMetric::mse;
+  if (name == "curve_mapping") return CurveMetric::curve_mapping;
+  in.fail("metric", "'" + name + "' is not a metric; use \"mse\" or \"curve_mapping\"");
+}
+
+std::vector<double> number_array(JsonReader& in, const std::string& key) {
+  const auto& value = in.raw(key);
+  if (!value.is_array()) in.fail(key, "expected an array of numbers");
+  std::vector<double> out;
+  for (const auto& item : value) {
+    if (!item.is_number()) in.fail(key, "expected only numbers, got " + item.dump());
+    out.push_back(item.get<double>());
+  }
+  return out;
+}
+
+TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std::size_t index,
+                        const std::filesystem::path& base_dir) {
+  JsonReader in(json, path);
+  TargetSpec t;
+  t.curve = in.text("curve");
+  t.name = in.text_or("name", t.curve.empty() ? "target" + std::to_string(index) : t.curve);
+  const std::string x_column = in.text("x_column");
+  const std::string y_column = in.text("y_column");
+  const bool has_csv = in.has("csv");
+  const bool has_inline = in.has("x") || in.has("y");
+  if (has_csv == has_inline)
+    in.fail("csv", "give either \"csv\" (file path) or inline \"x\" and \"y\" arrays, not both/neither");
+  if (has_csv) {
+    t.csv = in.text("csv");
+    const auto resolved = t.csv.is_absolute() ? t.csv : base_dir / t.csv;
+    t.data = read_curve_csv(resolved, x_column, y_column);
+  } else {
+    t.data = Curve{x_column, y_column, number_array(in, "x"), number_array(in, "y")};
+    if (t.data.x.size() != t.data.y.size()) in.fail("y", "must have as many values as x");
+    if (t.data.x.size() < 2) in.fail("x", "a target needs at least 2 points");
+  }
+  in.text_or("source", "");  // informational (where inline data came from)
+  t.metric = parse_metric(in);
+  t.weight = in.number_or("weight", 1.0);
+  t.scale = in.number_or("scale", 0.0);
+  t.mapping_points = in.integer_or("mapping_points", 0);
+  in.finish();
+  for (std::size_t i = 0; i < t.data.x.size(); ++i)
+    if (!std::isfinite(t.data.x[i]) || !std::isfinite(t.data.y[i]))
+      in.fail(has_csv ? "csv" : "x", "point " + std::to_string(i) + " is not finite");
+  if (!(t.weight > 0.0)) in.fail("weight", "must be > 0");
+  if (t.scale < 0.0) in.fail("scale", "must be >= 0 (0 = max|y| of the target)");
+  if (t.mapping_points < 0 || t.mapping_points == 1) in.fail("mapping_points", "must be 0 (auto) or >= 2");
+  return t;
+}
+
+void parse_model(JsonReader in, StudySpec& spec) {
+  spec.model_reference = in.text("case");
+  if (in.has("overrides")) {
+    const auto& overrides = in.raw("overrides");
+    if (!overrides.is_object()) in.fail("overrides", "expected a JSON object of case settings");
+    spec.model_overrides = overrides;
+  }
+  if (in.has("fixed_parameters")) {
+    JsonReader fixed = in.object("fixed_parameters");
+    for (const auto& item : in.raw("fixed_parameters").items())
+      spec.fixed_parameters[item.key()] = fixed.number(item.key());
+    fixed.finish();
+  }
+  in.finish();
+  if (spec.model_reference.empty()) in.fail("case", "must not be empty");
+}
+
+void parse_sampling(JsonReader in, StudySpec& spec) {
+  spec.points_per_iteration = in.integer_or("points_per_iteration", 0);
+  const std::string strategy = in.text_or("strategy", "srsm");
+  if (strategy == "srsm") spec.strategy = SamplingStrategy::srsm;
+  else if (strategy == "adaptive_infill") spec.strategy = SamplingStrategy::adaptive_infill;
+  else in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\" or \"adaptive_infill\"");
+  in.finish();
+  if (spec.points_per_iteration < 0) in.fail("points_per_iteration", "must be >= 0 (0 = default 1.5(n+1)+1)");
+}
+
+void parse_domain_reduction(JsonReader in, StudySpec& spec) {
+  spec.gamma_pan = in.number_or("gamma_pan", spec.gamma_pan);
+  spec.gamma_osc = in.number_or("gamma_osc", spec.gamma_osc);
+  spec.eta = in.number_or("eta", spec.eta);
+  in.finish();
+  if (!(spec.gamma_pan > 0.0 && spec.gamma_pan <= 1.5)) in.fail("gamma_pan", "must be in (0, 1.5]");
+  if (!(spec.gamma_osc > 0.0 && spec.gamma_osc <= 1.0)) in.fail("gamma_osc", "must be in (0, 1]");
+  if (!(spec.eta > 0.0 && spec.eta <= 1.0)) in.fail("eta", "must be in (0, 1]");
+  if (spec.gamma_pan < spec.gamma_osc) in.fail("gamma_pan", "must be >= gamma_osc");
+}
+
+void parse_surrogate(JsonReader in, StudySpec& spec) {
+  spec.basis = in.text_or("basis", spec.basis);
+  const std::string responses = in.text_or("responses", "curve_points");
+  spec.smoothing = in.number_or("smoothing", 0.0);
+  in.finish();
+  if (spec.basis != "multiquadric" && spec.basis != "gaussian")
+    in.fail("basis", "'" + spec.basis + "' is unknown; use \"multiquadric\" or \"gaussian\"");
+  if (responses == "curve_points") spec.responses = ResponseMode::curve_points;
+  else if (responses == "principal_components") spec.responses = ResponseMode::principal_components;
+  else in.fail("responses", "'" + responses + "' is unknown; use \"curve_points\" or \"principal_components\"");
+  if (spec.smoothing < 0.0) in.fail("smoothing", "must be >= 0");
+}
+
+void parse_stopping(JsonReader in, StudySpec& spec) {
+  spec.max_iterations = in.integer_or("max_iterations", spec.max_iterations);
+  spec.design_tolerance = in.number_or("design_tolerance", spec.design_tolerance);
+  spec.objective_tolerance = in.number_or("objective_tolerance", spec.objective_tolerance);
+  in.finish();
+  if (spec.max_iterations < 1) in.fail("max_iterations", "must be >= 1");
+  if (!(spec.design_tolerance >= 0.0)) in.fail("design_tolerance", "must be >= 0");
+  if (!(spec.objective_tolerance >= 0.0)) in.fail("objective_tolerance", "must be >= 0");
+}
+
+std::string metric_name(CurveMetric metric) {
+  return metric == CurveMetric::mse ? "mse" : "curve_mapping";
+}
+
+}  // namespace
+
+int default_points_per_iteration(int variables) {
+  return static_cast<int>(std::ceil(1.5 * (variables + 1) + 1.0 - 1e-12));
+}
+
+StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& base_dir) {
+  JsonReader in(study, "");
+  StudySpec spec;
+  spec.base_dir = base_dir;
+  if (!in.has("demfit_study_version")) in.fail("demfit_study_version", "missing; add \"demfit_study_version\": 1");
+  spec.version = in.integer_or("demfit_study_version", 0);
+  if (spec.version != kStudyFormatVersion)
+    in.fail("demfit_study_version", "version " + std::to_string(spec.version) + " is not supported; this demfit reads version " +
+                                        std::to_string(kStudyFormatVersion));
+  spec.name = in.text_or("name", "study");
+  parse_model(in.object("model"), spec);
+  const auto& variables = in.raw("variables");
+  if (!variables.is_array() || variables.empty()) in.fail("variables", "expected a non-empty array of variables");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < variables.size(); ++i) {
+    spec.variables.push_back(parse_variable(variables[i], "variables[" + std::to_string(i) + "]"));
+    if (!names.insert(spec.variables.back().name).second)
+      in.fail("variables", "'" + spec.variables.back().name + "' appears twice; names must be unique");
+    if (spec.fixed_parameters.count(spec.variables.back().name))
+      in.fail("variables", "'" + spec.variables.back().name + "' is also in model.fixed_parameters; keep one");
+  }
+  const auto& targets = in.raw("targets");
+  if (!targets.is_array() || targets.empty()) in.fail("targets", "expected a non-empty array of targets");
+  std::set<std::string> target_names;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    spec.targets.push_back(parse_target(targets[i], "targets[" + std::to_string(i) + "]", i, base_dir));
+    if (!target_names.insert(spec.targets.back().name).second)
+      in.fail("targets", "two targets are named '" + spec.targets.back().name + "'; give each a unique \"name\"");
+  }
+  if (in.has("sampling")) parse_sampling(in.object("sampling"), spec);
+  if (in.has("domain_reduction")) parse_domain_reduction(in.object("domain_reduction"), spec);
+  if (in.has("surrogate")) parse_surrogate(in.object("surrogate"), spec);
+  if (in.has("stopping")) parse_stopping(in.object("stopping"), spec);
+  if (in.has("seed")) {
+    const auto& seed = in.raw("seed");
+    if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
+      in.fail("seed", "expected a non-negative integer");
+    spec.seed = seed.get<std::uint64_t>();
+  }
+  in.finish();
+  if (spec.points_per_iteration == 0)
+    spec.points_per_iteration = default_points_per_iteration(static_cast<int>(spec.variables.size()));
+  if (spec.points_per_iteration < 2) in.fail("sampling", "points_per_iteration must be >= 2");
+  return spec;
+}
+
+StudySpec load_study_file(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("study file '" + path.string() + "' cannot be opened; check the path");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(file);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error("study file '" + path.string() + "' is not valid JSON: " + e.what());
+  }
+  return parse_study(json, std::filesystem::absolute(path).parent_path());
+}
+
+nlohmann::json to_json(const StudySpec& spec) {
+  nlohmann::json json;
+  json["demfit_study_version"] = spec.version;
+  json["name"] = spec.name;
+  json["model"] = {{"case", spec.model_reference}, {"overrides", spec.model_overrides},
+                   {"fixed_parameters", nlohmann::json::object()}};
+  for (const auto& [name, value] : spec.fixed_parameters) json["model"]["fixed_parameters"][name] = value;
+  json["variables"] = nlohmann::json::array();
+  for (const auto& v : spec.variables)
+    json["variables"].push_back({{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial},
+                                 {"log_scale", v.log_scale}, {"initial_range", v.initial_range}});
+  json["targets"] = nlohmann::json::array();
+  for (const auto& t : spec.targets) {
+    nlohmann::json target = {{"name", t.name}, {"curve", t.curve}, {"x_column", t.data.x_label},
+                             {"y_column", t.data.y_label}, {"x", t.data.x}, {"y", t.data.y},
+                             {"metric", metric_name(t.metric)}, {"weight", t.weight}, {"scale", t.scale},
+                             {"mapping_points", t.mapping_points}};
+    if (!t.csv.empty()) target["source"] = t.csv.generic_string();
+    json["targets"].push_back(target);
+  }
+  json["sampling"] = {{"points_per_iteration", spec.points_per_iteration},
+                      {"strategy", spec.strategy == SamplingStrategy::srsm ? "srsm" : "adaptive_infill"}};
+  json["domain_reduction"] = {{"gamma_pan", spec.gamma_pan}, {"gamma_osc", spec.gamma_osc}, {"eta", spec.eta}};
+  json["surrogate"] = {{"basis", spec.basis},
+                       {"responses", spec.responses == ResponseMode::curve_points ? "curve_points" : "principal_components"},
+                       {"smoothing", spec.smoothing}};
+  json["stopping"] = {{"max_iterations", spec.max_iterations}, {"design_tolerance", spec.design_tolerance},
+                      {"objective_tolerance", spec.objective_tolerance}};
+  json["seed"] = spec.seed;
+  return json;
+}
+
+std::uint64_t study_hash(const StudySpec& spec) {
+  // FNV-1a 64 over the resolved JSON text: stable across runs and compilers (std::hash is not).
+  // The stopping rule is left out so that a finished study can be resumed with a larger
+  // iteration limit; informational "source" paths are left out (the data itself is hashed).
+  nlohmann::json json = to_json(spec);
+  json.erase("stopping");
+  for (auto& target : json["targets"]) target.erase("source");
+  const std::string text = json.dump();
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+}  // namespace demfit::identify

@@ -1,0 +1,278 @@
+// SQLite study store. Each evaluation is its own transaction (autocommit), so a kill -9 loses at
+// most the runs in flight; WAL + synchronous=NORMAL keeps that durable against a process kill.
+#include "demfit/identify/study_store.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <sqlite3.h>
+
+namespace demfit::identify {
+namespace {
+
+nlohmann::json curves_to_json(const CurveSet& curves) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [name, c] : curves)
+    json[name] = {{"x_label", c.x_label}, {"y_label", c.y_label}, {"x", c.x}, {"y", c.y}};
+  return json;
+}
+
+CurveSet curves_from_json(const nlohmann::json& json) {
+  CurveSet curves;
+  for (const auto& item : json.items()) {
+    const auto& c = item.value();
+    curves[item.key()] = Curve{c.at("x_label").get<std::string>(), c.at("y_label").get<std::string>(),
+                               c.at("x").get<std::vector<double>>(), c.at("y").get<std::vector<double>>()};
+  }
+  return curves;
+}
+
+// JSON has no NaN: a failed run's objective is stored as null.
+nlohmann::json number_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+double number_from(const nlohmann::json& json) {
+  return json.is_number() ? json.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+IterationRecord iteration_from_json(const nlohmann::json& j) {
+  IterationRecord r;
+  r.iteration = j.at("iteration").get<int>();
+  r.region_center = j.at("region_center").get<std::vector<double>>();
+  r.region_range = j.at("region_range").get<std::vector<double>>();
+  r.predicted_optimum = j.at("predicted_optimum").get<std::vector<double>>();
+  r.predicted_parameters = j.at("predicted_parameters").get<ParameterSet>();
+  r.predicted_objective = number_from(j.at("predicted_objective"));
+  r.best_objective = number_from(j.at("best_objective"));
+  r.runs_done = j.at("runs_done").get<int>();
+  r.design_change = number_from(j.at("design_change"));
+  r.objective_change = number_from(j.at("objective_change"));
+  return r;
+}
+
+std::string column_text(sqlite3_stmt* statement, int column) {
+  const unsigned char* text = sqlite3_column_text(statement, column);
+  return text ? reinterpret_cast<const char*>(text) : "";
+}
+
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &statement_, nullptr) != SQLITE_OK)
+      throw std::runtime_error(std::string("study store: ") + sqlite3_errmsg(db));
+  }
+  ~Statement() { sqlite3_finalize(statement_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  sqlite3_stmt* get() { return statement_; }
+  void bind(int index, const std::string& text) { sqlite3_bind_text(statement_, index, text.c_str(), -1, SQLITE_TRANSIENT); }
+  void bind(int index, int value) { sqlite3_bind_int(statement_, index, value); }
+  void bind(int index, double value) {
+    if (std::isfinite(value)) sqlite3_bind_double(statement_, index, value);
+    else sqlite3_bind_null(statement_, index);
+  }
+
+ private:
+  sqlite3_stmt* statement_ = nullptr;
+};
+
+sqlite3* open_database(const std::filesystem::path& path, int flags) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.string().c_str(), &db, flags, nullptr) != SQLITE_OK) {
+    const std::string message = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close(db);
+    throw std::runtime_error("study store '" + path.string() + "' cannot be opened: " + message);
+  }
+  sqlite3_busy_timeout(db, 10000);
+  return db;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const EvaluationRecord& r) {
+  return {{"iteration", r.iteration}, {"point", r.point}, {"kind", r.kind}, {"unit_x", r.unit_x},
+          {"parameters", r.parameters}, {"objective", number_or_null(r.objective)},
+          {"wall_seconds", r.wall_seconds}, {"ok", r.ok}, {"error", r.error}};
+}
+
+nlohmann::json to_json(const IterationRecord& r) {
+  return {{"iteration", r.iteration}, {"region_center", r.region_center}, {"region_range", r.region_range},
+          {"predicted_optimum", r.predicted_optimum}, {"predicted_parameters", r.predicted_parameters},
+          {"predicted_objective", number_or_null(r.predicted_objective)},
+          {"best_objective", number_or_null(r.best_objective)}, {"runs_done", r.runs_done},
+          {"design_change", number_or_null(r.design_change)},
+          {"objective_change", number_or_null(r.objective_change)}};
+}
+
+StudyStore::StudyStore(sqlite3* db, std::filesystem::path path) : db_(db), path_(std::move(path)) {}
+StudyStore::StudyStore(StudyStore&& other) noexcept { *this = std::move(other); }
+StudyStore& StudyStore::operator=(StudyStore&& other) noexcept {
+  if (this != &other) {
+    if (db_) sqlite3_close(db_);
+    db_ = other.db_;
+    other.db_ = nullptr;
+    path_ = std::move(other.path_);
+    evaluations_ = std::move(other.evaluations_);
+    iterations_ = std::move(other.iterations_);
+  }
+  return *this;
+}
+StudyStore::~StudyStore() {
+  if (db_) sqlite3_close(db_);
+}
+
+void StudyStore::execute(const std::string& sql) {
+  char* message = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
+    const std::string text = message ? message : "unknown error";
+    sqlite3_free(message);
+    throw std::runtime_error("study store '" + path_.string() + "': " + text);
+  }
+}
+
+void StudyStore::put_meta(const std::string& key, const std::string& value) {
+  Statement s(db_, "INSERT OR REPLACE INTO meta(key, value) VALUES(?1, ?2)");
+  s.bind(1, key);
+  s.bind(2, value);
+  if (sqlite3_step(s.get()) != SQLITE_DONE) throw std::runtime_error(std::string("study store: ") + sqlite3_errmsg(db_));
+}
+
+std::optional<std::string> StudyStore::meta(const std::string& key) const {
+  Statement s(db_, "SELECT value FROM meta WHERE key = ?1");
+  s.bind(1, key);
+  if (sqlite3_step(s.get()) == SQLITE_ROW) return column_text(s.get(), 0);
+  return std::nullopt;
+}
+
+StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume) {
+  const bool exists = std::filesystem::exists(path);
+  if (exists && !resume)
+    throw std::runtime_error("study store '" + path.string() +
+                             "' already exists; pass --resume to continue it, or choose another --out folder");
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  StudyStore store(open_database(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE), path);
+  store.execute("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;");
+  const std::string hash = std::to_string(study_hash(spec));
+  if (!exists) {
+    store.execute(
+        "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+        "CREATE TABLE evaluations(iteration INTEGER NOT NULL, point INTEGER NOT NULL, kind TEXT NOT NULL,"
+        " unit_x TEXT NOT NULL, parameters TEXT NOT NULL, curves TEXT NOT NULL, objective REAL,"
+        " wall_seconds REAL NOT NULL, status TEXT NOT NULL, error TEXT NOT NULL,"
+        " PRIMARY KEY(iteration, point));"
+        "CREATE TABLE iterations(iteration INTEGER PRIMARY KEY, record TEXT NOT NULL);");
+    store.execute("BEGIN");
+    store.put_meta("schema_version", std::to_string(kStoreSchemaVersion));
+    store.put_meta("study_hash", hash);
+    store.put_meta("study_json", to_json(spec).dump());
+    store.execute("COMMIT");
+  } else {
+    store.load();
+    if (store.meta("study_hash").value_or("") != hash)
+      throw std::runtime_error("study store '" + path.string() +
+                               "' belongs to another study (different variables, targets or settings); "
+                               "use another --out folder");
+    // A resumed study may have a new stopping rule; keep the stored spec current.
+    store.put_meta("study_json", to_json(spec).dump());
+  }
+  return store;
+}
+
+StudyStore StudyStore::open_existing(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path))
+    throw std::runtime_error("study store '" + path.string() + "' does not exist; give the study.db of a run");
+  StudyStore store(open_database(path, SQLITE_OPEN_READWRITE), path);
+  store.load();
+  return store;
+}
+
+void StudyStore::load() {
+  std::optional<std::string> version;
+  try {
+    version = meta("schema_version");
+  } catch (const std::exception&) {
+    throw std::runtime_error("'" + path_.string() + "' is not a demfit study store");
+  }
+  if (!version || *version != std::to_string(kStoreSchemaVersion))
+    throw std::runtime_error("study store '" + path_.string() + "' has schema version " + version.value_or("?") +
+                             ", this demfit reads version " + std::to_string(kStoreSchemaVersion) +
+                             "; rerun the study with this version");
+  Statement s(db_, "SELECT iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds, status, error "
+                   "FROM evaluations ORDER BY iteration, point");
+  while (sqlite3_step(s.get()) == SQLITE_ROW) {
+    EvaluationRecord r;
+    r.iteration = sqlite3_column_int(s.get(), 0);
+    r.point = sqlite3_column_int(s.get(), 1);
+    r.kind = column_text(s.get(), 2);
+    r.unit_x = nlohmann::json::parse(column_text(s.get(), 3)).get<std::vector<double>>();
+    r.parameters = nlohmann::json::parse(column_text(s.get(), 4)).get<ParameterSet>();
+    r.curves = curves_from_json(nlohmann::json::parse(column_text(s.get(), 5)));
+    r.objective = sqlite3_column_type(s.get(), 6) == SQLITE_NULL ? std::numeric_limits<double>::quiet_NaN()
+                                                                 : sqlite3_column_double(s.get(), 6);
+    r.wall_seconds = sqlite3_column_double(s.get(), 7);
+    r.ok = column_text(s.get(), 8) == "ok";
+    r.error = column_text(s.get(), 9);
+    evaluations_[{r.iteration, r.point}] = std::move(r);
+  }
+  Statement it(db_, "SELECT record FROM iterations ORDER BY iteration");
+  while (sqlite3_step(it.get()) == SQLITE_ROW) {
+    IterationRecord r = iteration_from_json(nlohmann::json::parse(column_text(it.get(), 0)));
+    iterations_[r.iteration] = r;
+  }
+}
+
+nlohmann::json StudyStore::study_json() const { return nlohmann::json::parse(meta("study_json").value_or("{}")); }
+
+void StudyStore::add_evaluation(const EvaluationRecord& r) {
+  Statement s(db_,
+              "INSERT OR REPLACE INTO evaluations(iteration, point, kind, unit_x, parameters, curves, objective,"
+              " wall_seconds, status, error) VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+  s.bind(1, r.iteration);
+  s.bind(2, r.point);
+  s.bind(3, r.kind);
+  s.bind(4, nlohmann::json(r.unit_x).dump());
+  s.bind(5, nlohmann::json(r.parameters).dump());
+  s.bind(6, curves_to_json(r.curves).dump());
+  s.bind(7, r.objective);
+  s.bind(8, r.wall_seconds);
+  s.bind(9, std::string(r.ok ? "ok" : "failed"));
+  s.bind(10, r.error);
+  if (sqlite3_step(s.get()) != SQLITE_DONE)
+    throw std::runtime_error("study store '" + path_.string() + "': " + sqlite3_errmsg(db_));
+  evaluations_[{r.iteration, r.point}] = r;
+}
+
+const EvaluationRecord* StudyStore::find_evaluation(int iteration, int point) const {
+  const auto found = evaluations_.find({iteration, point});
+  return found == evaluations_.end() ? nullptr : &found->second;
+}
+
+std::vector<EvaluationRecord> StudyStore::evaluations() const {
+  std::vector<EvaluationRecord> out;
+  for (const auto& [key, record] : evaluations_) out.push_back(record);
+  return out;
+}
+
+void StudyStore::put_iteration(const IterationRecord& r) {
+  Statement s(db_, "INSERT OR REPLACE INTO iterations(iteration, record) VALUES(?1, ?2)");
+  s.bind(1, r.iteration);
+  s.bind(2, to_json(r).dump());
+  if (sqlite3_step(s.get()) != SQLITE_DONE)
+    throw std::runtime_error("study store '" + path_.string() + "': " + sqlite3_errmsg(db_));
+  iterations_[r.iteration] = r;
+}
+
+std::vector<IterationRecord> StudyStore::iterations() const {
+  std::vector<IterationRecord> out;
+  for (const auto& [key, record] : iterations_) out.push_back(record);
+  return out;
+}
+
+void StudyStore::put_result(const nlohmann::json& result) { put_meta("result_json", result.dump()); }
+
+std::optional<nlohmann::json> StudyStore::result() const {
+  const auto text = meta("result_json");
+  if (!text) return std::nullopt;
+  return nlohmann::json::parse(*text);
+}
+
+}  // namespace demfit::identify

@@ -1,0 +1,144 @@
+#include "study_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace demfit::identify::detail {
+
+std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec) {
+  std::vector<rbf_surrogate::Variable> out;
+  for (const auto& v : spec.variables) out.push_back({v.name, v.lower, v.upper, v.log_scale});
+  return out;
+}
+
+Eigen::VectorXd initial_values(const StudySpec& spec) {
+  Eigen::VectorXd x(spec.variables.size());
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) x(j) = spec.variables[j].initial;
+  return x;
+}
+
+rbf_surrogate::Box initial_region(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables) {
+  const Eigen::VectorXd center = rbf_surrogate::to_unit(variables, initial_values(spec));
+  rbf_surrogate::Box box{center, center};
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) {
+    const double width = spec.variables[j].initial_range;
+    const double lower = std::clamp(center(j) - 0.5 * width, 0.0, 1.0 - width);
+    box.lower(j) = lower;
+    box.upper(j) = std::min(1.0, lower + width);
+  }
+  return box;
+}
+
+ParameterSet variable_values(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables,
+                             const Eigen::VectorXd& unit) {
+  const Eigen::VectorXd physical = rbf_surrogate::from_unit(variables, unit);
+  ParameterSet out;
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) out[spec.variables[j].name] = physical(j);
+  return out;
+}
+
+ParameterSet model_parameters(const StudySpec& spec, const Model& model,
+                              const std::vector<rbf_surrogate::Variable>& variables, const Eigen::VectorXd& unit) {
+  ParameterSet parameters = model.default_parameters();
+  for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
+  for (const auto& [name, value] : variable_values(spec, variables, unit)) parameters[name] = value;
+  return parameters;
+}
+
+Eigen::VectorXd unit_per_physical(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables,
+                                  const Eigen::VectorXd& unit) {
+  const Eigen::VectorXd physical = rbf_surrogate::from_unit(variables, unit);
+  Eigen::VectorXd out(spec.variables.size());
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) {
+    const auto& v = spec.variables[j];
+    out(j) = v.log_scale ? 1.0 / (physical(j) * std::log(v.upper / v.lower)) : 1.0 / (v.upper - v.lower);
+  }
+  return out;
+}
+
+void check_parameter_names(const StudySpec& spec, const Model& model) {
+  const auto names = model.parameter_names();
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : " ") + n;
+  auto known_name = [&](const std::string& name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+  for (std::size_t j = 0; j < spec.variables.size(); ++j)
+    if (!known_name(spec.variables[j].name))
+      throw std::runtime_error("study: variables[" + std::to_string(j) + "].name: '" + spec.variables[j].name +
+                               "' is not a parameter of model '" + spec.model_reference + "'; known: " + known);
+  for (const auto& [name, value] : spec.fixed_parameters)
+    if (!known_name(name))
+      throw std::runtime_error("study: model.fixed_parameters." + name + ": not a parameter of model '" +
+                               spec.model_reference + "'; known: " + known);
+}
+
+std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration) {
+  // splitmix64 of (seed, iteration): independent, reproducible streams per iteration.
+  std::uint64_t z = study_seed + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(iteration + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
+                                                  const rbf_surrogate::Box& region, std::uint64_t seed) {
+  const auto function = [&](const Eigen::VectorXd& x, Eigen::VectorXd* gradient) {
+    if (gradient) *gradient = surrogate.objective_gradient(x, objective);
+    return surrogate.predicted_objective(x, objective);
+  };
+  rbf_surrogate::MinimizeOptions options;
+  options.global_evaluations = 400 + 100 * static_cast<int>(region.dims());
+  options.local_starts = 3;
+  options.seed = seed;
+  options.use_gradient = true;
+  options.local_evaluations = 200;
+  return rbf_surrogate::minimize(function, region, options);
+}
+
+std::vector<double> to_std(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+std::string format_number(double value) {
+  if (!std::isfinite(value)) return "nan";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+
+std::string format_duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "?";
+  const long total = std::lround(seconds);
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%ldh%02ldm%02lds", total / 3600, (total / 60) % 60, total % 60);
+  return buffer;
+}
+
+}  // namespace demfit::identify::detail
+
+namespace demfit::identify::detail {
+
+nlohmann::json uncertainty_json(const StudySpec& spec, const UncertaintyEstimate& estimate) {
+  // JSON has no infinity: an unbounded interval is written as null.
+  auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json json = {{"confidence", 0.95}, {"residual_variance", estimate.residual_variance},
+                         {"degrees_of_freedom", estimate.degrees_of_freedom},
+                         {"condition_number", finite_or_null(estimate.condition_number)}};
+  json["variables"] = nlohmann::json::array();
+  json["correlation"] = nlohmann::json::array();
+  json["standard_error"] = nlohmann::json::object();
+  json["ci_half_width"] = nlohmann::json::object();
+  json["unidentifiable"] = nlohmann::json::array();
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) {
+    const std::string& name = spec.variables[j].name;
+    json["variables"].push_back(name);
+    json["standard_error"][name] = finite_or_null(estimate.standard_error[j]);
+    json["ci_half_width"][name] = finite_or_null(estimate.ci_half_width[j]);
+    if (estimate.unidentifiable[j]) json["unidentifiable"].push_back(name);
+    nlohmann::json row = nlohmann::json::array();
+    for (std::size_t i = 0; i < spec.variables.size(); ++i) row.push_back(finite_or_null(estimate.correlation(j, i)));
+    json["correlation"].push_back(row);
+  }
+  return json;
+}
+
+}  // namespace demfit::identify::detail

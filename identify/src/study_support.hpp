@@ -1,0 +1,48 @@
+#pragma once
+// Internal helpers of the study loop: variable mapping between study, model and unit cube,
+// seeds, the predicted-objective minimisation, and text formatting for progress lines.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/model.hpp"
+#include "demfit/identify/objective.hpp"
+#include "demfit/identify/study_spec.hpp"
+#include "demfit/identify/uncertainty.hpp"
+#include "demfit/rbf_surrogate/bounds.hpp"
+#include "demfit/rbf_surrogate/optimize.hpp"
+#include "response_surrogate.hpp"
+
+namespace demfit::identify::detail {
+
+std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec);
+Eigen::VectorXd initial_values(const StudySpec& spec);   // physical
+// Iteration-0 region: initial_range around the initial point, shifted to stay in [0, 1].
+rbf_surrogate::Box initial_region(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables);
+// Everything the model receives: its defaults, the study's fixed values, the variables at `unit`.
+ParameterSet model_parameters(const StudySpec& spec, const Model& model,
+                              const std::vector<rbf_surrogate::Variable>& variables, const Eigen::VectorXd& unit);
+ParameterSet variable_values(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables,
+                             const Eigen::VectorXd& unit);
+// d(unit coordinate)/d(physical value) of each variable at `unit`.
+Eigen::VectorXd unit_per_physical(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables,
+                                  const Eigen::VectorXd& unit);
+// Throws "study: variables[i].name: 'x' is not a parameter of model ..." for unknown names.
+void check_parameter_names(const StudySpec& spec, const Model& model);
+std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration);
+rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
+                                                  const rbf_surrogate::Box& region, std::uint64_t seed);
+
+std::vector<double> to_std(const Eigen::VectorXd& v);
+std::string format_number(double value);      // "%.6g", "nan" for NaN
+std::string format_duration(double seconds);  // "1h02m03s"
+
+}  // namespace demfit::identify::detail
+
+namespace demfit::identify::detail {
+// The uncertainty estimate as stored in the result JSON (by variable name).
+nlohmann::json uncertainty_json(const StudySpec& spec, const UncertaintyEstimate& estimate);
+}  // namespace demfit::identify::detail

@@ -1,0 +1,185 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/report.hpp"
+#include "demfit/identify/study.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "test_helpers.hpp"
+
+using namespace demfit::identify;
+
+namespace {
+
+RunOptions quiet_options(const std::filesystem::path& dir, int jobs = 1) {
+  RunOptions options;
+  options.output_dir = dir;
+  options.jobs = jobs;
+  options.plots = false;
+  options.progress = false;
+  return options;
+}
+
+// The analytic model, failing (like an unstable simulation) when amplitude > 1.8.
+class FailingModel final : public Model {
+ public:
+  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
+    if (p.at("amplitude") > fail_above) throw std::runtime_error("unstable: time step too large");
+    return inner_.evaluate(p, c);
+  }
+  double fail_above = 1.8;
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+// The analytic model plus a parameter "ignored" that no curve depends on.
+class ExtraParameterModel final : public Model {
+ public:
+  std::vector<std::string> parameter_names() const override { return {"amplitude", "rate", "slope", "ignored"}; }
+  ParameterSet default_parameters() const override {
+    auto p = inner_.default_parameters();
+    p["ignored"] = 0.5;
+    return p;
+  }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
+    auto q = p;
+    q.erase("ignored");
+    return inner_.evaluate(q, c);
+  }
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+}  // namespace
+
+TEST_CASE("Identification recovers the analytic parameters to 1e-3 relative without noise", "[identify][loop]") {
+  const auto spec = parse_study(test::analytic_study(0.0, 12), ".");
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet_options(test::fresh_dir("recover")));
+  CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 1e-3);
+  CHECK(std::abs(result.best.at("rate") / 4.2 - 1.0) < 1e-3);
+  CHECK(result.best.at("slope") == 0.5);  // not varied: the model default
+  CHECK(result.failed_runs == 0);
+  CHECK(result.runs == 12 * spec.points_per_iteration + 1);
+  CHECK(result.best_curves.count("response") == 1);
+}
+
+TEST_CASE("With 1 % noise the true parameters lie inside the reported confidence intervals", "[identify][loop]") {
+  const auto spec = parse_study(test::analytic_study(0.01, 10), ".");
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet_options(test::fresh_dir("noise")));
+  const double a = result.best.at("amplitude"), r = result.best.at("rate");
+  INFO("amplitude " << a << " +- " << result.ci_half_width.at("amplitude") << ", rate " << r << " +- "
+                    << result.ci_half_width.at("rate"));
+  CHECK(std::abs(a - 1.3) <= result.ci_half_width.at("amplitude"));
+  CHECK(std::abs(r - 4.2) <= result.ci_half_width.at("rate"));
+  // The intervals are informative: much narrower than the bounds, so nothing is flagged.
+  CHECK(result.ci_half_width.at("amplitude") < 0.1 * 1.5);
+  CHECK(result.unidentifiable.empty());
+  CHECK(result.correlation.size() == 2);
+}
+
+TEST_CASE("A variable that does not affect the curve is flagged unidentifiable", "[identify][loop]") {
+  auto study = test::analytic_study(0.01, 6);
+  study["variables"].push_back({{"name", "ignored"}, {"lower", 0.0}, {"upper", 1.0}, {"initial", 0.5}});
+  const auto result =
+      run_study(parse_study(study, "."), ExtraParameterModel(), quiet_options(test::fresh_dir("flag")));
+  CHECK(result.unidentifiable == std::vector<std::string>{"ignored"});
+  CHECK(std::abs(result.best.at("amplitude") - 1.3) <= result.ci_half_width.at("amplitude"));
+}
+
+TEST_CASE("A failed evaluation is recorded with its error and left out of the fit", "[identify][loop]") {
+  const auto dir = test::fresh_dir("failures");
+  const auto spec = parse_study(test::analytic_study(0.0, 6), ".");
+  const auto result = run_study(spec, FailingModel(), quiet_options(dir));
+  CHECK(result.failed_runs > 0);
+  CHECK(result.best.at("amplitude") <= 1.8);
+  CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 1e-2);
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  int failed = 0;
+  for (const auto& r : store.evaluations()) {
+    if (r.ok) continue;
+    ++failed;
+    CHECK(r.error == "unstable: time step too large");
+    CHECK(std::isnan(r.objective));
+    CHECK(r.parameters.at("amplitude") > 1.8);
+  }
+  CHECK(failed == result.failed_runs);
+}
+
+TEST_CASE("A study in which every run fails stops with a clear message", "[identify][loop]") {
+  FailingModel model;
+  model.fail_above = -1.0;
+  const auto spec = parse_study(test::analytic_study(0.0, 4), ".");
+  CHECK_THROWS_WITH(run_study(spec, model, quiet_options(test::fresh_dir("all_fail"))),
+                    Catch::Contains("every run failed") && Catch::Contains("unstable"));
+}
+
+TEST_CASE("Results are identical for one and two parallel jobs", "[identify][loop]") {
+  const auto spec = parse_study(test::analytic_study(0.01, 5), ".");
+  const auto one_dir = test::fresh_dir("jobs1"), two_dir = test::fresh_dir("jobs2");
+  const auto one = run_study(spec, AnalyticCurveModel(), quiet_options(one_dir, 1));
+  const auto two = run_study(spec, AnalyticCurveModel(), quiet_options(two_dir, 2));
+  CHECK(one.best == two.best);  // bit-identical
+  CHECK(one.best_objective == two.best_objective);
+  CHECK(one.ci_half_width == two.ci_half_width);
+  const auto runs_one = StudyStore::open_existing(one_dir / "study.db").evaluations();
+  const auto runs_two = StudyStore::open_existing(two_dir / "study.db").evaluations();
+  REQUIRE(runs_one.size() == runs_two.size());
+  for (std::size_t i = 0; i < runs_one.size(); ++i) {
+    CHECK(runs_one[i].unit_x == runs_two[i].unit_x);
+    CHECK(runs_one[i].objective == runs_two[i].objective);
+  }
+}
+
+TEST_CASE("Unknown variable names are refused naming the field", "[identify][loop]") {
+  auto study = test::analytic_study(0.0, 2);
+  study["variables"][1]["name"] = "normk";
+  CHECK_THROWS_WITH(run_study(parse_study(study, "."), AnalyticCurveModel(), quiet_options(test::fresh_dir("names"))),
+                    Catch::Contains("variables[1].name") && Catch::Contains("normk"));
+}
+
+TEST_CASE("The report is rebuilt from the study store alone", "[identify][report]") {
+  const auto dir = test::fresh_dir("report");
+  const auto spec = parse_study(test::analytic_study(0.0, 3), ".");
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet_options(dir));
+  const auto rebuilt = test::fresh_dir("report_rebuilt");
+  const auto summary = write_report(StudyStore::open_existing(dir / "study.db"), rebuilt, true);
+  for (const char* name : {"best_parameters.json", "evaluations.csv", "iterations.csv", "report.md",
+                           "target_response.csv", "best_response.csv"})
+    CHECK(std::filesystem::exists(rebuilt / name));
+  std::ifstream in(rebuilt / "best_parameters.json");
+  const auto best = nlohmann::json::parse(in);
+  CHECK(best["variables"]["amplitude"]["value"].get<double>() == result.best.at("amplitude"));
+  CHECK(best["objective"].get<double>() == result.best_objective);
+  if (summary.plot_warning.empty()) {
+    CHECK(std::filesystem::exists(rebuilt / "objective_history.png"));
+    CHECK(std::filesystem::exists(rebuilt / "variable_rate.png"));
+    CHECK(std::filesystem::exists(rebuilt / "target_response.png"));
+  }
+}
+
+TEST_CASE("Adaptive infill and principal-component responses also identify the analytic parameters", "[identify][loop]") {
+  auto study = test::analytic_study(0.0, 10);
+  study["sampling"] = {{"strategy", "adaptive_infill"}};
+  study["surrogate"] = {{"responses", "principal_components"}};
+  const auto result = run_study(parse_study(study, "."), AnalyticCurveModel(), quiet_options(test::fresh_dir("adaptive")));
+  CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 2e-2);
+  CHECK(std::abs(result.best.at("rate") / 4.2 - 1.0) < 2e-2);
+}
+
+TEST_CASE("Curve mapping identifies parameters from a hysteresis loop", "[identify][loop]") {
+  AnalyticCurveModel model;
+  const Curve loop = model.evaluate({{"amplitude", 1.3}, {"slope", 0.8}}, {}).at("loop");
+  nlohmann::json study = test::analytic_study(0.0, 10);
+  study["variables"][1] = {{"name", "slope"}, {"lower", 0.0}, {"upper", 2.0}, {"initial", 0.3}};
+  study["targets"][0] = {{"curve", "loop"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", loop.x}, {"y", loop.y},
+                         {"metric", "curve_mapping"}};
+  const auto result = run_study(parse_study(study, "."), model, quiet_options(test::fresh_dir("mapping")));
+  CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 1e-2);
+  CHECK(std::abs(result.best.at("slope") / 0.8 - 1.0) < 2e-2);
+}
