@@ -30,26 +30,13 @@ void throughput(const char* name, const dem_core::Simulation& prepared, std::uin
               prepared.particle_count(), prepared.time_step(), rates[0], rates[1], rates[1] / rates[0]);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
-  std::printf("bench_dem (dem_core); use --quick for a shorter run\n");
-  const dem_core::Simulation drum = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
-  throughput("drum s=1, 60 RPM", drum, quick ? 100 : 400);
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  std::printf("peak memory (maxrss) %.1f MB = %.0f bytes per drum particle (includes the process baseline)\n",
-              usage.ru_maxrss / 1024.0, usage.ru_maxrss * 1024.0 / static_cast<double>(drum.particle_count()));
-  const dem_core::Simulation bed = bench::make_pellet_bed(0.01, 2.0 / 7.0, quick ? 0.05 : 0.25, 2);
-  throughput("pellet bed (settled)", bed, quick ? 200 : 1000);
-
-  // One case evaluation each, 1 thread: s = 4 drum (3 s simulated) and a pellet compression.
+/// One case evaluation each on 1 thread: s = 4 drum (3 s simulated) and pellet compressions.
+void cases(const dem_core::Simulation& bed) {
   {
     dem_core::Simulation s4 = bench::make_drum(4.0, 0.3, 1);
     const double t = bench::time_steps(s4, static_cast<std::uint64_t>(2.7 / s4.time_step()));
-    std::printf("drum s=4: N=%zu, 0.3 s settle + 2.7 s at 60 RPM took %.2f s wall (1 thread) [target < 15 s]\n",
-                s4.particle_count(), t);
+    std::printf("drum s=4: N=%zu, dt=%.3g s, 2.7 s at 60 RPM took %.2f s wall (1 thread) [target < 15 s for 3 s]\n",
+                s4.particle_count(), s4.time_step(), t);
   }
   for (double normk : {0.01, 0.875046}) {
     dem_core::Simulation p = bed;
@@ -60,18 +47,56 @@ int main(int argc, char** argv) {
     p.set_contact_parameters(c);
     double simulated = 0.0, reached = 0.0;
     const double t = bench::time_compression(p, 0.05, 3.0e6, simulated, reached);
-    std::printf("pellet compression NORMK=%g: dt=%.3g s, %.4f s simulated to %.2f MPa took %.2f s wall (1 thread) "
-                "[target < 30 s]\n", normk, p.time_step(), simulated, reached / 1e6, t);
+    std::printf("pellet compression NORMK=%g: N=%zu, dt=%.3g s, %.4f s simulated to %.2f MPa took %.2f s wall "
+                "(1 thread) [target < 30 s]\n", normk, p.particle_count(), p.time_step(), simulated, reached / 1e6, t);
   }
+}
 
-  const bench::LiggghtsComparison cmp = bench::compare_with_liggghts(quick ? 200 : 1000);
+void compare(bool quick) {
+  const bench::LiggghtsComparison cmp = bench::compare_with_liggghts(quick ? 3000 : 10000);
   std::printf("box settle, Hertz-Mindlin, N=%ld, dt=%.3g s, %ld steps: demfit %.2f s (1 thread)\n", cmp.particles,
               cmp.time_step, cmp.steps, cmp.demfit_seconds);
-  if (cmp.ran)
+  if (cmp.ran) {
     std::printf("LIGGGHTS (%ld atoms) %.2f s -> speed ratio demfit/LIGGGHTS = %.2f [target >= 1.0] (%s)\n",
                 cmp.liggghts_particles, cmp.liggghts_seconds, cmp.liggghts_seconds / cmp.demfit_seconds,
                 cmp.note.c_str());
+    std::printf("same physics check: kinetic energy at the end demfit %.4g J, LIGGGHTS %.4g J (translational)\n",
+                cmp.demfit_kinetic_energy, cmp.liggghts_kinetic_energy);
+  }
   else
     std::printf("LIGGGHTS comparison skipped: %s\n", cmp.note.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  std::string only;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--quick") quick = true;
+    else if (arg == "--only" && a + 1 < argc) only = argv[++a];
+    else {
+      std::printf("usage: bench_dem [--quick] [--only throughput|cases|liggghts]\n");
+      return EXIT_FAILURE;
+    }
+  }
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
+  auto wanted = [&](const char* section) { return only.empty() || only == section; };
+  std::printf("bench_dem (dem_core)%s\n", quick ? " --quick" : "");
+  if (wanted("throughput")) {
+    const dem_core::Simulation drum = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
+    throughput("drum s=1, 60 RPM", drum, quick ? 100 : 400);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("peak memory (maxrss) %.1f MB = %.0f bytes per drum particle (includes the process baseline)\n",
+                usage.ru_maxrss / 1024.0, usage.ru_maxrss * 1024.0 / static_cast<double>(drum.particle_count()));
+  }
+  if (wanted("throughput") || wanted("cases")) {
+    const dem_core::Simulation bed = bench::make_pellet_bed(0.01, 2.0 / 7.0, 0.3, 2);
+    if (wanted("throughput")) throughput("pellet bed (settled)", bed, quick ? 200 : 1000);
+    if (wanted("cases")) cases(bed);
+  }
+  if (wanted("liggghts")) compare(quick);
   return EXIT_SUCCESS;
 }

@@ -16,8 +16,9 @@ namespace {
 using namespace dem_core;
 
 // Box [-0.03,0.03] x [-0.0125,0.0125] x [0,0.1] m; lattice points k*a inside the fill block.
-constexpr double spacing = 2.2e-3, radius = 1.0e-3;
-constexpr double fill_lo[3] = {-0.0285, -0.011, 0.0011}, fill_hi[3] = {0.0285, 0.011, 0.0770};
+constexpr double spacing = 2.05e-3, radius = 1.0e-3;  // 0.05 mm gaps: contacts within ~3 ms
+constexpr double floor_z = 1.02e-3;  // floor plane 0.02 mm below the first lattice layer
+constexpr double fill_lo[3] = {-0.0285, -0.011, 0.0011}, fill_hi[3] = {0.0285, 0.011, 0.0625};
 
 std::string find_liggghts() {
   for (const char* name : {"liggghts", "lmp_serial", "lmp_auto"}) {
@@ -36,7 +37,7 @@ Simulation make_box(double dt) {
   Simulation sim(s);
   sim.add_material({1.2e9 / (3.0 * (1.0 - 2.0 * 0.3)), 2500.0, 0.3});  // E = 1.2 GPa, nu = 0.3
   const WallContactParameters wall{0.3, 0.0, 0.0, 1.0};
-  const double lo[3] = {-0.03, -0.0125, 0.0}, hi[3] = {0.03, 0.0125, 0.1};
+  const double lo[3] = {-0.03, -0.0125, floor_z}, hi[3] = {0.03, 0.0125, 0.1};
   const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int a = 0; a < 3; ++a) {
     sim.add_wall({PlaneGeometry{lo[a] * axes[a], axes[a]}, FixedMotion{}, wall});
@@ -59,6 +60,7 @@ void write_input(const std::filesystem::path& file, double dt, long steps) {
      << "communicate single vel yes\nunits si\n"
      << "region domain block -0.03 0.03 -0.0125 0.0125 0.0 0.1 units box\ncreate_box 1 domain\n"
      << "neighbor " << 0.3 * radius << " bin\nneigh_modify delay 0\n"
+     << "hard_particles yes\n"
      << "fix m1 all property/global youngsModulus peratomtype 1.2e9\n"
      << "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
      << "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n"
@@ -66,7 +68,7 @@ void write_input(const std::filesystem::path& file, double dt, long steps) {
      << "pair_style gran model hertz tangential history\npair_coeff * *\n"
      << "timestep " << dt << "\nfix gravi all gravity 9.81 vector 0.0 0.0 -1.0\n";
   const char* planes[3] = {"xplane", "yplane", "zplane"};
-  const double lo[3] = {-0.03, -0.0125, 0.0}, hi[3] = {0.03, 0.0125, 0.1};
+  const double lo[3] = {-0.03, -0.0125, floor_z}, hi[3] = {0.03, 0.0125, 0.1};
   for (int a = 0; a < 3; ++a)
     for (double v : {lo[a], hi[a]})
       in << "fix w" << a << (v == lo[a] ? "lo" : "hi") << " all wall/gran model hertz tangential history primitive type 1 "
@@ -89,6 +91,7 @@ LiggghtsComparison compare_with_liggghts(long steps) {
   const auto start = std::chrono::steady_clock::now();
   sim.run_steps(static_cast<std::uint64_t>(steps));
   c.demfit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  c.demfit_kinetic_energy = sim.kinetic_energy();
   const std::string exe = find_liggghts();
   if (exe.empty()) {
     c.note = "LIGGGHTS not found on PATH (liggghts / lmp_serial); install with: scripts/setup --bench "
@@ -110,6 +113,8 @@ LiggghtsComparison compare_with_liggghts(long steps) {
   std::smatch m;
   if (std::regex_search(s, m, std::regex("Created ([0-9]+) atoms"))) c.liggghts_particles = std::stol(m[1]);
   if (std::regex_search(s, m, std::regex("Loop time of ([0-9.eE+-]+)"))) c.liggghts_seconds = std::stod(m[1]);
+  const std::regex thermo("\\n *" + std::to_string(steps) + " +[0-9]+ +([0-9.eE+-]+)");
+  if (std::regex_search(s, m, thermo)) c.liggghts_kinetic_energy = std::stod(m[1]);
   c.ran = c.liggghts_seconds > 0.0;
   c.note = c.ran ? "ran " + exe + " in " + dir.string() : "could not parse the LIGGGHTS log " + (dir / "out.txt").string();
   return c;

@@ -14,6 +14,8 @@ struct LiggghtsComparison {
   double time_step = 0.0;        ///< [s]
   double demfit_seconds = 0.0;   ///< wall clock for `steps` steps (1 thread)
   double liggghts_seconds = 0.0; ///< LIGGGHTS "Loop time"
+  double demfit_kinetic_energy = 0.0;    ///< [J] at the end (translational + rotational)
+  double liggghts_kinetic_energy = 0.0;  ///< [J] last thermo KinEng (translational only)
 };
 
 LiggghtsComparison compare_with_liggghts(long steps);

@@ -1,7 +1,9 @@
 // Evaluations needed to reach a target accuracy: demfit SRSM + RBF, demfit adaptive infill, and
 // baselines from scipy (differential evolution, Nelder-Mead) and scikit-learn (GP expected improvement)
 // run by baselines.py. Prints one table with ratios. Usage:
-//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)]
+//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)] [results file]
+// With a results file (RESULT lines saved from an earlier `python3 baselines.py N` run) the python
+// baselines are read instead of re-run (the GP loop takes tens of minutes on Rosenbrock-4).
 // Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3,
 // Hartmann-6 within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative
 // Gaussian noise) f* + 1e-2.
@@ -87,9 +89,10 @@ double median_evals(std::vector<int> v) {
     return m >= (1 << 29) ? -1.0 : m;
 }
 
-std::map<std::pair<std::string, std::string>, std::vector<int>> run_baselines(int seeds) {
+std::map<std::pair<std::string, std::string>, std::vector<int>> run_baselines(int seeds, const char* saved) {
     std::map<std::pair<std::string, std::string>, std::vector<int>> out;
-    const std::string cmd = std::string("/usr/bin/python3 ") + DEMFIT_BASELINES_SCRIPT + " " + std::to_string(seeds);
+    const std::string cmd = saved ? std::string("cat ") + saved
+                                  : std::string("/usr/bin/python3 ") + DEMFIT_BASELINES_SCRIPT + " " + std::to_string(seeds);
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return out;
     char line[512];
@@ -124,9 +127,13 @@ int main(int argc, char** argv) {
             }
             std::cerr << name << " " << p.name << " done\n";
         }
-    const bool have_python = baseline_seeds > 0 && std::system("/usr/bin/python3 -c 'import scipy, sklearn' 2>/dev/null") == 0;
+    const char* saved = argc > 3 ? argv[3] : nullptr;
+    const bool have_python =
+        saved || (baseline_seeds > 0 && std::system("/usr/bin/python3 -c 'import scipy, sklearn' 2>/dev/null") == 0);
     if (have_python)
-        for (auto& [key, v] : run_baselines(baseline_seeds)) results[key] = v;
+        for (auto& [key, v] : run_baselines(baseline_seeds, saved)) results[key] = v;
+    else
+        std::cout << "python baselines skipped (install python3-scipy python3-sklearn: scripts/setup --bench)\n";
     const std::vector<std::string> methods{"demfit_srsm", "demfit_adaptive", "scipy_de", "scipy_nelder_mead",
                                            "sklearn_gp_ei"};
     std::printf("%-13s %-18s %8s %8s %10s %18s %10s\n", "problem", "method", "success", "budget", "median_ev",

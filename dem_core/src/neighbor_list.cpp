@@ -126,8 +126,12 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
 }
 
 bool NeighborList::needs_rebuild(std::span<const Vec3> positions, int threads) const {
-  if (build_count_ == 0 || positions.size() != reference_positions_.size()) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+  return max_displacement(positions, threads) > 0.5 * skin_;
+}
+
+double NeighborList::max_displacement(std::span<const Vec3> positions, int threads) const {
+  if (build_count_ == 0 || positions.size() != reference_positions_.size())
+    return std::numeric_limits<double>::infinity();
   const auto n = static_cast<std::int64_t>(positions.size());
   double worst = 0.0;  // max is order-independent, so the reduction is deterministic
 #pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads)
@@ -135,7 +139,7 @@ bool NeighborList::needs_rebuild(std::span<const Vec3> positions, int threads) c
     const double d2 = norm2(positions[static_cast<std::size_t>(i)] - reference_positions_[static_cast<std::size_t>(i)]);
     worst = std::max(worst, d2);
   }
-  return worst > limit2;
+  return std::sqrt(worst);
 }
 
 std::size_t NeighborList::find(std::size_t i, std::size_t j) const {

@@ -55,7 +55,7 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   p.material.push_back(material);
   p.normal_compliance.push_back(0.0);
   p.shear_compliance.push_back(0.0);
-  update_compliances();
+  update_compliance(p.size() - 1);
   const std::size_t walls = walls_.size();
   wall_history_.resize(p.size() * walls);
   invalidate_forces();
@@ -97,6 +97,7 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
 
 std::size_t Simulation::add_wall(const WallSpec& spec) {
   walls_.push_back(make_wall(spec));
+  rebuild_requested_ = true;  // wall candidate lists must be rebuilt
   // The (particle, wall) layout changes: wall histories restart.
   wall_history_.assign(particles_.size() * walls_.size(), ContactHistory{});
   invalidate_forces();
@@ -105,20 +106,22 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
 }
 
 void Simulation::update_compliances() {
+  for (std::size_t i = 0; i < particles_.size(); ++i) update_compliance(i);
+}
+
+void Simulation::update_compliance(std::size_t i) {
   ParticleState& p = particles_;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Material& m = materials_[p.material[i]];
-    if (settings_.law == ContactLawKind::lsdyna_linear) {
-      // k_i = NORMK K_i R_i (SPEC 1); compliance is its inverse.
-      p.normal_compliance[i] = 1.0 / (settings_.contact.normk * m.bulk_modulus * p.radius[i]);
-      p.shear_compliance[i] = 0.0;
-    } else {
-      const double e = youngs_modulus(m);
-      const double nu = m.poisson_ratio;
-      const double g = e / (2.0 * (1.0 + nu));
-      p.normal_compliance[i] = (1.0 - nu * nu) / e;
-      p.shear_compliance[i] = (2.0 - nu) / g;
-    }
+  const Material& m = materials_[p.material[i]];
+  if (settings_.law == ContactLawKind::lsdyna_linear) {
+    // k_i = NORMK K_i R_i (SPEC 1); compliance is its inverse.
+    p.normal_compliance[i] = 1.0 / (settings_.contact.normk * m.bulk_modulus * p.radius[i]);
+    p.shear_compliance[i] = 0.0;
+  } else {
+    const double e = youngs_modulus(m);
+    const double nu = m.poisson_ratio;
+    const double g = e / (2.0 * (1.0 + nu));
+    p.normal_compliance[i] = (1.0 - nu * nu) / e;
+    p.shear_compliance[i] = (2.0 - nu) / g;
   }
 }
 
@@ -157,6 +160,7 @@ void Simulation::set_threads(int threads) {
 
 const Wall& Simulation::wall(std::size_t index) const {
   if (index >= walls_.size()) fail("wall index", static_cast<double>(index), "does not exist; use an index returned by add_wall");
+  reduce_diagnostics();
   return walls_[index];
 }
 
@@ -164,12 +168,14 @@ void Simulation::set_wall_motion(std::size_t index, const WallMotion& motion) {
   (void)wall(index);
   WallSpec probe{walls_[index].geometry, motion, walls_[index].contact, walls_[index].torque_axis, walls_[index].name};
   walls_[index].motion = make_wall(probe).motion;  // validated and normalised
+  rebuild_requested_ = true;
 }
 
 void Simulation::set_wall_velocity(std::size_t index, const Vec3& velocity) {
   require_finite("wall velocity [m/s]", velocity);
   (void)wall(index);
   walls_[index].motion = TranslatingMotion{velocity};
+  rebuild_requested_ = true;
 }
 
 void Simulation::set_wall_angular_velocity(std::size_t index, double angular_velocity) {
@@ -179,6 +185,7 @@ void Simulation::set_wall_angular_velocity(std::size_t index, double angular_vel
     throw std::runtime_error("set_wall_angular_velocity: wall " + std::to_string(index) +
                              " does not rotate; give it a RotatingMotion with set_wall_motion");
   rotating->angular_velocity = angular_velocity;
+  rebuild_requested_ = true;
 }
 
 void Simulation::set_particle_velocity(std::size_t index, const Vec3& velocity, const Vec3& angular_velocity) {
@@ -236,30 +243,33 @@ double Simulation::time_step() const {
 
 void Simulation::step() {
   const double dt = resolved_step();
-  if (!forces_valid_) compute_forces(0.0);  // initial loads; zero history increment
+  if (!forces_valid_) compute_forces(0.0, 0.0, -1.0);  // initial loads; zero history increment
+  const double moved = kick_and_drift(dt);
+  for (Wall& w : walls_) advance_wall(w, dt);
+  time_ += dt;
+  compute_forces(dt, 0.5 * dt, moved);  // ends with the second half kick
+  ++step_count_;
+}
+
+double Simulation::kick_and_drift(double dt) {
+  // Velocity Verlet: half kick and drift, fused with the displacement check of the neighbour list
+  // (one parallel region; max is order-independent, so the result is deterministic).
   ParticleState& p = particles_;
   const bool rotation = settings_.contact.rotation_enabled();
   const auto n = static_cast<std::int64_t>(p.size());
   const double half = 0.5 * dt;
-  // Velocity Verlet: half kick, drift.
-#pragma omp parallel for schedule(static) num_threads(settings_.threads)
+  const std::span<const Vec3> reference = neighbors_.reference_positions();
+  const bool known = reference.size() == p.size();
+  double worst = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : worst) num_threads(settings_.threads)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     if (rotation) p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
     p.position[i] += dt * p.velocity[i];
+    if (known) worst = std::max(worst, norm2(p.position[i] - reference[i]));
   }
-  for (Wall& w : walls_) advance_wall(w, dt);
-  time_ += dt;
-  compute_forces(dt);
-  // Second half kick with the new loads.
-#pragma omp parallel for schedule(static) num_threads(settings_.threads)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-    if (rotation) p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-  }
-  ++step_count_;
+  return known ? std::sqrt(worst) : -1.0;
 }
 
 void Simulation::run_steps(std::uint64_t steps) {
@@ -294,9 +304,20 @@ double Simulation::gravitational_potential_energy() const {
 }
 
 std::size_t Simulation::wall_contact_count() const {
+  reduce_diagnostics();
   std::size_t c = 0;
   for (const Wall& w : walls_) c += w.contact_count;
   return c;
+}
+
+double Simulation::elastic_energy() const {
+  reduce_diagnostics();
+  return elastic_energy_;
+}
+
+std::size_t Simulation::contact_count() const {
+  reduce_diagnostics();
+  return contact_count_;
 }
 
 double Simulation::skin() const {

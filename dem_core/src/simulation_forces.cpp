@@ -34,6 +34,7 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
     const double r_sum = p.radius[i] + p.radius[j];
     const double dist2 = norm2(d);
     if (dist2 >= r_sum * r_sum) {
+      if (!out.touching[k]) continue;  // already cleared
       history[k] = {};
       out.force[k] = {}; out.torque_first[k] = {}; out.torque_second[k] = {};
       out.energy[k] = 0.0; out.touching[k] = 0;
@@ -78,10 +79,12 @@ struct WallOutputs {
 /// Loads of all walls on particle i, accumulated into the particle's force/torque in wall order.
 template <class Law>
 void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::vector<Wall>& walls,
-                      ParticleState& p, ContactHistory* history, const WallOutputs& out, double dt, bool rotation) {
+                      const std::uint8_t* candidate, const std::uint8_t* always_checked, ParticleState& p,
+                      ContactHistory* history, const WallOutputs& out, double dt, bool rotation) {
   const std::size_t count = walls.size();
   for (std::size_t w = 0; w < count; ++w) {
     const std::size_t slot = i * count + w;
+    if (!candidate[slot] && !always_checked[w]) continue;  // cannot touch before the next rebuild
     const WallProximity prox = wall_proximity(walls[w].geometry, p.position[i], p.radius[i]);
     if (!prox.touching) {
       history[slot] = {};
@@ -116,9 +119,9 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
 
 template <class Law, class WallLaw>
 void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, const std::vector<Wall>& walls,
-                ParticleState& p, const NeighborList& list, ContactHistory* pair_history,
+                const std::uint8_t* candidate, const std::uint8_t* always_checked, ParticleState& p, const NeighborList& list, ContactHistory* pair_history,
                 const PairOutputs& pair_out, ContactHistory* wall_history, const WallOutputs& wall_out,
-                const Vec3& gravity, double dt, bool rotation, int threads) {
+                const Vec3& gravity, double dt, double closing_kick, bool rotation, int threads) {
   pair_loop(pair_law, p, list, pair_history, pair_out, dt, rotation, threads);
   const auto rows = list.row_offsets();
   const auto columns = list.column_offsets();
@@ -142,20 +145,40 @@ void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, cons
     }
     p.force[i] = f;
     p.torque[i] = t;
-    wall_contacts_of(i, wall_laws, walls, p, wall_history, wall_out, dt, rotation);
+    wall_contacts_of(i, wall_laws, walls, candidate, always_checked, p, wall_history, wall_out, dt, rotation);
+    // Second velocity-Verlet half kick with the complete new loads (fused: one pass).
+    p.velocity[i] += (closing_kick * p.inverse_mass[i]) * p.force[i];
+    if (rotation) p.angular_velocity[i] += (closing_kick * p.inverse_inertia[i]) * p.torque[i];
   }
 }
 
 }  // namespace
 
-void Simulation::ensure_neighbors() {
+void Simulation::ensure_neighbors(double moved) {
   const double skin_now = skin();
-  if (!neighbors_.needs_rebuild(particles_.position, settings_.threads) && neighbors_.skin() == skin_now &&
-      neighbors_.particle_count() == particles_.size())
-    return;
+  const std::size_t walls = walls_.size();
+  wall_always_checked_.resize(walls);
+  double wall_shift = 0.0;
+  const bool wall_layout_ok = wall_displacement_at_build_.size() == walls;
+  for (std::size_t w = 0; w < walls; ++w) {
+    wall_always_checked_[w] = wall_distances_rigid(walls_[w]) ? 0 : 1;
+    if (wall_layout_ok) wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
+  }
+  const bool stale = rebuild_requested_ || !wall_layout_ok || neighbors_.skin() != skin_now ||
+                     neighbors_.particle_count() != particles_.size();
+  // Particle pairs and particle-wall candidates stay valid while the relative motion of any two
+  // bodies is below half the skin.
+  if (!stale && moved < 0.0) moved = neighbors_.max_displacement(particles_.position, settings_.threads);
+  if (!stale && moved + wall_shift <= 0.5 * skin_now) return;
+  rebuild_requested_ = false;
+  wall_displacement_at_build_.resize(walls);
+  for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
+  find_wall_candidates();
   const NeighborList old = neighbors_;
   std::vector<ContactHistory> old_history;
   old_history.swap(pair_history_);
+  std::vector<std::uint8_t> old_touching;
+  old_touching.swap(pair_touching_);
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
   const std::size_t pairs = neighbors_.pair_count();
   pair_history_.assign(pairs, ContactHistory{});
@@ -173,20 +196,44 @@ void Simulation::ensure_neighbors() {
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t old_k = old.find(first[k], second[k]);
-    if (old_k != NeighborList::npos) pair_history_[k] = old_history[old_k];
+    if (old_k != NeighborList::npos) {
+      pair_history_[k] = old_history[old_k];
+      pair_touching_[k] = old_touching[old_k];  // so the pair loop clears it if it has ended
+    }
   }
 }
 
-void Simulation::compute_forces(double dt) {
+void Simulation::find_wall_candidates() {
+  const std::size_t walls = walls_.size();
+  const double margin = skin();
+  wall_candidate_.resize(particles_.size() * walls);
+  const auto n = static_cast<std::int64_t>(particles_.size());
+#pragma omp parallel for schedule(static) num_threads(settings_.threads)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::size_t w = 0; w < walls; ++w) {
+      const std::size_t slot = i * walls + w;
+      wall_candidate_[slot] = wall_may_touch(walls_[w].geometry, particles_.position[i], particles_.radius[i], margin) ? 1 : 0;
+      if (!wall_candidate_[slot] && slot < wall_touching_.size()) {
+        wall_touching_[slot] = 0;
+        wall_history_[slot] = {};
+      }
+    }
+  }
+}
+
+void Simulation::compute_forces(double dt, double closing_kick, double moved) {
   ParticleState& p = particles_;
   const std::size_t walls = walls_.size();
   if (wall_history_.size() != p.size() * walls) wall_history_.assign(p.size() * walls, ContactHistory{});
-  wall_force_on_particle_.resize(p.size() * walls);
-  wall_contact_point_.resize(p.size() * walls);
-  wall_rolling_torque_.resize(p.size() * walls);
-  wall_energy_.resize(p.size() * walls);
-  wall_touching_.resize(p.size() * walls);
-  ensure_neighbors();
+  if (wall_touching_.size() != p.size() * walls) {  // layout (particles x walls) changed
+    wall_force_on_particle_.assign(p.size() * walls, Vec3{});
+    wall_contact_point_.assign(p.size() * walls, Vec3{});
+    wall_rolling_torque_.assign(p.size() * walls, Vec3{});
+    wall_energy_.assign(p.size() * walls, 0.0);
+    wall_touching_.assign(p.size() * walls, 0);
+  }
+  ensure_neighbors(moved);
   const PairOutputs pair_out{pair_force_.data(), pair_torque_first_.data(), pair_torque_second_.data(),
                              pair_energy_.data(), pair_touching_.data()};
   const WallOutputs wall_out{wall_force_on_particle_.data(), wall_contact_point_.data(),
@@ -196,22 +243,27 @@ void Simulation::compute_forces(double dt) {
   if (settings_.law == ContactLawKind::lsdyna_linear) {
     std::vector<LsDynaLinearLaw> wall_laws;
     for (const Wall& w : walls_) wall_laws.push_back(make_linear_wall_law(c, w.contact));
-    all_forces(make_linear_pair_law(c), wall_laws, walls_, p, neighbors_, pair_history_.data(), pair_out,
-               wall_history_.data(), wall_out, settings_.gravity, dt, rotation, settings_.threads);
+    all_forces(make_linear_pair_law(c), wall_laws, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
+               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   } else {
     std::vector<HertzMindlinLaw> wall_laws;
     for (const Wall& w : walls_) wall_laws.push_back(make_hertz_wall_law(c, w.contact));
-    all_forces(make_hertz_pair_law(c), wall_laws, walls_, p, neighbors_, pair_history_.data(), pair_out,
-               wall_history_.data(), wall_out, settings_.gravity, dt, rotation, settings_.threads);
+    all_forces(make_hertz_pair_law(c), wall_laws, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
+               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   }
-  reduce_diagnostics();
+  diagnostics_valid_ = false;
   forces_valid_ = true;
 }
 
-void Simulation::reduce_diagnostics() {
+void Simulation::reduce_diagnostics() const {
+  if (diagnostics_valid_) return;
   // Serial, fixed-order sums: wall loads and energies are identical for any thread count.
   const std::size_t walls = walls_.size();
   for (Wall& w : walls_) { w.force = {}; w.moment = {}; w.torque = 0.0; w.contact_count = 0; }
+  elastic_energy_ = 0.0;
+  contact_count_ = 0;
+  if (!forces_valid_ || wall_touching_.size() != particles_.size() * walls) return;  // nothing evaluated yet
+  diagnostics_valid_ = true;
   double energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     for (std::size_t w = 0; w < walls; ++w) {

@@ -61,6 +61,33 @@ WallProximity wall_proximity(const WallGeometry& geometry, const Vec3& center, d
       geometry);
 }
 
+bool wall_may_touch(const WallGeometry& geometry, const Vec3& center, double radius, double margin) {
+  if (const auto* g = std::get_if<CylinderGeometry>(&geometry)) {
+    // The axial window [0, length] has no radius margin in the contact test, so widen it here.
+    const Vec3 rel = center - g->base_center;
+    const double s = dot(rel, g->axis);
+    if (s < -margin || s > g->length + margin) return false;
+    const double inner = g->radius - radius - margin;
+    return inner <= 0.0 || norm2(rel - s * g->axis) > inner * inner;
+  }
+  return wall_proximity(geometry, center, radius + margin).touching;
+}
+
+bool wall_distances_rigid(const Wall& wall) {
+  const auto* m = std::get_if<RotatingMotion>(&wall.motion);
+  if (m == nullptr || m->angular_velocity == 0.0) return true;
+  const Vec3& u = m->axis_direction;
+  constexpr double tolerance = 1e-9;
+  auto parallel = [&](const Vec3& d) { return norm(cross(d, u)) < tolerance; };
+  auto on_axis = [&](const Vec3& p) { return norm(cross(p - m->axis_point, u)) < tolerance * (1.0 + norm(p - m->axis_point)); };
+  return std::visit([&](const auto& g) -> bool {
+    using G = std::decay_t<decltype(g)>;
+    if constexpr (std::is_same_v<G, PlaneGeometry>) return parallel(g.normal);
+    else if constexpr (std::is_same_v<G, DiskGeometry>) return parallel(g.normal) && on_axis(g.center);
+    else return parallel(g.axis) && on_axis(g.base_center);
+  }, wall.geometry);
+}
+
 Vec3 wall_velocity_at(const Wall& wall, const Vec3& point) {
   if (const auto* t = std::get_if<TranslatingMotion>(&wall.motion)) return t->velocity;
   if (const auto* m = std::get_if<RotatingMotion>(&wall.motion))

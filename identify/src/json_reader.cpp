@@ -1,6 +1,8 @@
 #include "json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace demfit::identify::detail {
 
@@ -15,8 +17,33 @@ void JsonReader::fail(const std::string& key, const std::string& problem) const 
   throw std::runtime_error("study: " + field(key) + ": " + problem);
 }
 
+namespace {
+
+// Edit distance, to point at a misspelt key when a required one is missing.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
 const nlohmann::json& JsonReader::raw(const std::string& key) {
-  if (!object_.contains(key)) fail(key, "missing; this field is required");
+  if (!object_.contains(key)) {
+    for (const auto& item : object_.items())
+      if (!used_.count(item.key()) && edit_distance(item.key(), key) <= 2)
+        fail(item.key(), "unknown key; did you mean \"" + key + "\"? (see docs/study_format.md)");
+    fail(key, "missing; this field is required");
+  }
   used_.insert(key);
   return object_.at(key);
 }

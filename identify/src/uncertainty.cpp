@@ -64,7 +64,7 @@ UncertaintyEstimate estimate_uncertainty(const Eigen::MatrixXd& jacobian, const 
       inverse += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose() / lambda(k);
     } else {
       for (int j = 0; j < n; ++j)
-        if (std::abs(eigen.eigenvectors()(j, k)) > 0.3) weak[j] = true;
+        if (std::abs(eigen.eigenvectors()(j, k)) > 0.1) weak[j] = true;
     }
   }
   const Eigen::MatrixXd covariance = out.residual_variance * range.asDiagonal() * inverse * range.asDiagonal();

@@ -32,6 +32,7 @@ public:
         return true;
     }
     int count() const { return static_cast<int>(values_.size()); }
+    double best() const { return best_; }
     // When an iteration produced nothing new (subregion collapsed onto run points), one maximin point
     // over the whole domain keeps the loop moving and the budget honest.
     void unstall(int before, std::uint64_t seed) {
@@ -62,6 +63,7 @@ public:
         RbfOptions o = options_.rbf;
         const bool reuse = !o.fixed_width && width_ > 0.0 && count() < (11 * searched_at_) / 10;
         if (reuse) o.fixed_width = width_;
+        if (!reuse && width_ > 0.0) o.width_hint = width_;
         VectorXd y = values();
         if (options_.clip_above_median) {
             std::vector<double> sorted(values_);
@@ -133,11 +135,20 @@ void srsm_loop(Run& run, int batch, const ExpensiveOptions& options, int dims) {
 }
 
 // Adaptive infill: alternate the model's predicted global minimum (pure exploitation) with
-// stochastic-RBF points whose weights cycle from exploration to exploitation.
+// stochastic-RBF points whose weights cycle from exploration to exploitation. After 3·n evaluations
+// without a 0.1 % improvement the next point is a pure maximin point over the domain (the restart
+// idea of Regis & Shoemaker's local SRBF, which otherwise stays in the basin it found first).
 void adaptive_loop(Run& run, int batch, const ExpensiveOptions& options, int dims) {
     const Box bounds = Box::unit(dims);
+    double last_best = run.best();
+    int since_improvement = 0;
     for (int iteration = 0; !run.done(); ++iteration) {
         const int before = run.count();
+        if (since_improvement >= 3 * dims) {
+            run.evaluate_rows(space_filling_augment(run.points(), batch, bounds, options.seed + 31ULL * iteration));
+            since_improvement = 0;
+            continue;
+        }
         const RbfNetwork model = run.fit();
         const std::uint64_t seed = options.seed + 7919ULL * static_cast<std::uint64_t>(iteration + 1);
         int fill = batch;
@@ -149,6 +160,10 @@ void adaptive_loop(Run& run, int batch, const ExpensiveOptions& options, int dim
         }
         run.evaluate_rows(adaptive_infill(model, run.points(), fill, bounds, seed, iteration));
         run.unstall(before, seed);
+        const double best = run.best();
+        const bool improved = best < last_best - 1e-3 * std::max(std::abs(last_best), 1e-12);
+        since_improvement = improved ? 0 : since_improvement + (run.count() - before);
+        last_best = std::min(last_best, best);
     }
 }
 

@@ -78,15 +78,22 @@ Choice best_smoothing(const Prepared& prepared, const Spectrum& s, const RbfOpti
 Choice search(const Prepared& prepared, const RbfOptions& options) {
     if (!detail::uses_width(options.basis)) return best_smoothing(prepared, detail::spectrum(prepared, 0.0), options);
     if (options.fixed_width) return best_smoothing(prepared, detail::spectrum(prepared, *options.fixed_width), options);
-    // Widths from a twentieth of the typical spacing to several design diameters (log scale).
-    const double lo = std::log(0.05 * prepared.nearest_mean), hi = std::log(5.0 * prepared.diameter);
+    // Widths from a twentieth of the typical spacing to several design diameters (log scale), or a
+    // factor 8 either side of a hint.
+    double lo = std::log(0.05 * prepared.nearest_mean), hi = std::log(5.0 * prepared.diameter);
+    int grid = 24;
+    if (options.width_hint && *options.width_hint > 0.0 && std::isfinite(*options.width_hint)) {
+        lo = std::log(*options.width_hint / 8.0);
+        hi = std::log(*options.width_hint * 8.0);
+        grid = 10;
+    }
     Choice best;
     auto f = [&](double log_width) {
         const Choice c = best_smoothing(prepared, detail::spectrum(prepared, std::exp(log_width)), options);
         if (c.value < best.value) best = c;
         return c.value;
     };
-    bracketed_minimum(f, lo, hi, 24, 18);
+    bracketed_minimum(f, lo, hi, grid, 16);
     return best;
 }
 

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 #include "demfit/identify/analytic_model.hpp"
@@ -182,4 +183,17 @@ TEST_CASE("Curve mapping identifies parameters from a hysteresis loop", "[identi
   const auto result = run_study(parse_study(study, "."), model, quiet_options(test::fresh_dir("mapping")));
   CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 1e-2);
   CHECK(std::abs(result.best.at("slope") / 0.8 - 1.0) < 2e-2);
+}
+
+TEST_CASE("Without gnuplot on the PATH the report skips the plots with a warning", "[identify][report]") {
+  const auto dir = test::fresh_dir("no_gnuplot");
+  run_study(parse_study(test::analytic_study(0.0, 1), "."), AnalyticCurveModel(), quiet_options(dir));
+  const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", "/nonexistent", 1);
+  const auto summary = write_report(StudyStore::open_existing(dir / "study.db"), dir / "rebuilt", true);
+  setenv("PATH", saved.c_str(), 1);
+  CHECK_THAT(summary.plot_warning, Catch::Contains("gnuplot not found"));
+  CHECK_FALSE(summary.plots_written);
+  CHECK(std::filesystem::exists(dir / "rebuilt" / "report.md"));
+  CHECK_FALSE(std::filesystem::exists(dir / "rebuilt" / "objective_history.png"));
 }

@@ -1,6 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <iterator>
+
+#include <sqlite3.h>
+
 #include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
 #include "test_helpers.hpp"
@@ -35,6 +41,11 @@ TEST_CASE("Resuming after a kill mid-iteration repeats no run and reaches the un
   };
   CHECK_THROWS_AS(run_study(spec, model, killed), SimulatedKill);
   CHECK(StudyStore::open_existing(dir / "study.db").evaluations().size() == static_cast<std::size_t>(kill_after));
+  // The store of a killed study still gives a report, marked unfinished.
+  write_report(StudyStore::open_existing(dir / "study.db"), dir / "partial", false);
+  std::ifstream partial(dir / "partial" / "report.md");
+  const std::string partial_text((std::istreambuf_iterator<char>(partial)), std::istreambuf_iterator<char>());
+  CHECK_THAT(partial_text, Catch::Contains("NOT finished"));
 
   auto resumed_options = quiet_options(dir);
   resumed_options.resume = true;
@@ -68,4 +79,20 @@ TEST_CASE("An existing store is refused without resume, and a store of another s
   CHECK(more.runs == 3 * spec.points_per_iteration + 1);
   CHECK(StudyStore::open_existing(dir / "study.db").evaluations().size() ==
         static_cast<std::size_t>(3 * spec.points_per_iteration + 1));
+}
+
+TEST_CASE("A store written with another schema version is refused with a message", "[identify][resume]") {
+  const auto dir = test::fresh_dir("resume_schema");
+  const auto spec = parse_study(test::analytic_study(0.0, 1), ".");
+  run_study(spec, AnalyticCurveModel(), quiet_options(dir));
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open((dir / "study.db").string().c_str(), &db) == SQLITE_OK);
+  REQUIRE(sqlite3_exec(db, "UPDATE meta SET value = '999' WHERE key = 'schema_version'", nullptr, nullptr, nullptr) == SQLITE_OK);
+  sqlite3_close(db);
+  auto options = quiet_options(dir);
+  options.resume = true;
+  CHECK_THROWS_WITH(run_study(spec, AnalyticCurveModel(), options), Catch::Contains("schema version 999"));
+  CHECK_THROWS_WITH(StudyStore::open_existing(dir / "study.db"), Catch::Contains("schema version 999"));
+  std::ofstream(dir / "not_a_store.db") << "hello";
+  CHECK_THROWS(StudyStore::open_existing(dir / "not_a_store.db"));
 }

@@ -55,6 +55,10 @@ TEST_CASE("Malformed study files give one-line errors naming the field", "[ident
   auto unknown = test::analytic_study();
   unknown["variables"][0]["lowr"] = 1;
   CHECK_THAT(parse_error(unknown), Catch::Contains("variables[0].lowr") && Catch::Contains("unknown key"));
+  auto misspelt = test::analytic_study();
+  misspelt["variables"][0].erase("lower");
+  misspelt["variables"][0]["lowr"] = 0.5;
+  CHECK_THAT(parse_error(misspelt), Catch::Contains("variables[0].lowr: unknown key; did you mean \"lower\"?"));
   auto top = test::analytic_study();
   top["sead"] = 1;
   CHECK_THAT(parse_error(top), Catch::Contains("study: sead: unknown key"));

@@ -22,6 +22,9 @@ class NeighborList {
   /// True when some particle moved more than skin/2 since the last build (or never built, or the
   /// particle count changed).
   [[nodiscard]] bool needs_rebuild(std::span<const Vec3> positions, int threads) const;
+  /// Largest particle displacement [m] since the last build (infinity if never built or the
+  /// particle count changed).
+  [[nodiscard]] double max_displacement(std::span<const Vec3> positions, int threads) const;
 
   [[nodiscard]] std::size_t pair_count() const { return second_.size(); }
   [[nodiscard]] std::size_t particle_count() const { return row_offsets_.empty() ? 0 : row_offsets_.size() - 1; }
@@ -36,6 +39,8 @@ class NeighborList {
   /// Pair index of (i, j) with i < j, or npos (binary search in row i).
   [[nodiscard]] std::size_t find(std::size_t i, std::size_t j) const;
   [[nodiscard]] std::size_t build_count() const { return build_count_; }
+  /// Positions at the last build (for callers that fuse the displacement check into their loops).
+  [[nodiscard]] std::span<const Vec3> reference_positions() const { return reference_positions_; }
 
  private:
   std::vector<std::uint32_t> row_offsets_, first_, second_, column_offsets_, column_pairs_;

@@ -106,9 +106,9 @@ class Simulation {
 
   // ---- diagnostics ---------------------------------------------------------------------------
   [[nodiscard]] double kinetic_energy() const;                ///< translational + rotational [J]
-  [[nodiscard]] double elastic_energy() const { return elastic_energy_; }  ///< springs, last force evaluation [J]
+  [[nodiscard]] double elastic_energy() const;  ///< springs, last force evaluation [J]
   [[nodiscard]] double gravitational_potential_energy() const;  ///< -sum m g·x [J] (zero at the origin)
-  [[nodiscard]] std::size_t contact_count() const { return contact_count_; }  ///< particle pairs touching
+  [[nodiscard]] std::size_t contact_count() const;  ///< particle pairs touching
   [[nodiscard]] std::size_t wall_contact_count() const;       ///< particle–wall contacts
   [[nodiscard]] const NeighborList& neighbor_list() const { return neighbors_; }
   [[nodiscard]] double skin() const;  ///< Verlet skin in use [m]
@@ -116,15 +116,24 @@ class Simulation {
  private:
   void invalidate_forces() { forces_valid_ = false; }
   void update_compliances();
-  void compute_forces(double dt);
-  void ensure_neighbors();
-  void reduce_diagnostics();
+  void update_compliance(std::size_t particle);
+  void find_wall_candidates();
+  /// Loads at the current state; `closing_kick` [s] > 0 applies the second Verlet half kick in the
+  /// same pass; `moved` = largest displacement since the list build if known (< 0: compute it).
+  void compute_forces(double dt, double closing_kick, double moved);
+  void ensure_neighbors(double moved);
+  double kick_and_drift(double dt);
+  void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
   [[nodiscard]] double resolved_step() const;
 
   SimulationSettings settings_;
   std::vector<Material> materials_{};
   ParticleState particles_;
-  std::vector<Wall> walls_{};
+  // mutable: the loads on the walls are reduced lazily from the per-contact arrays when asked for.
+  mutable std::vector<Wall> walls_{};
+  std::vector<Vec3> wall_displacement_at_build_{};  // wall translation when the list was built
+  std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
+  std::vector<std::uint8_t> wall_candidate_{};       // per (particle, wall): within R + skin at build
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices.
   std::vector<ContactHistory> pair_history_{};
@@ -138,8 +147,10 @@ class Simulation {
   std::vector<std::uint8_t> wall_touching_{};
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
-  double elastic_energy_ = 0.0;
-  std::size_t contact_count_ = 0;
+  mutable double elastic_energy_ = 0.0;
+  mutable std::size_t contact_count_ = 0;
+  mutable bool diagnostics_valid_ = false;
+  bool rebuild_requested_ = false;  // walls added or their motion changed
   bool forces_valid_ = false;
   mutable double cached_step_ = 0.0;
   mutable bool step_cache_valid_ = false;

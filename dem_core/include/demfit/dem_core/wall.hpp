@@ -99,6 +99,12 @@ struct WallProximity {
 
 /// Geometric contact test of a sphere (centre [m], radius [m]) with a wall geometry.
 WallProximity wall_proximity(const WallGeometry& geometry, const Vec3& center, double radius);
+/// Conservative candidate test for the wall contact list: true when the sphere could touch the
+/// wall after particle and wall moved relative to each other by less than `margin` [m].
+bool wall_may_touch(const WallGeometry& geometry, const Vec3& center, double radius, double margin);
+/// True when the wall's motion leaves every particle–wall distance unchanged apart from its
+/// translation (fixed, translating, or rotating about its own symmetry axis: drum shells/ends).
+bool wall_distances_rigid(const Wall& wall);
 /// Velocity [m/s] of the wall's material point at `point` [m].
 Vec3 wall_velocity_at(const Wall& wall, const Vec3& point);
 /// Angular velocity vector of the wall [rad/s] (zero unless rotating).

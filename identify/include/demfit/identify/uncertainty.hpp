@@ -6,7 +6,7 @@
 // confidence interval = t_{(1+c)/2, N-n} * sqrt(Cov_jj).
 // A variable is flagged unidentifiable when its half-width exceeds half its bound range, or
 // when J^T J is near-singular (eigenvalue < 1e-10 of the largest, in range-scaled variables)
-// and the variable takes part in the near-null direction (|component| > 0.3).
+// and the variable takes part in the near-null direction (|component| > 0.1).
 #include <string>
 #include <vector>
 

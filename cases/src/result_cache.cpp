@@ -1,0 +1,62 @@
+// On-disk cache of whole case results (see result_cache.hpp).
+#include "demfit/cases/result_cache.hpp"
+
+#include <fstream>
+
+#include "demfit/cases/fill_cache.hpp"
+
+namespace demfit::cases {
+namespace {
+
+using nlohmann::json;
+
+json to_json(const CaseResult& r) {
+  json curves = json::object();
+  for (const auto& [name, c] : r.curves) curves[name] = {{"x_label", c.x_label}, {"y_label", c.y_label}, {"x", c.x}, {"y", c.y}};
+  json tables = json::object();
+  for (const auto& [name, t] : r.tables) tables[name] = {{"comments", t.comments}, {"columns", t.columns}, {"values", t.values}};
+  return {{"curves", curves}, {"tables", tables}, {"summary", r.summary}};
+}
+
+CaseResult from_json(const json& j) {
+  CaseResult r;
+  for (const auto& [name, c] : j.at("curves").items()) {
+    r.curves[name] = identify::Curve{c.at("x_label"), c.at("y_label"), c.at("x"), c.at("y")};
+  }
+  for (const auto& [name, t] : j.at("tables").items()) {
+    r.tables[name] = CurveTable{t.at("comments"), t.at("columns"), t.at("values")};
+  }
+  r.summary = j.at("summary").get<std::vector<std::pair<std::string, std::string>>>();
+  return r;
+}
+
+}  // namespace
+
+CaseResult cached_case_result(const CaseSpec& spec, const CaseRunOptions& options, bool* computed) {
+  CaseRunOptions resolved = options;
+  if (resolved.cache_dir.empty()) resolved.cache_dir = default_cache_dir();
+  const json key = {{"result_format", 1}, {"case", cases::to_json(spec)}};
+  std::filesystem::path path = fill_cache_path(resolved.cache_dir, "result", key);
+  path.replace_extension(".json");
+  if (computed) *computed = false;
+  {
+    std::ifstream in(path);
+    if (in) {
+      try {
+        const json stored = json::parse(in);
+        if (stored.at("key") == key) return from_json(stored.at("result"));
+      } catch (const std::exception&) {
+        // unreadable or stale entry: recompute below
+      }
+    }
+  }
+  CaseResult result = run_case(spec, {}, resolved);
+  std::filesystem::create_directories(path.parent_path());
+  const std::filesystem::path temp = path.string() + ".tmp";
+  std::ofstream(temp) << json{{"key", key}, {"result", to_json(result)}}.dump();
+  std::filesystem::rename(temp, path);
+  if (computed) *computed = true;
+  return result;
+}
+
+}  // namespace demfit::cases

@@ -1,0 +1,80 @@
+#include <mpi.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <string>
+#include <thread>
+
+#include "demfit/scaleout/mpi_evaluator.hpp"
+#include "demfit/scaleout/wire_format.hpp"
+
+namespace demfit::scaleout {
+namespace {
+
+std::string receive_text(int source, int tag, MPI_Status& status) {
+  int length = 0;
+  MPI_Get_count(&status, MPI_CHAR, &length);
+  std::string text(static_cast<std::size_t>(length), '\0');
+  MPI_Recv(text.data(), length, MPI_CHAR, source, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return text;
+}
+
+// Fault injection for the scale-out tests (documented in README): the worker with rank
+// DEMFIT_TEST_FAULT_RANK dies (SIGKILL) or hangs when it receives its
+// DEMFIT_TEST_FAULT_AFTER-th run, as selected by DEMFIT_TEST_FAULT=kill|hang.
+void maybe_inject_fault(int rank, int runs_received, bool in_evaluation) {
+  const char* fault = std::getenv("DEMFIT_TEST_FAULT");
+  const char* fault_rank = std::getenv("DEMFIT_TEST_FAULT_RANK");
+  const char* fault_after = std::getenv("DEMFIT_TEST_FAULT_AFTER");
+  if (!fault || !fault_rank || !fault_after) return;
+  if (std::atoi(fault_rank) != rank || std::atoi(fault_after) != runs_received) return;
+  if (!in_evaluation && std::string(fault) == "kill") std::raise(SIGKILL);
+  if (in_evaluation && std::string(fault) == "hang") {
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+}
+
+}  // namespace
+
+void run_worker(const identify::Model& model, int threads_per_job, unsigned long seed) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const identify::EvaluationContext context{threads_per_job, seed};
+  int runs_received = 0;
+  for (;;) {
+    MPI_Status status;
+    if (MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status) != MPI_SUCCESS) return;  // rank 0 gone
+    const std::string text = receive_text(0, status.MPI_TAG, status);
+    if (status.MPI_TAG == tag_stop) return;
+    maybe_inject_fault(rank, ++runs_received, false);
+    // The first 8 bytes carry the run's batch index, echoed back so rank 0 can match answers.
+    const std::string index_prefix = text.substr(0, 8);
+    identify::EvaluationOutcome outcome;
+    // The simulation runs on its own thread so that this (MPI) thread can still hear rank 0
+    // give up on a run that hangs: the worker then leaves at once instead of blocking mpirun.
+    std::atomic<bool> finished{false};
+    std::thread evaluation([&] {
+      maybe_inject_fault(rank, runs_received, true);
+      try {
+        outcome = identify::evaluate_safely(model, decode_parameters(text.substr(8)), context);
+      } catch (const std::exception& e) {
+        outcome.ok = false;
+        outcome.error = std::string("malformed run message on worker: ") + e.what();
+      }
+      finished.store(true);
+    });
+    while (!finished.load()) {
+      int stop = 0;
+      MPI_Iprobe(0, tag_stop, MPI_COMM_WORLD, &stop, MPI_STATUS_IGNORE);
+      if (stop) std::_Exit(0);  // retired by rank 0 while hung; its run is retried elsewhere
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    evaluation.join();
+    const std::string reply = index_prefix + encode_outcome(outcome);
+    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_CHAR, 0, tag_outcome, MPI_COMM_WORLD);
+  }
+}
+
+}  // namespace demfit::scaleout

@@ -1,0 +1,103 @@
+// demfit simulate with bad input: exit status != 0, a single "demfit: error: ..." line naming the
+// field, and no output folder (nor staging folder) left behind.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int status = 0;
+  std::string error;  // stderr
+};
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(DEMFIT_BINARY_DIR) / "test_cli_scratch" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = std::string("DEMFIT_CACHE_DIR='") + (dir / "cache").string() + "' '" + DEMFIT_EXE + "' " +
+                              arguments + " > /dev/null 2> '" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  CliRun run;
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.error = text.str();
+  return run;
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+// Nothing named out* (the output or a staging folder) exists in dir.
+bool no_output_left(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("out") != std::string::npos) return false;
+  }
+  return true;
+}
+
+void check_clean_failure(const CliRun& run, const std::string& field, const fs::path& dir) {
+  CHECK(run.status != 0);
+  INFO("stderr: " << run.error);
+  CHECK(run.error.rfind("demfit: error: ", 0) == 0);
+  CHECK(run.error.find(field) != std::string::npos);
+  CHECK(std::count(run.error.begin(), run.error.end(), '\n') == 1);
+  CHECK(no_output_left(dir));
+}
+
+}  // namespace
+
+TEST_CASE("simulate with malformed JSON fails naming the file and writes nothing") {
+  const fs::path dir = scratch("malformed");
+  write(dir / "case.json", "{\"case\": \"pellet_compression\", \"particle\": {\"radius\": }");
+  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+                      "case.json", dir);
+}
+
+TEST_CASE("simulate with an unknown key fails naming the dotted key and writes nothing") {
+  const fs::path dir = scratch("unknown_key");
+  write(dir / "case.json", R"({"case": "pellet_compression", "pellet": {"piston_sped": 0.1}})");
+  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+                      "pellet.piston_sped", dir);
+}
+
+TEST_CASE("simulate with a negative radius fails naming particle.radius and writes nothing") {
+  const fs::path dir = scratch("negative_radius");
+  write(dir / "case.json", R"({"case": "pellet_compression", "particle": {"radius": -0.001}})");
+  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+                      "particle.radius", dir);
+}
+
+TEST_CASE("simulate with a time step above the stable limit fails naming time_step.value and writes nothing") {
+  const fs::path dir = scratch("time_step");
+  write(dir / "case.json", R"({"case": "rotary_drum", "time_step": {"value": 0.01}})");
+  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+                      "time_step.value", dir);
+}
+
+TEST_CASE("simulate with a missing case file fails naming the file and writes nothing") {
+  const fs::path dir = scratch("missing");
+  check_clean_failure(run_demfit("simulate '" + (dir / "nope.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+                      "nope.json", dir);
+}
+
+TEST_CASE("simulate with an unknown --set parameter path fails naming it and writes nothing") {
+  const fs::path dir = scratch("bad_set");
+  check_clean_failure(run_demfit(std::string("simulate '") + DEMFIT_SOURCE_DIR + "/cases/rotary_drum.json' --set drum.rpmm=30 --out '" +
+                                     (dir / "out").string() + "'",
+                                 dir),
+                      "drum.rpmm", dir);
+}

@@ -1,0 +1,51 @@
+# End-to-end check of `demfit identify`, `report` and `export` on the analytic model:
+#   cmake -DDEMFIT=<exe> -DDATA=<tests/identify/data> -DOUT=<folder> -P cli_round_trip.cmake
+# The numbers are checked by the library tests; this checks the plumbing and the messages.
+file(REMOVE_RECURSE ${OUT})
+function(run expect_code)
+  execute_process(COMMAND ${DEMFIT} ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT code EQUAL expect_code)
+    message(FATAL_ERROR "demfit ${ARGN}: exit ${code}, expected ${expect_code}\n${out}\n${err}")
+  endif()
+  set(last_out "${out}" PARENT_SCOPE)
+  set(last_err "${err}" PARENT_SCOPE)
+endfunction()
+
+run(0 identify ${DATA}/analytic_study.json --out ${OUT}/study --jobs 2)
+foreach(f study.db best_parameters.json evaluations.csv iterations.csv report.md study_resolved.json
+          target_response.csv best_response.csv)
+  if(NOT EXISTS ${OUT}/study/${f})
+    message(FATAL_ERROR "identify did not write ${f}")
+  endif()
+endforeach()
+file(READ ${OUT}/study/best_parameters.json best)
+string(JSON amplitude GET "${best}" variables amplitude value)
+if(NOT amplitude MATCHES "^1\\.(2999|300)")
+  message(FATAL_ERROR "identified amplitude ${amplitude}, expected 1.3 to 1e-3")
+endif()
+
+# An existing store is refused without --resume; with --resume a finished study reruns nothing.
+run(1 identify ${DATA}/analytic_study.json --out ${OUT}/study)
+if(NOT last_err MATCHES "demfit: error: study store .* already exists; pass --resume")
+  message(FATAL_ERROR "unexpected message: ${last_err}")
+endif()
+run(0 identify ${DATA}/analytic_study.json --out ${OUT}/study --resume --no-plots)
+if(last_err MATCHES "run [0-9]+/[0-9]+ ")
+  message(FATAL_ERROR "--resume of a finished study repeated runs:\n${last_err}")
+endif()
+
+# Malformed study: one line naming the field.
+run(1 identify ${DATA}/malformed_study.json --out ${OUT}/bad)
+if(NOT last_err MATCHES "^demfit: error: study: variables\\[0\\]\\.lowr: unknown key; did you mean \"lower\"\\?[^\n]*\n$")
+  message(FATAL_ERROR "unexpected message: ${last_err}")
+endif()
+
+run(0 report ${OUT}/study/study.db --out ${OUT}/rebuilt --no-plots)
+if(NOT EXISTS ${OUT}/rebuilt/report.md)
+  message(FATAL_ERROR "report did not rebuild report.md")
+endif()
+run(0 export ${OUT}/study/study.db --lsdyna ${OUT}/out.k)
+file(READ ${OUT}/out.k keywords)
+if(NOT keywords MATCHES "\\*CONTROL_DISCRETE_ELEMENT" OR NOT keywords MATCHES "\\*DEFINE_DE_TO_SURFACE_COUPLING")
+  message(FATAL_ERROR "export lacks the LS-DYNA cards:\n${keywords}")
+endif()
