@@ -11,7 +11,7 @@ namespace demfit::rbf_surrogate::detail {
 
 namespace {
 
-constexpr double kSingular = 1e-13;
+constexpr double kSingular = 1e-11;
 
 void check_inputs(const MatrixXd& points, const MatrixXd& values, const RbfOptions& options) {
     const auto n = points.rows();
