@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "demfit/cases/progress.hpp"
 #include "demfit/cases/reproduce.hpp"
 
 #ifndef DEMFIT_DEFAULT_SOURCE_DIR
@@ -48,6 +49,9 @@ cases::ReproduceOptions options_of(const ReproduceArgs& a) {
   o.threads_per_job = a.threads;
   o.quick = a.quick;
   o.resume = a.resume;
+  // Progress of single long simulations (drum reference runs); studies print their own lines.
+  static cases::ProgressPrinter printer(10.0);
+  o.progress = printer.callback();
   std::filesystem::create_directories(o.out_dir);
   return o;
 }

@@ -93,7 +93,11 @@ void register_simulate(CLI::App& app) {
       "torque_Nm, x_mm, height_mm), history/particle tables, case_resolved.json (all defaults\n"
       "filled in), summary.txt, snapshots/*.vtk when requested. Case files are JSON in SI units\n"
       "(m, kg, s, Pa; rpm named). Settled fills are cached in $DEMFIT_CACHE_DIR (default\n"
-      "~/.cache/demfit). Nothing is written when the input is bad or the run fails.");
+      "~/.cache/demfit). Nothing is written when the input is bad or the run fails.\n"
+      "Defaults (docs/cases.md): contact NORMK 0.01, SHEARK 2/7, other contact values 0, FRICD = FRICS, wall SFP 1;\n"
+      "time step automatic (0.15 x 2 pi sqrt(m*/k) and dem_core's packing bounds). Pellet: 1450 pellets in a\n"
+      "36 mm x 64 mm cylinder, piston 0.05 m/s to 3 MPa (30 mm stroke limit), 60 curve points. Drum: 100 mm x 25 mm,\n"
+      "60 rpm for 3 s, fill 30 % at phi 0.64, SCG s = 1, free surface averaged over the last 0.1 s (5 snapshots).");
   cmd->add_option("case", options->case_file, "case JSON file (e.g. cases/pellet_compression.json)")->required();
   cmd->add_option("--set", options->settings,
                   "override: name=value. Identified parameters (normk sheark ndamp tdamp frics fricd dc fricr "

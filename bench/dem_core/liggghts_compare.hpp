@@ -12,8 +12,9 @@ struct LiggghtsComparison {
   long liggghts_particles = 0;   ///< "Created N atoms" from the LIGGGHTS log
   long steps = 0;
   double time_step = 0.0;        ///< [s]
-  double demfit_seconds = 0.0;   ///< wall clock for `steps` steps (1 thread)
-  double liggghts_seconds = 0.0; ///< LIGGGHTS "Loop time"
+  double demfit_seconds = 0.0;   ///< CPU seconds for `steps` steps (1 thread)
+  double liggghts_seconds = 0.0; ///< LIGGGHTS "Loop time" (wall clock of its time loop)
+  double liggghts_cpu_seconds = 0.0;  ///< CPU seconds of the whole LIGGGHTS process (incl. setup)
   double demfit_kinetic_energy = 0.0;    ///< [J] at the end (translational + rotational)
   double liggghts_kinetic_energy = 0.0;  ///< [J] last thermo KinEng (translational only)
 };

@@ -82,6 +82,7 @@ std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std
 
 // Median with failures counted as infinite; -1 when at least half the runs failed.
 double median_evals(std::vector<int> v) {
+    if (v.empty()) return -1.0;
     for (auto& x : v)
         if (x < 0) x = 1 << 30;
     std::sort(v.begin(), v.end());
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
     for (const Problem& p : problems())
         for (auto [name, strategy] : {std::pair{"demfit_srsm", InfillStrategy::srsm},
                                       std::pair{"demfit_adaptive", InfillStrategy::adaptive}}) {
+            if (seeds <= 0) continue;
             for (int s = 1; s <= seeds; ++s) {
                 const auto [hit, secs] = run_demfit(p, strategy, static_cast<std::uint64_t>(s));
                 results[{name, p.name}].push_back(hit);
@@ -142,7 +144,7 @@ int main(int argc, char** argv) {
         const double ref = median_evals(results[{"demfit_adaptive", p.name}]);
         for (const auto& m : methods) {
             const auto it = results.find({m, p.name});
-            if (it == results.end()) {
+            if (it == results.end() || it->second.empty()) {
                 std::printf("%-13s %-18s %8s\n", p.name.c_str(), m.c_str(), "skipped");
                 continue;
             }

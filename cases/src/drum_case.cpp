@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
+#include <random>
 #include <stdexcept>
 
 #include "dem_setup.hpp"
@@ -80,6 +82,29 @@ nlohmann::json fill_key(const CaseSpec& spec) {
           {"wall_contact", full["wall_contact"]}, {"time_step_factor", kFillTimeStepFactor}, {"drum", drum}};
 }
 
+// Fallback when the lattice cannot hold the count (coarse particles only a few diameters shorter
+// than the drum length): random sequential addition in the whole drum, seeded, no overlaps.
+std::optional<dem_core::Packing> random_packing(const CaseSpec& spec, const Powder& powder) {
+  const double r = powder.particle.radius;
+  const double reach = 0.5 * spec.drum.diameter - r;
+  if (reach <= 0.0 || spec.drum.length < 2.0 * r) return std::nullopt;
+  std::mt19937_64 engine(static_cast<std::uint64_t>(spec.drum.fill_seed));
+  auto uniform = [&engine] { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
+  dem_core::Packing packing;
+  for (long long attempt = 0; attempt < 2000000 && static_cast<long long>(packing.centers.size()) < powder.count; ++attempt) {
+    const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r + uniform() * (spec.drum.length - 2.0 * r)};
+    if (c.x * c.x + c.y * c.y > reach * reach) continue;
+    bool free = true;
+    for (const Vec3& o : packing.centers) free = free && dem_core::norm2(o - c) >= 4.0 * r * r * 1.0001;
+    if (!free) continue;
+    packing.centers.push_back(c);
+    packing.radii.push_back(r);
+  }
+  if (static_cast<long long>(packing.centers.size()) < powder.count) return std::nullopt;
+  packing.solid_volume = static_cast<double>(powder.count) * sphere_volume(r);
+  return packing;
+}
+
 // Packed generation in the lower part of the drum, enlarged until the lattice holds the count
 // (the paper's "extending the volume of the packed region"), then frictionless densification
 // followed by a short settle with friction (dem_core::settle).
@@ -113,6 +138,7 @@ Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
     }
     if (packing) break;
   }
+  if (!packing) packing = random_packing(spec, powder);
   if (!packing) throw std::runtime_error("drum: cannot place " + std::to_string(powder.count) + " particles: " + last_error);
   dem_core::add_packing(sim, *packing);
   add_drum(sim, spec, 0.0);

@@ -97,7 +97,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(threads > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     std::uint32_t c = 0;
     for_each_partner(grid, positions, radii, skin, static_cast<std::size_t>(i), [&](std::uint32_t) { ++c; });
@@ -107,7 +107,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   const std::size_t pairs = row_offsets_[n];
   first_.resize(pairs);
   second_.resize(pairs);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(threads > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     const auto ii = static_cast<std::size_t>(i);
     std::uint32_t k = row_offsets_[ii];
@@ -134,7 +134,7 @@ double NeighborList::max_displacement(std::span<const Vec3> positions, int threa
     return std::numeric_limits<double>::infinity();
   const auto n = static_cast<std::int64_t>(positions.size());
   double worst = 0.0;  // max is order-independent, so the reduction is deterministic
-#pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads)
+#pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads) if(threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const double d2 = norm2(positions[static_cast<std::size_t>(i)] - reference_positions_[static_cast<std::size_t>(i)]);
     worst = std::max(worst, d2);

@@ -180,7 +180,8 @@ void Simulation::set_wall_velocity(std::size_t index, const Vec3& velocity) {
 
 void Simulation::set_wall_angular_velocity(std::size_t index, double angular_velocity) {
   require_finite("wall angular_velocity [rad/s]", angular_velocity);
-  auto* rotating = std::get_if<RotatingMotion>(&walls_.at(index).motion);
+  (void)wall(index);  // index check with a one-line message
+  auto* rotating = std::get_if<RotatingMotion>(&walls_[index].motion);
   if (rotating == nullptr)
     throw std::runtime_error("set_wall_angular_velocity: wall " + std::to_string(index) +
                              " does not rotate; give it a RotatingMotion with set_wall_motion");
@@ -261,7 +262,7 @@ double Simulation::kick_and_drift(double dt) {
   const std::span<const Vec3> reference = neighbors_.reference_positions();
   const bool known = reference.size() == p.size();
   double worst = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst) num_threads(settings_.threads)
+#pragma omp parallel for schedule(static) reduction(max : worst) num_threads(settings_.threads) if(settings_.threads > 1)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];

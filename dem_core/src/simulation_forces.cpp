@@ -26,7 +26,7 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
   const auto first = list.first();
   const auto second = list.second();
   const auto pairs = static_cast<std::int64_t>(list.pair_count());
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
   for (std::int64_t kk = 0; kk < pairs; ++kk) {
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t i = first[k], j = second[k];
@@ -127,7 +127,7 @@ void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, cons
   const auto columns = list.column_offsets();
   const auto column_pairs = list.column_pairs();
   const auto n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     // Fixed order: gravity, pairs where i is first (ascending j), pairs where i is second
@@ -192,7 +192,7 @@ void Simulation::ensure_neighbors(double moved) {
   const auto first = neighbors_.first();
   const auto second = neighbors_.second();
   const auto count = static_cast<std::int64_t>(pairs);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t old_k = old.find(first[k], second[k]);
@@ -208,7 +208,7 @@ void Simulation::find_wall_candidates() {
   const double margin = skin();
   wall_candidate_.resize(particles_.size() * walls);
   const auto n = static_cast<std::int64_t>(particles_.size());
-#pragma omp parallel for schedule(static) num_threads(settings_.threads)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     for (std::size_t w = 0; w < walls; ++w) {

@@ -47,7 +47,8 @@ class StudyLoop {
   StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
       : spec_(spec), model_(model), options_(options), objective_(spec.targets),
         variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
-        evaluator_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
+        pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
+        evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
         store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume)) {}
 
   StudyResult run();
@@ -73,7 +74,8 @@ class StudyLoop {
   CompositeObjective objective_;
   std::vector<rbf_surrogate::Variable> variables_;
   int dims_;
-  ThreadPoolEvaluator evaluator_;
+  ThreadPoolEvaluator pool_;
+  Evaluator& evaluator_;
   StudyStore store_;
   std::vector<Run> runs_;                 // successful runs, in (iteration, point) order
   std::vector<VectorXd> all_points_;      // every run (failed ones too), in order

@@ -69,7 +69,7 @@ Choice best_smoothing(const Prepared& prepared, const Spectrum& s, const RbfOpti
         return c;
     }
     auto f = [&](double log_mu) { return detail::criterion(prepared, s, std::pow(10.0, log_mu) * s.scale); };
-    const auto [log_mu, value] = bracketed_minimum(f, -10.0, 0.0, 21, 14);
+    const auto [log_mu, value] = bracketed_minimum(f, -10.0, 0.0, 11, 10);
     c.smoothing = std::pow(10.0, log_mu) * s.scale;
     c.value = value;
     return c;
@@ -81,11 +81,13 @@ Choice search(const Prepared& prepared, const RbfOptions& options) {
     // Widths from a twentieth of the typical spacing to several design diameters (log scale), or a
     // factor 8 either side of a hint.
     double lo = std::log(0.05 * prepared.nearest_mean), hi = std::log(5.0 * prepared.diameter);
-    int grid = 24;
+    // 16 log-spaced widths (steps of a factor ~1.7), then 10 golden steps: 1 % width resolution,
+    // far below the criterion's flatness near its minimum.
+    int grid = 16;
     if (options.width_hint && *options.width_hint > 0.0 && std::isfinite(*options.width_hint)) {
         lo = std::log(*options.width_hint / 8.0);
         hi = std::log(*options.width_hint * 8.0);
-        grid = 10;
+        grid = 9;
     }
     Choice best;
     auto f = [&](double log_width) {
@@ -93,7 +95,7 @@ Choice search(const Prepared& prepared, const RbfOptions& options) {
         if (c.value < best.value) best = c;
         return c.value;
     };
-    bracketed_minimum(f, lo, hi, grid, 16);
+    bracketed_minimum(f, lo, hi, grid, 10);
     return best;
 }
 

@@ -82,7 +82,7 @@ double settled_fraction(bool frictionless, SettleReport& report) {
 
 }  // namespace
 
-TEST_CASE("Settling brings a poured bed to rest; frictionless densification packs it denser", "[dem_core][packing]") {
+TEST_CASE("Settling brings a poured bed to rest and frictionless densification packs it denser", "[dem_core][packing]") {
   SettleReport rough, smooth;
   const double phi_rough = settled_fraction(false, rough);
   const double phi_smooth = settled_fraction(true, smooth);

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -196,4 +197,40 @@ TEST_CASE("Without gnuplot on the PATH the report skips the plots with a warning
   CHECK_FALSE(summary.plots_written);
   CHECK(std::filesystem::exists(dir / "rebuilt" / "report.md"));
   CHECK_FALSE(std::filesystem::exists(dir / "rebuilt" / "objective_history.png"));
+}
+
+namespace {
+// A plug-in evaluator (the shape of the MPI one): runs the batch backwards, serially.
+class BackwardsEvaluator final : public Evaluator {
+ public:
+  explicit BackwardsEvaluator(const Model& model) : model_(model) {}
+  std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch,
+                                                const DoneCallback& on_done) override {
+    std::vector<EvaluationOutcome> outcomes(batch.size());
+    for (std::size_t k = batch.size(); k-- > 0;) {
+      outcomes[k] = evaluate_safely(model_, batch[k], {});
+      if (on_done) on_done(k, outcomes[k]);
+      ++runs;
+    }
+    return outcomes;
+  }
+  int concurrency() const override { return 1; }
+  int runs = 0;
+
+ private:
+  const Model& model_;
+};
+}  // namespace
+
+TEST_CASE("A plug-in evaluator finishing runs in another order gives the same result", "[identify][loop]") {
+  const auto spec = parse_study(test::analytic_study(0.01, 4), ".");
+  const AnalyticCurveModel model;
+  const auto reference = run_study(spec, model, quiet_options(test::fresh_dir("plugin_reference")));
+  BackwardsEvaluator evaluator(model);
+  auto options = quiet_options(test::fresh_dir("plugin"));
+  options.evaluator = &evaluator;
+  const auto result = run_study(spec, model, options);
+  CHECK(evaluator.runs == reference.runs);
+  CHECK(result.best == reference.best);
+  CHECK(result.best_objective == reference.best_objective);
 }

@@ -103,8 +103,10 @@ TEST_CASE("Analytic gradient matches central finite differences", "[rbf_surrogat
             CHECK((g.col(d) - fd).norm() < 1e-5 * (1 + fd.norm()));
         }
         VectorXd g0;
-        CHECK(net.predict_output(p, 1, &g0) == Approx(net.predict(p)[1]).epsilon(1e-12));
-        CHECK((g0 - g.row(1).transpose()).norm() < 1e-12 * (1 + g0.norm()));
+        // Same sums in a different order (scalar loop vs matrix products): equal up to rounding,
+        // amplified by the coefficient cancellation of flat-limit widths.
+        CHECK(net.predict_output(p, 1, &g0) == Approx(net.predict(p)[1]).epsilon(1e-10));
+        CHECK((g0 - g.row(1).transpose()).norm() < 1e-9 * (1 + g0.norm()));
     }
 }
 
@@ -132,7 +134,9 @@ TEST_CASE("Many outputs share one fit and equal separate scalar fits", "[rbf_sur
         const RbfNetwork one = RbfNetwork::fit(x, y.col(j), fixed);
         CHECK(one.predict(p)[0] == Approx(pred[j]).epsilon(1e-9));
         CHECK(one.loo_rms()[0] == Approx(all.loo_rms()[j]).epsilon(1e-7));
-        for (int r = 0; r < 5; ++r) CHECK(many(r, j) == Approx(all.predict(grid.row(r).transpose())[j]).epsilon(1e-10));
+        // Batch (GEMM) and single (GEMV) paths differ only in summation order; at flat-limit widths the
+        // coefficients cancel over ~1e3 so rounding shows at ~1e-10 relative.
+        for (int r = 0; r < 5; ++r) CHECK(many(r, j) == Approx(all.predict(grid.row(r).transpose())[j]).epsilon(1e-8));
     }
 }
 

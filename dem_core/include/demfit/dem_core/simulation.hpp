@@ -32,8 +32,9 @@ struct SimulationSettings {
   int threads = 1;                      ///< OpenMP threads used by this simulation (>= 1)
   /// User time step [s]; 0 = automatic. A user step above stable_time_step() is refused.
   double time_step = 0.0;
-  /// Automatic step = factor * 2 pi sqrt(m*/k_n) of the stiffest contact (LS-DYNA uses 0.15;
-  /// see time_step.hpp for the rotational correction and the Hertz variant).
+  /// Automatic step = min(factor * 2 pi sqrt(m*/k_n) of the stiffest contact (LS-DYNA uses
+  /// 0.15), damping-dependent stability bounds); the factor scales only the first term. See
+  /// time_step.hpp (rotation, damping, Hertz variant).
   double time_step_factor = 0.15;
   /// Verlet skin [m]; <= 0 means 0.3 x the largest radius (set when the first step runs).
   double skin = 0.0;

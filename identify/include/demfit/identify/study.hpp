@@ -13,6 +13,8 @@
 
 namespace demfit::identify {
 
+class Evaluator;
+
 struct RunOptions {
   int jobs = 1;              // simulations evaluated at once (threads of the evaluator pool)
   int threads_per_job = 1;   // OpenMP threads given to each simulation (EvaluationContext)
@@ -24,6 +26,10 @@ struct RunOptions {
   // the number of evaluations done in this process. An exception thrown here stops the study
   // at once and propagates out of run_study (simulates a kill after k runs).
   std::function<void(int evaluations_done)> after_evaluation;
+  // Where the runs are evaluated: nullptr = a ThreadPoolEvaluator of `jobs` threads in this
+  // process; otherwise this evaluator (e.g. an MPI evaluator, issue #7), which must outlive the
+  // call. Results do not depend on the choice.
+  Evaluator* evaluator = nullptr;
 };
 
 struct StudyResult {

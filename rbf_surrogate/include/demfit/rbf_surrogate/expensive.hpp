@@ -27,6 +27,9 @@ struct ExpensiveOptions {
     // Fit the surrogate to min(y, median(y)) (Regis & Shoemaker 2007): large values far from the
     // optimum (Rosenbrock-like ranges) otherwise dominate the fit and its width.
     bool clip_above_median = false;
+    // SRSM strategy: centre the next subregion on the best point run so far (the predicted optimum
+    // when it is the best, which is the usual case); false = always the predicted optimum (LS-OPT).
+    bool recentre_on_best = true;
 };
 
 struct ExpensiveResult {
