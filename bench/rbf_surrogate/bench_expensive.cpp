@@ -4,6 +4,7 @@
 //   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)] [results file]
 // With a results file (RESULT lines saved from an earlier `python3 baselines.py N` run) the python
 // baselines are read instead of re-run (the GP loop takes tens of minutes on Rosenbrock-4).
+// Environment DEMFIT_BENCH_CLIP=1 turns on ExpensiveOptions::clip_above_median for the demfit runs.
 // Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3,
 // Hartmann-6 within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative
 // Gaussian noise) f* + 1e-2.

@@ -25,7 +25,7 @@ std::string gnuplot_png(const std::filesystem::path& png, const std::string& com
     out << "out = " << gnuplot_quote(temporary_png.string()) << "\n"
         << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
            "else { set terminal png size 900,600 noenhanced }\n"
-        << "set output out\nset grid\n"
+        << "set output out\nset grid\nset key below\n"
         << commands << "\nunset output\n";
   }
   const std::string command = "gnuplot " + gnuplot_quote(script.string()) + " >/dev/null 2>&1";

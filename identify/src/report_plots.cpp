@@ -80,6 +80,55 @@ std::string number_or_dash(const nlohmann::json& value) {
 
 }  // namespace
 
+namespace {
+
+void variables_section(std::ostringstream& md, const StudySpec& spec, const EvaluationRecord& best,
+                       const nlohmann::json& uncertainty) {
+  md << "## Identified variables\n\n"
+     << "| variable | initial | identified | ±95 % CI | bounds | identifiable |\n|---|---|---|---|---|---|\n";
+  for (const auto& v : spec.variables) {
+    std::string ci = "-", identifiable = "-";
+    if (uncertainty.is_object()) {
+      ci = number_or_dash(uncertainty["ci_half_width"].value(v.name, nlohmann::json()));
+      const auto& flags = uncertainty["unidentifiable"];
+      identifiable = std::find(flags.begin(), flags.end(), v.name) == flags.end() ? "yes" : "**no**";
+    }
+    md << "| " << v.name << " | " << format_number(v.initial) << " | " << format_number(best.parameters.at(v.name))
+       << " | " << ci << " | [" << format_number(v.lower) << ", " << format_number(v.upper) << "]"
+       << (v.log_scale ? " log" : "") << " | " << identifiable << " |\n";
+  }
+  if (!uncertainty.is_object()) return;
+  md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = surrogate Jacobian of the residual vector at "
+        "the best run, s² = residual variance, "
+     << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
+  for (const auto& v : spec.variables) md << " " << v.name << " |";
+  md << "\n|---|";
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) md << "---|";
+  md << "\n";
+  for (std::size_t i = 0; i < spec.variables.size(); ++i) {
+    md << "| " << spec.variables[i].name << " |";
+    for (std::size_t j = 0; j < spec.variables.size(); ++j) md << " " << number_or_dash(uncertainty["correlation"][i][j]) << " |";
+    md << "\n";
+  }
+}
+
+void failures_and_files_section(std::ostringstream& md, const std::vector<EvaluationRecord>& runs, int failed) {
+  if (failed) {
+    md << "## Failed runs\n\n| iteration/point | error |\n|---|---|\n";
+    int listed = 0;
+    for (const auto& r : runs)
+      if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << r.error << " |\n";
+    md << "\n";
+  }
+  md << "## Files\n\n- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
+        "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
+        "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
+        "- `study.db`: the study store (`demfit report study.db` rebuilds these files, "
+        "`demfit export study.db --lsdyna out.k` writes LS-DYNA cards)\n";
+}
+
+}  // namespace
+
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
                             const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
                             const std::optional<nlohmann::json>& result, const std::vector<std::string>& images) {
@@ -103,34 +152,8 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
     return md.str();
   }
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
-     << ", " << best->kind << ")\n\n## Identified variables\n\n"
-     << "| variable | initial | identified | ±95 % CI | bounds | identifiable |\n|---|---|---|---|---|---|\n";
-  const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
-  for (const auto& v : spec.variables) {
-    std::string ci = "-", identifiable = "-";
-    if (uncertainty.is_object()) {
-      ci = number_or_dash(uncertainty["ci_half_width"].value(v.name, nlohmann::json()));
-      const auto& flags = uncertainty["unidentifiable"];
-      identifiable = std::find(flags.begin(), flags.end(), v.name) == flags.end() ? "yes" : "**no**";
-    }
-    md << "| " << v.name << " | " << format_number(v.initial) << " | " << format_number(best->parameters.at(v.name))
-       << " | " << ci << " | [" << format_number(v.lower) << ", " << format_number(v.upper) << "]"
-       << (v.log_scale ? " log" : "") << " | " << identifiable << " |\n";
-  }
-  if (uncertainty.is_object()) {
-    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = surrogate Jacobian of the residual vector at "
-          "the best run, s² = residual variance, "
-       << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
-    for (const auto& v : spec.variables) md << " " << v.name << " |";
-    md << "\n|---|";
-    for (std::size_t j = 0; j < spec.variables.size(); ++j) md << "---|";
-    md << "\n";
-    for (std::size_t i = 0; i < spec.variables.size(); ++i) {
-      md << "| " << spec.variables[i].name << " |";
-      for (std::size_t j = 0; j < spec.variables.size(); ++j) md << " " << number_or_dash(uncertainty["correlation"][i][j]) << " |";
-      md << "\n";
-    }
-  }
+     << ", " << best->kind << ")\n\n";
+  variables_section(md, spec, *best, result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json());
   md << "\n## Targets\n\n";
   for (const auto& t : spec.targets)
     md << "- `" << t.name << "`: simulated curve `" << t.curve << "`, " << t.data.x.size() << " points, metric "
@@ -139,18 +162,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
     md << "\n## Plots\n\n";
     for (const auto& image : images) md << "![" << image << "](" << image << ")\n\n";
   }
-  if (failed) {
-    md << "## Failed runs\n\n| iteration/point | error |\n|---|---|\n";
-    int listed = 0;
-    for (const auto& r : runs)
-      if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << r.error << " |\n";
-    md << "\n";
-  }
-  md << "## Files\n\n- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
-        "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
-        "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
-        "- `study.db`: the study store (`demfit report study.db` rebuilds these files, "
-        "`demfit export study.db --lsdyna out.k` writes LS-DYNA cards)\n";
+  failures_and_files_section(md, runs, failed);
   return md.str();
 }
 

@@ -107,3 +107,30 @@ TEST_CASE("Particle-particle rolling friction (FRICR) decelerates the relative s
   INFO("relative spin deceleration " << deceleration << " expected " << expected);
   CHECK(deceleration == Approx(expected).epsilon(0.01));
 }
+
+TEST_CASE("Hertz-Mindlin law: a sliding sphere also decelerates at mu g and rolls at 5/7 v0", "[dem_core][friction]") {
+  // Same rigid-body result as for the linear law; only the springs differ (Hertz/Mindlin).
+  const double mu = 0.3, v0 = 1.0;
+  SimulationSettings settings;
+  settings.law = ContactLawKind::hertz_mindlin;
+  settings.gravity = {0, 0, -g};
+  settings.contact.frics = 0.5;
+  settings.contact.restitution = 0.3;
+  Simulation sim(settings);
+  sim.add_material(material);
+  WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+  plane.contact.frics = mu;
+  sim.add_wall(plane);
+  // Hertz static overlap on a rigid plane: m g = 4/3 E* sqrt(R) delta^{3/2}, E* = E/(1-nu^2).
+  const double e_star = 3.0 * material.bulk_modulus * (1.0 - 2.0 * material.poisson_ratio) /
+                        (1.0 - material.poisson_ratio * material.poisson_ratio);
+  const double delta = std::pow(3.0 * sphere_mass() * g / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
+  sim.add_particle({0, 0, radius - delta}, radius, 0, {v0, 0, 0});
+  const double t_star = 2.0 * v0 / (7.0 * mu * g);
+  sim.run_until(0.5 * t_star);
+  const double deceleration = (v0 - sim.velocities()[0].x) / sim.time();
+  sim.run_until(3.0 * t_star);
+  INFO("deceleration " << deceleration << " rolling speed " << sim.velocities()[0].x);
+  CHECK(deceleration == Approx(mu * g).epsilon(0.01));
+  CHECK(sim.velocities()[0].x == Approx(5.0 / 7.0 * v0).epsilon(0.01));
+}

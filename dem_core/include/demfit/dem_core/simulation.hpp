@@ -29,7 +29,11 @@ struct SimulationSettings {
   ContactLawKind law = ContactLawKind::lsdyna_linear;
   ContactParameters contact{};            ///< particle–particle parameters (SPEC 1)
   Vec3 gravity{0.0, 0.0, -9.81};        ///< [m/s^2], global frame
-  int threads = 1;                      ///< OpenMP threads used by this simulation (>= 1)
+  /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). On a shared,
+  /// loaded machine run with OMP_WAIT_POLICY=passive: spinning threads waiting at the 3 barriers
+  /// per step for a preempted partner made 2 threads 5-10x SLOWER than 1 (measured, load 6-8 on
+  /// 2 cores); passive waiting gave a 1.2x speed-up under the same load.
+  int threads = 1;
   /// User time step [s]; 0 = automatic. A user step above stable_time_step() is refused.
   double time_step = 0.0;
   /// Automatic step = min(factor * 2 pi sqrt(m*/k_n) of the stiffest contact (LS-DYNA uses
@@ -60,7 +64,8 @@ class Simulation {
   /// Remove the particles whose flag is true (flags.size() == particle_count()); indices of the
   /// remaining particles are compacted in order; contact histories are dropped.
   void remove_particles(const std::vector<bool>& flags);
-  std::size_t add_wall(const WallSpec& spec);  ///< returns the wall index
+  /// Returns the wall index. Restarts the particle–wall contact histories (pair histories stay).
+  std::size_t add_wall(const WallSpec& spec);
 
   // ---- settings changeable between steps ----------------------------------------------------
   void set_gravity(const Vec3& gravity);
