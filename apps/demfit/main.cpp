@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   demfit::apps::register_simulate(app);
   demfit::apps::register_identify(app);
   demfit::apps::register_reproduce(app);
+  demfit::apps::register_diagnose(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
