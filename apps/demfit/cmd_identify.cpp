@@ -16,6 +16,11 @@
 #if defined(DEMFIT_HAVE_CASES)
 #include "demfit/cases/model_factory.hpp"
 #endif
+#if defined(DEMFIT_HAVE_SCALEOUT)
+#include <iostream>
+
+#include "demfit/scaleout/mpi_evaluator.hpp"
+#endif
 
 namespace demfit::apps {
 namespace {
@@ -27,6 +32,8 @@ struct IdentifyOptions {
   int threads_per_job = 1;
   bool resume = false;
   bool no_plots = false;
+  bool mpi = false;
+  double run_timeout = 0.0;
 };
 
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
@@ -55,11 +62,46 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
   std::printf("results: %s\n", (out / "report.md").string().c_str());
 }
 
+#if defined(DEMFIT_HAVE_SCALEOUT)
+// `mpirun -np K demfit identify STUDY.json --mpi`: every rank reads the study and builds the model
+// (a shared file system is assumed); rank 0 runs the loop and owns the store, the others evaluate.
+void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
+  int argc = 0;
+  char** argv = nullptr;
+  scaleout::MpiSession session(argc, argv);
+  try {
+    const identify::StudySpec spec = identify::load_study_file(o.study_file);
+    const auto model = make_model(spec);
+    if (session.rank() != 0) {
+      scaleout::run_worker(*model, o.threads_per_job, spec.seed);
+      session.finish(0);
+      return;
+    }
+    scaleout::MpiEvaluatorOptions mpi_options;
+    mpi_options.run_timeout_seconds = o.run_timeout;
+    identify::StudyResult result;
+    {
+      scaleout::MpiEvaluator evaluator(session, mpi_options);
+      options.evaluator = &evaluator;
+      std::fprintf(stderr, "demfit: MPI: rank 0 runs the loop, %d worker rank(s) evaluate\n", session.size() - 1);
+      result = identify::run_study(spec, *model, options);
+    }
+    print_summary(spec, result, options.output_dir);
+    std::fflush(stdout);
+    session.finish(0);
+  } catch (const std::exception& e) {
+    // Workers wait for rank 0: end the whole job here, with the error, rather than hang.
+    std::cerr << "demfit: error: " << e.what() << std::endl;
+    session.mark_peer_lost();
+    session.finish(1);
+  }
+}
+#endif
+
 void run_identify(const IdentifyOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
   if (o.threads_per_job < 1) throw std::runtime_error("--threads-per-job: must be >= 1");
-  const identify::StudySpec spec = identify::load_study_file(o.study_file);
-  const auto model = make_model(spec);
+  if (o.run_timeout < 0) throw std::runtime_error("--run-timeout: must be >= 0 seconds (0 = automatic)");
   identify::RunOptions options;
   options.jobs = o.jobs;
   options.threads_per_job = o.threads_per_job;
@@ -67,6 +109,17 @@ void run_identify(const IdentifyOptions& o) {
   options.plots = !o.no_plots;
   options.output_dir = o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_results")
                                      : std::filesystem::path(o.out);
+  if (o.mpi) {
+#if defined(DEMFIT_HAVE_SCALEOUT)
+    run_identify_mpi(o, options);
+    return;
+#else
+    throw std::runtime_error("--mpi: this demfit was built without MPI; apt-get install libopenmpi-dev openmpi-bin "
+                             "and rebuild (scripts/build)");
+#endif
+  }
+  const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  const auto model = make_model(spec);
   const auto result = identify::run_study(spec, *model, options);
   print_summary(spec, result, options.output_dir);
 }
@@ -88,6 +141,12 @@ void register_identify(CLI::App& app) {
   identify->add_flag("--resume", options->resume,
                      "Continue the study stored in <out>/study.db without repeating finished runs");
   identify->add_flag("--no-plots", options->no_plots, "Do not call gnuplot");
+  identify->add_flag("--mpi", options->mpi,
+                     "Spread evaluations over MPI ranks: mpirun --enable-recovery -np K demfit identify STUDY.json "
+                     "--mpi (rank 0 runs the loop, K-1 ranks evaluate; same answer as --jobs)");
+  identify->add_option("--run-timeout", options->run_timeout,
+                       "With --mpi: seconds [s] before a silent worker is retired and its run retried elsewhere "
+                       "(default 0 = automatic: max(120 s, 10 x the longest run so far))");
   identify->callback([options] { run_identify(*options); });
 
   auto report_db = std::make_shared<std::string>();

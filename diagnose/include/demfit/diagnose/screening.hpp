@@ -1,0 +1,35 @@
+#pragma once
+// Cheap screening of candidate effects at the base optimum: a score (Lagrange-multiplier) test.
+// Each effect parameter is switched on slightly (one model evaluation per parameter); the change
+// of the normalised residual, with the part the base variables can already absorb projected out,
+// is regressed on the residual. Under "the effect is absent" the score statistic is chi-square
+// with (effect parameters) degrees of freedom.
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "demfit/diagnose/effect.hpp"
+#include "demfit/diagnose/least_squares.hpp"
+
+namespace demfit::diagnose {
+
+struct ScreeningScore {
+  std::string effect;
+  double score = 0.0;               // r' S (S'S)^-1 S' r with S the projected sensitivities
+  double p_value = 1.0;             // chi-square upper tail, dof = effect parameters
+  double fraction_explained = 0.0;  // score / |r|^2: share of the residual sum of squares
+  std::vector<double> start;        // linearised estimate of the effect parameters (clamped)
+  bool evaluated = true;            // false if a perturbed evaluation failed
+};
+
+// `base` is the base fit (normalised residual, parameters); `variables` the base fit variables.
+// Returns one score per candidate, in candidate order. `step` = perturbation, fraction of each
+// effect parameter's range, away from its off value.
+std::vector<ScreeningScore> screen_candidates(const identify::Model& model, const FitResult& base,
+                                              const std::vector<FitVariable>& variables,
+                                              const std::vector<FitTarget>& targets,
+                                              const std::vector<EffectCandidate>& candidates, double step,
+                                              const FitOptions& options);
+
+}  // namespace demfit::diagnose

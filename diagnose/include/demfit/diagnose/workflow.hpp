@@ -1,0 +1,69 @@
+#pragma once
+// The diagnosis workflow (issue #6): 1. fit the base model, 2. decide noise vs structure,
+// 3. screen the candidate effects by a score test and re-fit the best few with their extra
+// parameters, 4. name an effect only if it passes the information criterion AND leaves a
+// residual that passes the noise tests, 5. otherwise say plainly that the residual is unexplained.
+#include <string>
+#include <vector>
+
+#include "demfit/diagnose/effect.hpp"
+#include "demfit/diagnose/least_squares.hpp"
+#include "demfit/diagnose/residual_tests.hpp"
+#include "demfit/diagnose/screening.hpp"
+#include "demfit/identify/study_spec.hpp"
+
+namespace demfit::diagnose {
+
+struct DiagnoseOptions {
+  double noise_sigma = 0.0;      // > 0: given noise level (y units, all targets); 0 = estimate per target
+  double alpha = 0.01;           // family-wise level of the residual tests
+  double bic_threshold = 10.0;   // name an effect only if BIC(base) - BIC(augmented) exceeds this
+  int refit_best = 2;            // candidates re-identified after screening
+  double screen_step = 0.02;     // score-test perturbation, fraction of the effect range
+  FitOptions fit;
+};
+
+enum class Verdict {
+  no_missing_effect,       // base residual is noise
+  effect_identified,       // one candidate passes the criterion and whitens the residual
+  unexplained_structural,  // structure, and no candidate explains it
+};
+const char* verdict_text(Verdict verdict);
+
+struct CandidateFit {
+  std::string effect;
+  FitResult fit;
+  ResidualAnalysis analysis;
+  double bic = 0.0, aicc = 0.0;
+  double delta_bic = 0.0;          // BIC(base) - BIC(this): > 0 favours the effect
+  double delta_aicc = 0.0;
+  bool passes = false;             // delta_bic > threshold and residual passes the noise tests
+};
+
+struct Diagnosis {
+  std::vector<FitTarget> targets;  // with the noise level used
+  std::vector<FitVariable> base_variables;
+  FitResult base;
+  ResidualAnalysis base_analysis;
+  double base_bic = 0.0, base_aicc = 0.0;
+  std::vector<ScreeningScore> screening;  // candidate order
+  std::vector<CandidateFit> refits;       // the best few, in screening rank order
+  Verdict verdict = Verdict::no_missing_effect;
+  int chosen = -1;                        // index into refits when an effect is identified
+  std::vector<EffectCandidate> candidates;
+  std::vector<std::string> notes;         // plain-language statements for the report
+  std::string summary;                    // one paragraph: the verdict with its numbers
+};
+
+// Information criteria with the likelihood of Gaussian noise of known sigma (normalised
+// residual r): BIC = |r|^2 + k ln n, AICc = |r|^2 + 2k + 2k(k+1)/(n-k-1).
+double bic(double chi_square, int parameters, int points);
+double aicc(double chi_square, int parameters, int points);
+
+// Runs the workflow on the study's variables (bounds, initial values), fixed parameters and mse
+// targets. Throws std::runtime_error (one line) on a curve_mapping target, a candidate parameter
+// the model does not accept, or a base model that cannot be evaluated.
+Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model& model,
+                        const std::vector<EffectCandidate>& candidates, const DiagnoseOptions& options);
+
+}  // namespace demfit::diagnose

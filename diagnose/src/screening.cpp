@@ -1,0 +1,92 @@
+// Score-test screening of candidate effects; see screening.hpp.
+#include "demfit/diagnose/screening.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "demfit/diagnose/residual_tests.hpp"
+
+namespace demfit::diagnose {
+namespace {
+
+// Residual at each parameter set; an empty vector where the evaluation failed.
+std::vector<Eigen::VectorXd> residuals_at(const identify::Model& model, const std::vector<identify::ParameterSet>& sets,
+                                          const std::vector<FitTarget>& targets, const FitOptions& options) {
+  const auto curves = evaluate_many(model, sets, options.jobs, options.seed);
+  std::vector<Eigen::VectorXd> out;
+  for (const auto& c : curves) {
+    Eigen::VectorXd r;
+    if (!c.empty()) {
+      try { r = normalised_residual(c, targets); } catch (const std::exception&) { r.resize(0); }
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+// Step away from `from` by `fraction` of [lower, upper], towards the interior.
+double step_inside(double from, double lower, double upper, double fraction) {
+  const double h = fraction * (upper - lower);
+  return from + h <= upper ? h : -h;
+}
+
+}  // namespace
+
+std::vector<ScreeningScore> screen_candidates(const identify::Model& model, const FitResult& base,
+                                              const std::vector<FitVariable>& variables,
+                                              const std::vector<FitTarget>& targets,
+                                              const std::vector<EffectCandidate>& candidates, double step,
+                                              const FitOptions& options) {
+  const Eigen::VectorXd& r = base.residual;
+  // One batch: base-variable perturbations (for the projection), then every effect parameter.
+  std::vector<identify::ParameterSet> sets;
+  std::vector<double> steps;
+  for (const auto& v : variables) {
+    identify::ParameterSet p = base.parameters;
+    const double h = step_inside(p.at(v.name), v.lower, v.upper, options.fd_step);
+    p[v.name] += h;
+    sets.push_back(p);
+    steps.push_back(h);
+  }
+  for (const auto& c : candidates)
+    for (const auto& e : c.parameters) {
+      identify::ParameterSet p = base.parameters;
+      const double h = step_inside(e.off_value, e.lower, e.upper, step);
+      p[e.name] = e.off_value + h;
+      sets.push_back(p);
+      steps.push_back(h);
+    }
+  const auto rs = residuals_at(model, sets, targets, options);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(r.size(), static_cast<Eigen::Index>(variables.size()));
+  for (std::size_t j = 0; j < variables.size(); ++j)
+    if (rs[j].size() == r.size()) J.col(static_cast<Eigen::Index>(j)) = (rs[j] - r) / steps[j];
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> base_span(J);
+
+  std::vector<ScreeningScore> scores;
+  std::size_t k = variables.size();
+  for (const auto& c : candidates) {
+    ScreeningScore s;
+    s.effect = c.name;
+    const Eigen::Index m = static_cast<Eigen::Index>(c.parameters.size());
+    Eigen::MatrixXd S(r.size(), m);
+    for (Eigen::Index j = 0; j < m; ++j, ++k) {
+      if (rs[k].size() != r.size()) { s.evaluated = false; S.col(j).setZero(); continue; }
+      S.col(j) = (rs[k] - r) / steps[k];
+    }
+    // What the base variables can already absorb is no evidence for the effect: project it out.
+    const Eigen::MatrixXd S_perp = variables.empty() ? S : Eigen::MatrixXd(S - J * base_span.solve(S));
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> effect_span(S_perp);
+    const Eigen::VectorXd beta = -effect_span.solve(r);  // r + S beta ~ 0
+    s.score = (S_perp * beta).squaredNorm();
+    s.p_value = chi_square_upper_p(s.score, static_cast<double>(m));
+    s.fraction_explained = r.squaredNorm() > 0.0 ? s.score / r.squaredNorm() : 0.0;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const auto& e = c.parameters[j];
+      s.start.push_back(std::clamp(e.off_value + beta(j), e.lower, e.upper));
+    }
+    scores.push_back(s);
+  }
+  return scores;
+}
+
+}  // namespace demfit::diagnose
