@@ -1,11 +1,15 @@
 // demfit: identify DEM contact parameters from measured curves.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  // Idle OpenMP threads sleep instead of spinning: on a shared machine (or with --jobs N), spinning
+  // threads made 2 threads slower than 1 (measured, dem_core bench). The user's setting wins.
+  setenv("OMP_WAIT_POLICY", "passive", /*overwrite=*/0);
   CLI::App app{
       "demfit — identify Discrete Element Method contact parameters (NORMK, SHEARK, damping, "
       "friction) from measured curves.\nAll quantities are SI unless a name states its unit "

@@ -9,14 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/diagnose/workflow.hpp"
-#include "demfit/identify/model.hpp"
 
 namespace demfit::diagnose {
 
 nlohmann::json to_json(const Diagnosis& diagnosis);
 std::string markdown_report(const Diagnosis& diagnosis);
 // Writes the three files into `out` (created). Returns warnings (e.g. no gnuplot), one per line.
-std::string write_diagnosis(const Diagnosis& diagnosis, const identify::Model& model,
-                            const std::filesystem::path& out, bool plots);
+// The fitted curves are data + residual at the data abscissae (no model evaluation needed).
+std::string write_diagnosis(const Diagnosis& diagnosis, const std::filesystem::path& out, bool plots);
 
 }  // namespace demfit::diagnose

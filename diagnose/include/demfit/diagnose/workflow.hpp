@@ -51,6 +51,8 @@ struct Diagnosis {
   Verdict verdict = Verdict::no_missing_effect;
   int chosen = -1;                        // index into refits when an effect is identified
   std::vector<EffectCandidate> candidates;
+  double bic_threshold = 10.0;            // as used (DiagnoseOptions)
+  bool noise_given = false;               // sigma given (--noise) rather than estimated
   std::vector<std::string> notes;         // plain-language statements for the report
   std::string summary;                    // one paragraph: the verdict with its numbers
 };

@@ -1,0 +1,192 @@
+// Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
+#include "demfit/diagnose/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace demfit::diagnose {
+namespace {
+
+template <typename... Args>
+std::string format(const char* fmt, Args... args) {
+  char buffer[600];
+  std::snprintf(buffer, sizeof buffer, fmt, args...);
+  return buffer;
+}
+
+nlohmann::json analysis_json(const ResidualAnalysis& a) {
+  nlohmann::json regions = nlohmann::json::array();
+  for (const auto& r : a.regions)
+    regions.push_back({{"region", r.label}, {"rms", r.rms}, {"max_abs", r.max_abs}, {"rms_over_sigma", r.rms_over_sigma},
+                       {"x_at_max", r.x_at_max}});
+  return {{"points", a.points}, {"fitted_parameters", a.fitted_parameters}, {"sigma", a.sigma}, {"rms", a.rms},
+          {"max_abs", a.max_abs}, {"structural", a.structural}, {"alpha", a.alpha},
+          {"runs_test", {{"runs", a.runs.runs}, {"positive", a.runs.positive}, {"negative", a.runs.negative},
+                         {"z", a.runs.z}, {"p_value", a.runs.p_value}}},
+          {"autocorrelation", {{"lag1", a.autocorrelation.lag1}, {"durbin_watson", a.autocorrelation.durbin_watson},
+                               {"p_value", a.autocorrelation.p_value}}},
+          {"variance", {{"ratio", a.variance.ratio}, {"dof_residual", a.variance.dof_residual},
+                        {"dof_noise", a.variance.dof_noise}, {"p_value", a.variance.p_value}}},
+          {"regions", regions},
+          {"worst_region", a.worst_region >= 0 ? nlohmann::json(a.regions[a.worst_region].label) : nlohmann::json()}};
+}
+
+std::string tests_row(const std::string& label, const ResidualAnalysis& a) {
+  return format("| %s | %.4g | %.4g | %.3g | %d | %.3g | %.3f | %.3g | %.3g | %.3g | %s |\n", label.c_str(), a.rms,
+                a.max_abs, a.rms / a.sigma, a.runs.runs, a.runs.p_value, a.autocorrelation.lag1,
+                a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value, a.structural ? "structure" : "noise");
+}
+
+std::string gnuplot_quote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+const CandidateFit* augmented(const Diagnosis& d) {
+  if (d.chosen >= 0) return &d.refits[d.chosen];
+  const CandidateFit* best = nullptr;
+  for (const auto& r : d.refits)
+    if (!best || r.delta_bic > best->delta_bic) best = &r;
+  return best;
+}
+
+// One PNG per target: data, base and augmented fits (top), residuals (bottom).
+std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, const std::filesystem::path& out) {
+  const FitTarget& target = d.targets[t];
+  const CandidateFit* aug = augmented(d);
+  const std::filesystem::path data = out / ("diagnosis_" + target.name + ".dat");
+  {
+    std::ofstream f(data);
+    f << "# x data base_fit augmented_fit base_residual augmented_residual\n";
+    f.precision(10);
+    for (std::size_t i = 0; i < target.data.x.size(); ++i) {
+      const double rb = d.base.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma;
+      const double ra = aug ? aug->fit.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma : rb;
+      f << target.data.x[i] << ' ' << target.data.y[i] << ' ' << target.data.y[i] + rb << ' ' << target.data.y[i] + ra
+        << ' ' << rb << ' ' << ra << '\n';
+    }
+  }
+  const std::filesystem::path png = out / ("diagnosis_" + target.name + ".png");
+  const std::filesystem::path script = out / ("diagnosis_" + target.name + ".gp");
+  const std::string aug_title = aug ? "base + " + aug->effect + (d.chosen >= 0 ? "" : " (not accepted)") : "";
+  {
+    std::ofstream f(script);
+    f << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,800 noenhanced } "
+         "else { set terminal png size 900,800 noenhanced }\n"
+      << "set output " << gnuplot_quote(png.string()) << "\nset grid\nset key below\nset multiplot layout 2,1\n"
+      << "set title " << gnuplot_quote(target.name + ": " + verdict_text(d.verdict)) << "\n"
+      << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label) << "\n"
+      << "plot " << gnuplot_quote(data.string()) << " u 1:2 w p pt 7 ps 0.5 t 'target', '' u 1:3 w l lw 2 t 'base fit'"
+      << (aug ? ", '' u 1:4 w l lw 2 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
+      << "set title 'residual (fit - target)'\nset ylabel 'residual'\n"
+      << format("plot %s u 1:5 w lp pt 7 ps 0.4 t 'base', %.10g w l lt 0 t '+-2 sigma', %.10g w l lt 0 notitle",
+                gnuplot_quote(data.string()).c_str(), 2 * target.sigma, -2 * target.sigma)
+      << (aug ? ", '' u 1:6 w lp pt 7 ps 0.4 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
+      << "unset multiplot\nunset output\n";
+  }
+  const int status = std::system(("gnuplot " + gnuplot_quote(script.string()) + " >/dev/null 2>&1").c_str());
+  if (status != 0 || !std::filesystem::exists(png)) return "warning: gnuplot failed for " + png.filename().string() + "\n";
+  return {};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const Diagnosis& d) {
+  nlohmann::json screening = nlohmann::json::array();
+  for (const auto& s : d.screening)
+    screening.push_back({{"effect", s.effect}, {"score", s.score}, {"p_value", s.p_value},
+                         {"fraction_explained", s.fraction_explained}, {"evaluated", s.evaluated}});
+  nlohmann::json refits = nlohmann::json::array();
+  for (const auto& r : d.refits)
+    refits.push_back({{"effect", r.effect}, {"parameters", r.fit.parameters}, {"chi_square", r.fit.chi_square},
+                      {"bic", r.bic}, {"aicc", r.aicc}, {"delta_bic", r.delta_bic}, {"delta_aicc", r.delta_aicc},
+                      {"passes", r.passes}, {"evaluations", r.fit.evaluations}, {"residual", analysis_json(r.analysis)}});
+  nlohmann::json targets = nlohmann::json::array();
+  for (const auto& t : d.targets) targets.push_back({{"name", t.name}, {"curve", t.curve}, {"sigma", t.sigma}});
+  return {{"verdict", verdict_text(d.verdict)},
+          {"effect", d.chosen >= 0 ? nlohmann::json(d.refits[d.chosen].effect) : nlohmann::json()},
+          {"summary", d.summary}, {"bic_threshold", d.bic_threshold}, {"noise_given", d.noise_given},
+          {"targets", targets},
+          {"base", {{"parameters", d.base.parameters}, {"chi_square", d.base.chi_square}, {"bic", d.base_bic},
+                    {"aicc", d.base_aicc}, {"evaluations", d.base.evaluations},
+                    {"residual", analysis_json(d.base_analysis)}}},
+          {"screening", screening}, {"refits", refits}, {"notes", d.notes}};
+}
+
+std::string markdown_report(const Diagnosis& d) {
+  std::ostringstream md;
+  md << "# demfit diagnose\n\n**Verdict: " << verdict_text(d.verdict) << "**"
+     << (d.chosen >= 0 ? " — `" + d.refits[d.chosen].effect + "`" : std::string()) << "\n\n" << d.summary << "\n\n";
+  md << "## Noise level\n\n| target | points | sigma (y units) | source |\n|---|---|---|---|\n";
+  for (const auto& t : d.targets)
+    md << format("| %s | %zu | %.4g | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
+                 d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)");
+  md << "\n## Residual tests (alpha = " << format("%.3g", d.base_analysis.alpha)
+     << ", Bonferroni over 3 tests)\n\n| fit | RMS | max | RMS/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "
+        "| variance p | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << tests_row("base", d.base_analysis);
+  for (const auto& r : d.refits) md << tests_row("base + " + r.effect, r.analysis);
+  md << "\n## Gap per region (RMS / max, y units)\n\n| region | base RMS | base max | base RMS/sigma";
+  for (const auto& r : d.refits) md << " | +" << r.effect << " RMS | +" << r.effect << " max";
+  md << " |\n|---|---|---|---";
+  for (std::size_t i = 0; i < d.refits.size(); ++i) md << "|---|---";
+  md << "|\n";
+  for (std::size_t g = 0; g < d.base_analysis.regions.size(); ++g) {
+    const auto& b = d.base_analysis.regions[g];
+    md << format("| %s | %.4g | %.4g | %.3g", b.label.c_str(), b.rms, b.max_abs, b.rms_over_sigma);
+    for (const auto& r : d.refits) md << format(" | %.4g | %.4g", r.analysis.regions[g].rms, r.analysis.regions[g].max_abs);
+    md << " |\n";
+  }
+  md << "\n## Screening (score test at the base optimum)\n\n| effect | score | p | share of residual SS |\n|---|---|---|---|\n";
+  for (const auto& s : d.screening)
+    md << format("| %s | %.4g | %.3g | %.3g |%s\n", s.effect.c_str(), s.score, s.p_value, s.fraction_explained,
+                 s.evaluated ? "" : " (a perturbed run failed)");
+  md << "\n## Re-identification and criterion (threshold: delta BIC > " << format("%.3g", d.bic_threshold)
+     << " and residual = noise)\n\n| model | parameters | chi-square | BIC | delta BIC | AICc | delta AICc | named |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+  md << format("| base | %zu | %.5g | %.5g | 0 | %.5g | 0 | - |\n", d.base_variables.size(), d.base.chi_square, d.base_bic,
+               d.base_aicc);
+  for (std::size_t i = 0; i < d.refits.size(); ++i) {
+    const auto& r = d.refits[i];
+    md << format("| base + %s | %zu | %.5g | %.5g | %.4g | %.5g | %.4g | %s |\n", r.effect.c_str(), r.fit.values.size(),
+                 r.fit.chi_square, r.bic, r.delta_bic, r.aicc, r.delta_aicc,
+                 static_cast<int>(i) == d.chosen ? "**yes**" : "no");
+  }
+  md << "\n## Parameters\n\n| parameter | base";
+  for (const auto& r : d.refits) md << " | base + " << r.effect;
+  md << " |\n|---|---";
+  for (std::size_t i = 0; i < d.refits.size(); ++i) md << "|---";
+  md << "|\n";
+  for (const auto& [name, value] : d.base.parameters) {
+    md << format("| %s | %.6g", name.c_str(), value);
+    for (const auto& r : d.refits) md << format(" | %.6g", r.fit.parameters.at(name));
+    md << " |\n";
+  }
+  if (!d.notes.empty()) {
+    md << "\n## Notes\n\n";
+    for (const auto& n : d.notes) md << "- " << n << "\n";
+  }
+  md << "\nPlots: diagnosis_<target>.png (target, base fit, augmented fit; residuals with +-2 sigma).\n";
+  return md.str();
+}
+
+std::string write_diagnosis(const Diagnosis& d, const std::filesystem::path& out, bool plots) {
+  std::filesystem::create_directories(out);
+  std::ofstream(out / "report.md") << markdown_report(d);
+  std::ofstream(out / "diagnosis.json") << to_json(d).dump(2) << "\n";
+  if (!plots) return {};
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return "warning: gnuplot not found; plots skipped\n";
+  std::string warnings;
+  Eigen::Index offset = 0;
+  for (std::size_t t = 0; t < d.targets.size(); ++t) {
+    warnings += plot_target(d, t, offset, out);
+    offset += static_cast<Eigen::Index>(d.targets[t].data.x.size());
+  }
+  return warnings;
+}
+
+}  // namespace demfit::diagnose
