@@ -1,11 +1,122 @@
-// Placeholder until its module lands: the subcommand exists and says it is not built yet.
+// demfit diagnose: is the misfit of an identified model noise, or a missing physical effect?
+// (issue #6; workflow in diagnose/include/demfit/diagnose/workflow.hpp, docs/diagnose.md)
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
+#include <string>
+
 #include "commands.hpp"
+#if defined(DEMFIT_HAVE_DIAGNOSE)
+#include "demfit/diagnose/analytic_effects_model.hpp"
+#include "demfit/diagnose/effect.hpp"
+#include "demfit/diagnose/report.hpp"
+#include "demfit/diagnose/workflow.hpp"
+#include "demfit/identify/study_spec.hpp"
+#if defined(DEMFIT_HAVE_CASES)
+#include "demfit/cases/model_factory.hpp"
+#endif
+#endif
 
 namespace demfit::apps {
-void register_diagnose(CLI::App& app) {
-  auto* cmd = app.add_subcommand("diagnose", "(not available in this build yet)");
-  cmd->allow_extras();
-  cmd->callback([] { throw std::runtime_error("'diagnose' is not implemented in this build yet"); });
+#if defined(DEMFIT_HAVE_DIAGNOSE)
+namespace {
+
+struct DiagnoseCliOptions {
+  std::string study_file;
+  std::string effects;          // comma-separated candidate names; empty = all for the model
+  double noise = 0.0;           // y units; 0 = estimate from the data
+  std::string out;
+  int jobs = 1;
+  double alpha = 0.01;
+  double bic_threshold = 10.0;
+  int refit_best = 2;
+  bool no_plots = false;
+};
+
+// The model and its candidate effects. "analytic" gets the analytic family with effect terms
+// (same base curve as identify's analytic model); DEM cases have no candidates yet.
+std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
+                                                      std::vector<diagnose::EffectCandidate>& candidates) {
+  if (spec.model_reference == "analytic") {
+    int points = 41;
+    for (const auto& [key, value] : spec.model_overrides.items()) {
+      if (key != "points" || !value.is_number_integer() || value.get<int>() < 3)
+        throw std::runtime_error("study: model.overrides: '" + key +
+                                 "' is not understood by diagnose for \"analytic\"; only \"points\" (integer >= 3)");
+      points = value.get<int>();
+    }
+    candidates = diagnose::analytic_effect_candidates();
+    return std::make_unique<diagnose::AnalyticEffectsModel>(points);
+  }
+#if defined(DEMFIT_HAVE_CASES)
+  candidates.clear();
+  std::fprintf(stderr, "demfit: warning: no candidate effects are defined yet for model '%s' (DEM effects come "
+               "later); only the residual analysis is done\n", spec.model_reference.c_str());
+  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+#else
+  throw std::runtime_error("study: model.case: '" + spec.model_reference +
+                           "' needs the cases module, which is not in this build; use \"analytic\"");
+#endif
 }
+
+void run_diagnose(const DiagnoseCliOptions& o) {
+  if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
+  if (o.noise < 0.0) throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
+  if (!(o.alpha > 0.0 && o.alpha < 1.0)) throw std::runtime_error("--alpha: must be in (0, 1), e.g. 0.01");
+  if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
+  const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  std::vector<diagnose::EffectCandidate> candidates;
+  const auto model = model_and_candidates(spec, candidates);
+  if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
+  diagnose::DiagnoseOptions options;
+  options.noise_sigma = o.noise;
+  options.alpha = o.alpha;
+  options.bic_threshold = o.bic_threshold;
+  options.refit_best = o.refit_best;
+  options.fit.jobs = o.jobs;
+  options.fit.seed = spec.seed;
+  const diagnose::Diagnosis d = diagnose::run_diagnosis(spec, *model, candidates, options);
+  const std::filesystem::path out =
+      o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
+                    : std::filesystem::path(o.out);
+  const std::string warnings = diagnose::write_diagnosis(d, out, !o.no_plots);
+  if (!warnings.empty()) std::fprintf(stderr, "demfit: %s", warnings.c_str());
+  std::printf("verdict: %s%s\n%s\nresults: %s\n", diagnose::verdict_text(d.verdict),
+              d.chosen >= 0 ? (" — " + d.refits[d.chosen].effect).c_str() : "", d.summary.c_str(),
+              (out / "report.md").string().c_str());
+}
+
+}  // namespace
+
+void register_diagnose(CLI::App& app) {
+  auto o = std::make_shared<DiagnoseCliOptions>();
+  auto* cmd = app.add_subcommand(
+      "diagnose",
+      "Fit the study's base model (local least squares from the study's initial values), test whether the "
+      "residual is noise (runs, lag-1 autocorrelation, variance vs the noise level) and, if not, screen candidate "
+      "effects by a score test, re-fit the best few and name one only if BIC improves by more than the threshold "
+      "AND the residual becomes noise. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates exist "
+      "for the \"analytic\" model (toe_shift, stiffening, yield_drop); DEM effects come later. Targets must use "
+      "metric \"mse\".");
+  cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all for the model)");
+  cmd->add_option("--noise", o->noise,
+                  "Noise standard deviation of the target y values, in the targets' y units (default: estimated "
+                  "from successive differences of each target)");
+  cmd->add_option("--out", o->out, "Output folder (default: <study file stem>_diagnosis)");
+  cmd->add_option("--jobs", o->jobs, "Model evaluations at once (default 1); results do not depend on it");
+  cmd->add_option("--alpha", o->alpha, "Family-wise level of the residual tests (default 0.01)");
+  cmd->add_option("--bic-threshold", o->bic_threshold, "BIC improvement needed to name an effect (default 10)");
+  cmd->add_option("--refit-best", o->refit_best, "Candidates re-identified after screening (default 2)");
+  cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
+  cmd->callback([o] { run_diagnose(*o); });
+}
+#else
+void register_diagnose(CLI::App& app) {
+  auto* cmd = app.add_subcommand("diagnose", "(not available in this build: the diagnose module is missing)");
+  cmd->allow_extras();
+  cmd->callback([] { throw std::runtime_error("'diagnose' is not available in this build (diagnose module missing)"); });
+}
+#endif
 }  // namespace demfit::apps

@@ -49,7 +49,7 @@ std::string run_gnuplot(const fs::path& script) {
 
 void write_fig4_script(const fs::path& dir, const std::vector<std::string>& runs, double duration) {
   std::ofstream gp(dir / "fig4_particles.gp");
-  gp << "set terminal pngcairo size 1500,1000\nset output 'fig4_particles.png'\n"
+  gp << "set terminal pngcairo size 1500,1000 noenhanced\nset output 'fig4_particles.png'\n"
      << "set multiplot layout 2,3 title 'Fig. 4: particles in the drum cross-section at t = " << duration << " s'\n"
      << "set size ratio -1\nset xrange [-52:52]\nset yrange [-52:52]\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
      << "set object 1 circle at 0,0 size 50 fc rgb 'black' fs empty\nset datafile separator ','\n";
@@ -62,7 +62,7 @@ void write_fig4_script(const fs::path& dir, const std::vector<std::string>& runs
 
 void write_fig5_script(const fs::path& dir, const std::vector<std::string>& runs) {
   std::ofstream gp(dir / "fig5_torque.gp");
-  gp << "set terminal pngcairo size 1000,600\nset output 'fig5_torque.png'\nset datafile separator ','\n"
+  gp << "set terminal pngcairo size 1000,600 noenhanced\nset output 'fig5_torque.png'\nset datafile separator ','\n"
      << "set title 'Fig. 5: drive torque (z-moment) of the drum'\nset xlabel 'time [s]'\nset ylabel 'torque [N m]'\n"
      << "set key outside right\nplot ";
   for (std::size_t i = 0; i < runs.size(); ++i) {

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <Eigen/Dense>
+
 namespace demfit::diagnose {
 
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
@@ -16,6 +18,16 @@ double chi_square_upper_p(double statistic, double k) {
   // Wilson & Hilferty (1931): (X/k)^(1/3) is nearly normal, mean 1 - 2/(9k), variance 2/(9k).
   const double v = 2.0 / (9.0 * k);
   const double z = (std::cbrt(statistic / k) - (1.0 - v)) / std::sqrt(v);
+  return 1.0 - normal_cdf(z);
+}
+
+double f_upper_p(double ratio, double d1, double d2) {
+  if (ratio <= 0.0 || d1 <= 0.0) return 1.0;
+  // Paulson (1942): with a = 2/(9 d1), b = 2/(9 d2),
+  // z = ((1 - b) F^(1/3) - (1 - a)) / sqrt(a + b F^(2/3)) is nearly standard normal.
+  const double a = 2.0 / (9.0 * d1), b = d2 > 0.0 ? 2.0 / (9.0 * d2) : 0.0;
+  const double c = std::cbrt(ratio);
+  const double z = ((1.0 - b) * c - (1.0 - a)) / std::sqrt(a + b * c * c);
   return 1.0 - normal_cdf(z);
 }
 
@@ -87,12 +99,49 @@ VarianceTest variance_test(const std::vector<double>& r, double sigma, int fitte
   t.dof_residual = std::max(1.0, static_cast<double>(r.size()) - fitted);
   t.dof_noise = dof_noise;
   t.ratio = ss / t.dof_residual / (sigma * sigma);
-  if (dof_noise <= 0.0) {
-    t.p_value = chi_square_upper_p(ss / (sigma * sigma), t.dof_residual);
-  } else {
-    const double sd = std::sqrt(2.0 / t.dof_residual + 2.0 / dof_noise);
-    t.p_value = 1.0 - normal_cdf(std::log(std::max(t.ratio, 1e-300)) / sd);
+  t.p_value = f_upper_p(t.ratio, t.dof_residual, dof_noise);
+  return t;
+}
+
+SmoothStructureTest smooth_structure_test(const std::vector<std::vector<double>>& x,
+                                          const std::vector<std::vector<double>>& normalised, double dof_noise) {
+  SmoothStructureTest t;
+  int total = 0;
+  for (std::size_t s = 0; s < x.size(); ++s) {
+    const int n = static_cast<int>(normalised[s].size());
+    const int k = std::min(12, n / 4);
+    if (k < 1) continue;
+    bool increasing = true, decreasing = true;
+    for (int i = 1; i < n; ++i) {
+      increasing = increasing && x[s][i] > x[s][i - 1];
+      decreasing = decreasing && x[s][i] < x[s][i - 1];
+    }
+    const double lo = *std::min_element(x[s].begin(), x[s].end()), hi = *std::max_element(x[s].begin(), x[s].end());
+    Eigen::MatrixXd basis(n, k);
+    Eigen::VectorXd r(n);
+    for (int i = 0; i < n; ++i) {
+      const double u = (increasing || decreasing) && hi > lo ? 2.0 * (x[s][i] - lo) / (hi - lo) - 1.0
+                                                             : (n > 1 ? 2.0 * i / (n - 1) - 1.0 : 0.0);
+      // Legendre recurrence: (m+1) P_{m+1} = (2m+1) u P_m - m P_{m-1}.
+      double p_prev = 1.0, p = u;
+      basis(i, 0) = 1.0;
+      if (k > 1) basis(i, 1) = u;
+      for (int m = 1; m + 1 < k; ++m) {
+        const double next = ((2.0 * m + 1.0) * u * p - m * p_prev) / (m + 1.0);
+        p_prev = p;
+        p = next;
+        basis(i, m + 1) = p;
+      }
+      r(i) = normalised[s][i];
+    }
+    // Orthonormal basis of the span (QR), so the projection is |Q' r|^2.
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
+    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(n, k);
+    t.statistic += (q.transpose() * r).squaredNorm();
+    total += k;
   }
+  t.basis = total;
+  if (total > 0) t.p_value = f_upper_p(t.statistic / total, total, dof_noise);
   return t;
 }
 
@@ -176,8 +225,17 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
   a.runs = runs_test(normalised);
   a.autocorrelation = autocorrelation_test(normalised);
   a.variance = variance_test(normalised, 1.0, fitted_parameters, dof_noise);
-  const double per_test = alpha / 3.0;  // Bonferroni over the three tests
-  a.structural = a.runs.p_value < per_test || a.autocorrelation.p_value < per_test || a.variance.p_value < per_test;
+  std::vector<std::vector<double>> xs, rs;
+  std::size_t k = 0;
+  for (const auto& s : segments) {
+    xs.push_back(s.x);
+    rs.emplace_back(normalised.begin() + k, normalised.begin() + k + s.residual.size());
+    k += s.residual.size();
+  }
+  a.smooth = smooth_structure_test(xs, rs, dof_noise);
+  const double per_test = alpha / 4.0;  // Bonferroni over the four tests
+  a.structural = a.runs.p_value < per_test || a.autocorrelation.p_value < per_test ||
+                 a.variance.p_value < per_test || a.smooth.p_value < per_test;
   for (std::size_t i = 0; i < a.regions.size(); ++i)
     if (a.worst_region < 0 || a.regions[i].rms_over_sigma > a.regions[a.worst_region].rms_over_sigma)
       a.worst_region = static_cast<int>(i);

@@ -57,9 +57,17 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
       steps.push_back(h);
     }
   const auto rs = residuals_at(model, sets, targets, options);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(r.size(), static_cast<Eigen::Index>(variables.size()));
-  for (std::size_t j = 0; j < variables.size(); ++j)
-    if (rs[j].size() == r.size()) J.col(static_cast<Eigen::Index>(j)) = (rs[j] - r) / steps[j];
+  // Only base variables free at the optimum can absorb a change: one held at a bound cannot move
+  // outwards, and the residual is not orthogonal to its column, so it is left out of the span.
+  std::vector<Eigen::VectorXd> free_columns;
+  for (std::size_t j = 0; j < variables.size(); ++j) {
+    const auto& v = variables[j];
+    const double value = base.parameters.at(v.name), margin = 1e-6 * (v.upper - v.lower);
+    const bool at_bound = value <= v.lower + margin || value >= v.upper - margin;
+    if (!at_bound && rs[j].size() == r.size()) free_columns.push_back((rs[j] - r) / steps[j]);
+  }
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(r.size(), static_cast<Eigen::Index>(free_columns.size()));
+  for (std::size_t j = 0; j < free_columns.size(); ++j) J.col(static_cast<Eigen::Index>(j)) = free_columns[j];
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> base_span(J);
 
   std::vector<ScreeningScore> scores;
@@ -74,7 +82,7 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
       S.col(j) = (rs[k] - r) / steps[k];
     }
     // What the base variables can already absorb is no evidence for the effect: project it out.
-    const Eigen::MatrixXd S_perp = variables.empty() ? S : Eigen::MatrixXd(S - J * base_span.solve(S));
+    const Eigen::MatrixXd S_perp = free_columns.empty() ? S : Eigen::MatrixXd(S - J * base_span.solve(S));
     const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> effect_span(S_perp);
     const Eigen::VectorXd beta = -effect_span.solve(r);  // r + S beta ~ 0
     s.score = (S_perp * beta).squaredNorm();

@@ -37,9 +37,10 @@ std::string format(const char* fmt, Args... args) {
 }
 
 std::string tests_text(const ResidualAnalysis& a) {
-  return format("runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g)",
+  return format("runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
+                "smooth structure p = %.3g",
                 a.runs.p_value, a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio,
-                a.variance.p_value);
+                a.variance.p_value, a.smooth.p_value);
 }
 
 std::vector<FitTarget> make_targets(const identify::StudySpec& study, double given_sigma, std::vector<std::string>& notes) {
@@ -155,7 +156,19 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   const int k_base = static_cast<int>(d.base_variables.size());
 
   // 1-2. Base fit and its residual tests.
+  // Two starts by default (study initial values, then the middle of the bounds): a base fit
+  // caught in a local minimum would look like a structural residual.
   d.base = fit_least_squares(model, fixed, d.base_variables, d.targets, options.fit);
+  for (int start = 1; start < options.base_starts; ++start) {
+    std::vector<FitVariable> vars = d.base_variables;
+    for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / options.base_starts;
+    try {
+      FitResult trial = fit_least_squares(model, fixed, vars, d.targets, options.fit);
+      if (trial.chi_square < d.base.chi_square) d.base = std::move(trial);
+    } catch (const std::exception&) {
+      // The study's start point worked; an unevaluable extra start is simply skipped.
+    }
+  }
   d.base_analysis = analyse(d.base, d.targets, k_base, dof_noise, options.alpha);
   d.base_bic = bic(d.base.chi_square, k_base, points);
   d.base_aicc = aicc(d.base.chi_square, k_base, points);
@@ -174,23 +187,35 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   // 3b. Re-identify the best few with their extra parameters.
   for (int rank = 0; rank < std::min<int>(options.refit_best, static_cast<int>(order.size())); ++rank) {
     const EffectCandidate& c = candidates[order[rank]];
-    std::vector<FitVariable> variables = d.base_variables;
-    for (auto& v : variables) v.start = d.base.parameters.at(v.name);
-    identify::ParameterSet fixed_c = fixed;
-    for (std::size_t j = 0; j < c.parameters.size(); ++j) {
-      const auto& p = c.parameters[j];
-      variables.push_back({p.name, p.lower, p.upper, d.screening[order[rank]].start[j]});
-      fixed_c.erase(p.name);
-    }
     CandidateFit f;
     f.effect = c.name;
-    try {
-      f.fit = fit_least_squares(model, fixed_c, variables, d.targets, options.fit);
-    } catch (const std::exception& e) {
-      d.notes.push_back("effect '" + c.name + "': re-identification failed (" + e.what() + ")");
-      continue;
+    bool fitted = false;
+    // Several starts (the augmented problem can have local minima, e.g. a toe shift traded
+    // against a lower rate): base optimum + linearised effect estimate, study initial values +
+    // that estimate, study initial values + mid-range effect. The lowest chi-square wins.
+    for (int start = 0; start < std::max(1, options.refit_starts); ++start) {
+      std::vector<FitVariable> vars = d.base_variables;
+      if (start == 0)
+        for (auto& v : vars) v.start = d.base.parameters.at(v.name);
+      identify::ParameterSet fixed_c = fixed;
+      for (std::size_t j = 0; j < c.parameters.size(); ++j) {
+        const auto& p = c.parameters[j];
+        const double mid = p.off_value + 0.5 * ((p.upper - p.off_value) >= (p.off_value - p.lower) ? p.upper - p.off_value
+                                                                                                     : p.lower - p.off_value);
+        vars.push_back({p.name, p.lower, p.upper, start < 2 ? d.screening[order[rank]].start[j] : mid});
+        fixed_c.erase(p.name);
+      }
+      try {
+        FitResult trial = fit_least_squares(model, fixed_c, vars, d.targets, options.fit);
+        if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
+        fitted = true;
+      } catch (const std::exception& e) {
+        d.notes.push_back("effect '" + c.name + "': a re-identification start failed (" + e.what() + ")");
+      }
     }
-    const int k = static_cast<int>(variables.size());
+    if (!fitted) continue;
+    const int k_base_effect = k_base + static_cast<int>(c.parameters.size());
+    const int k = k_base_effect;
     f.analysis = analyse(f.fit, d.targets, k, dof_noise, options.alpha);
     f.bic = bic(f.fit.chi_square, k, points);
     f.aicc = aicc(f.fit.chi_square, k, points);

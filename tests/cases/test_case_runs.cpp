@@ -58,7 +58,7 @@ TEST_CASE("A small pellet compression runs and, with frictionless walls, the bot
   CHECK(curve.x.front() < area * 0.3 * 1e6);
 }
 
-TEST_CASE("A small SCG s = 4 drum runs and holds the Table 2 particle count and mass") {
+TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and radius, and resists the rotation") {
   json document = read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json");
   document["drum"]["scale_factor"] = 4.0;
   document["drum"]["coarse_graining"] = "cvf";

@@ -56,7 +56,7 @@ TEST_CASE("FRICD defaults to FRICS when the file leaves it out (LS-DYNA default)
   CHECK(spec.contact.fricd == 0.4);
 }
 
-TEST_CASE("--set assignments address identified parameters by name and other fields by dotted path") {
+TEST_CASE("Setting overrides address identified parameters by name and other fields by dotted path") {
   json document = {{"case", "rotary_drum"}};
   apply_setting(document, "normk=0.5");
   apply_setting(document, "wall_damp=0.25");

@@ -71,7 +71,7 @@ TEST_CASE("The paper's printed CVF radius contradicts its own volume row unless 
         Approx(coarse_grain(CoarseGraining::cvf, 2.0, 1.0, kOriginal).radius).epsilon(1e-14));
 }
 
-TEST_CASE("Coarse graining rejects a non-positive scale factor and phi outside (0, 1]") {
+TEST_CASE("Coarse graining rejects a non-positive scale factor and a volume fraction outside 0 < phi <= 1") {
   CHECK_THROWS(coarse_grain(CoarseGraining::scg, 0.0, kPhi, kOriginal));
   CHECK_THROWS(coarse_grain(CoarseGraining::cvf, 2.0, 1.5, kOriginal));
   CHECK_THROWS(parse_coarse_graining("SCG2"));

@@ -38,16 +38,32 @@ struct AutocorrelationTest {
 };
 AutocorrelationTest autocorrelation_test(const std::vector<double>& r);
 
+// Upper-tail p-value of an F(d1, d2) ratio (Paulson 1942 cube-root normal approximation);
+// d2 <= 0 means d2 = infinity (then it is the chi-square / d1 of Wilson-Hilferty).
+double f_upper_p(double ratio, double d1, double d2);
+
 struct VarianceTest {
   double ratio = 1.0;     // (sum r^2 / (n - fitted)) / sigma^2
   double dof_residual = 0.0;
   double dof_noise = 0.0; // 0 = sigma known (chi-square test), else F-like test
   double p_value = 1.0;   // upper tail: residual larger than the noise
 };
-// sigma known: chi-square of sum (r/sigma)^2 on n - fitted dof. sigma estimated with dof_noise
-// degrees of freedom: ln(ratio) / sqrt(2/dof_residual + 2/dof_noise) ~ N(0,1) (log-F normal
-// approximation).
+// ratio ~ F(n - fitted, dof_noise) under "residual = noise" (dof_noise <= 0: sigma known,
+// chi-square test).
 VarianceTest variance_test(const std::vector<double>& r, double sigma, int fitted, double dof_noise);
+
+struct SmoothStructureTest {
+  int basis = 0;          // Legendre polynomials per segment (degree 0 .. basis-1)
+  double statistic = 0.0; // |projection of r/sigma on the basis|^2
+  double p_value = 1.0;   // F(basis total, dof_noise) upper tail of statistic / basis total
+};
+// Lack-of-fit against a smooth alternative: the normalised residual projected on Legendre
+// polynomials P_0..P_{K-1} of each segment's abscissa (K = min(8, n/4); x-based when x is
+// monotone, index-based on loops). Far more power than runs/lag-1 against slow, smooth misfit
+// (e.g. an effect half-absorbed by a wrong candidate). Conservative: the fitted parameters
+// already remove part of the basis, so the true dof is below K.
+SmoothStructureTest smooth_structure_test(const std::vector<std::vector<double>>& x,
+                                          const std::vector<std::vector<double>>& normalised, double dof_noise);
 
 struct RegionStats {
   std::string label;      // e.g. "response: x 0..0.33 (first third)"
@@ -65,7 +81,8 @@ struct ResidualAnalysis {
   RunsTest runs;
   AutocorrelationTest autocorrelation;
   VarianceTest variance;
-  double alpha = 0.01;            // family-wise level; each of the 3 tests at alpha/3 (Bonferroni)
+  SmoothStructureTest smooth;
+  double alpha = 0.01;            // family-wise level; each of the 4 tests at alpha/4 (Bonferroni)
   bool structural = false;        // some test rejects "residual = noise"
   std::vector<RegionStats> regions;
   int worst_region = -1;          // largest rms_over_sigma

@@ -18,7 +18,9 @@ struct DiagnoseOptions {
   double noise_sigma = 0.0;      // > 0: given noise level (y units, all targets); 0 = estimate per target
   double alpha = 0.01;           // family-wise level of the residual tests
   double bic_threshold = 10.0;   // name an effect only if BIC(base) - BIC(augmented) exceeds this
+  int base_starts = 2;           // base fits: study initial values, then v_lo + (v_hi - v_lo) i / base_starts
   int refit_best = 2;            // candidates re-identified after screening
+  int refit_starts = 3;          // local fits per re-identified candidate (1..3), best kept
   double screen_step = 0.02;     // score-test perturbation, fraction of the effect range
   FitOptions fit;
 };

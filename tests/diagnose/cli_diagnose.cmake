@@ -1,0 +1,35 @@
+# demfit diagnose end to end. Inputs: DEMFIT (executable), DATA (tests/diagnose/data), OUT (scratch).
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT} --no-plots --jobs 2
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "diagnose failed (${rc}): ${out} ${err}")
+endif()
+if(NOT out MATCHES "verdict: missing effect identified")
+  message(FATAL_ERROR "expected an identified effect, got: ${out}")
+endif()
+if(NOT out MATCHES "stiffening")
+  message(FATAL_ERROR "expected the hidden effect 'stiffening' to be named, got: ${out}")
+endif()
+foreach(f report.md diagnosis.json)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "missing output ${OUT}/${f}")
+  endif()
+endforeach()
+file(READ ${OUT}/diagnosis.json json)
+string(JSON effect GET "${json}" effect)
+if(NOT effect STREQUAL "stiffening")
+  message(FATAL_ERROR "diagnosis.json names '${effect}', expected 'stiffening'")
+endif()
+# Without the right candidate: no wrong name.
+execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/without --no-plots
+                        --effects toe_shift,yield_drop
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "verdict: unexplained structural residual")
+  message(FATAL_ERROR "expected an unexplained structural residual (${rc}): ${out} ${err}")
+endif()
+execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/bad --effects cohesion
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --effects: unknown effect 'cohesion'")
+  message(FATAL_ERROR "an unknown effect must be refused with a one-line error (${rc}): ${err}")
+endif()

@@ -1,0 +1,180 @@
+// The diagnosis workflow on synthetic data with a hidden effect (seeded noise, sigma 0.01 on a
+// curve of amplitude ~1.5): the workflow is not told which effect, or whether there is one.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "demfit/diagnose/analytic_effects_model.hpp"
+#include "demfit/diagnose/effect.hpp"
+#include "demfit/diagnose/workflow.hpp"
+#include "demfit/identify/analytic_model.hpp"
+
+using namespace demfit;
+using namespace demfit::diagnose;
+
+namespace {
+
+constexpr double kNoise = 0.01;
+
+identify::StudySpec synthetic_study(const identify::ParameterSet& truth, unsigned seed, int points = 101) {
+  const AnalyticEffectsModel model(points);
+  identify::Curve data = model.evaluate(truth, {}).at("response");
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, kNoise);
+  for (auto& y : data.y) y += normal(rng);
+  identify::StudySpec spec;
+  spec.name = "synthetic";
+  spec.model_reference = "analytic";
+  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
+                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
+                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
+  identify::TargetSpec target;
+  target.name = "response";
+  target.curve = "response";
+  target.data = data;
+  spec.targets = {target};
+  return spec;
+}
+
+identify::ParameterSet base_truth() { return {{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}}; }
+
+Diagnosis diagnose_hidden(const std::string& parameter, double value, unsigned seed,
+                          const std::vector<EffectCandidate>& candidates = analytic_effect_candidates()) {
+  identify::ParameterSet truth = base_truth();
+  if (!parameter.empty()) truth[parameter] = value;
+  const AnalyticEffectsModel model(101);
+  return run_diagnosis(synthetic_study(truth, seed), model, candidates, DiagnoseOptions{});
+}
+
+void check_named(const Diagnosis& d, const std::string& effect) {
+  INFO(d.summary);
+  CHECK(d.base_analysis.structural);
+  REQUIRE(d.verdict == Verdict::effect_identified);
+  REQUIRE(d.chosen >= 0);
+  CHECK(d.refits[d.chosen].effect == effect);
+  CHECK(d.refits[d.chosen].delta_bic > 10.0);
+  // Gap after: RMS within 1.5x the true noise (issue #6 acceptance).
+  CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
+  CHECK(d.base_analysis.rms > 1.5 * kNoise);
+}
+
+}  // namespace
+
+TEST_CASE("The analytic effects model reproduces the identify analytic model with every effect off") {
+  const AnalyticEffectsModel effects(41);
+  const identify::AnalyticCurveModel plain(41);
+  const identify::ParameterSet p{{"amplitude", 1.3}, {"rate", 2.5}, {"slope", 0.2}};
+  const auto a = effects.evaluate(p, {}).at("response");
+  const auto b = plain.evaluate(p, {}).at("response");
+  REQUIRE(a.y.size() == b.y.size());
+  for (std::size_t i = 0; i < a.y.size(); ++i) CHECK(a.y[i] == Approx(b.y[i]).margin(1e-14));
+}
+
+TEST_CASE("A hidden stiffening effect is named and the RMS gap shrinks to within 1.5x the noise") {
+  const Diagnosis d = diagnose_hidden("stiffening_coefficient", 1.5, 21);
+  check_named(d, "stiffening");
+  CHECK(d.refits[d.chosen].fit.parameters.at("stiffening_coefficient") == Approx(1.5).margin(0.3));
+}
+
+TEST_CASE("A hidden toe shift is named and the RMS gap shrinks to within 1.5x the noise") {
+  check_named(diagnose_hidden("toe_shift", 0.05, 22), "toe_shift");
+}
+
+TEST_CASE("A hidden yield drop is named, localised in the last third, and the gap shrinks to the noise") {
+  const Diagnosis d = diagnose_hidden("yield_drop", 0.25, 23);
+  check_named(d, "yield_drop");
+  REQUIRE(d.base_analysis.worst_region >= 0);
+  CHECK(d.base_analysis.regions[d.base_analysis.worst_region].label.find("last third") != std::string::npos);
+}
+
+TEST_CASE("The score test ranks the hidden effect first among the candidates") {
+  const Diagnosis d = diagnose_hidden("yield_drop", 0.25, 24);
+  REQUIRE(d.screening.size() == 3);
+  CHECK(d.screening[2].effect == "yield_drop");
+  CHECK(d.screening[2].score > d.screening[0].score);
+  CHECK(d.screening[2].score > d.screening[1].score);
+  CHECK(d.screening[2].fraction_explained > 0.5);
+}
+
+TEST_CASE("Without a hidden effect the workflow reports no missing effect") {
+  for (unsigned seed : {31u, 32u, 33u}) {
+    const Diagnosis d = diagnose_hidden("", 0.0, seed);
+    INFO("seed " << seed << ": " << d.summary);
+    CHECK(d.verdict == Verdict::no_missing_effect);
+    CHECK(d.chosen < 0);
+    // The estimated noise level is the true one within 15 %.
+    CHECK(d.targets[0].sigma == Approx(kNoise).epsilon(0.15));
+  }
+}
+
+TEST_CASE("A hidden effect outside the candidate list is reported as an unexplained structural residual") {
+  // The ripple is not a candidate: no candidate may be named for it.
+  const Diagnosis d = diagnose_hidden("ripple_amplitude", 0.03, 41);
+  INFO(d.summary);
+  CHECK(d.base_analysis.structural);
+  CHECK(d.verdict == Verdict::unexplained_structural);
+  CHECK(d.chosen < 0);
+  CHECK(d.summary.find("no effect is named") != std::string::npos);
+  // A real effect left out of the list is not misnamed either.
+  auto without_toe = analytic_effect_candidates();
+  without_toe.erase(without_toe.begin());
+  const Diagnosis e = diagnose_hidden("toe_shift", 0.05, 42, without_toe);
+  INFO(e.summary);
+  CHECK(e.verdict == Verdict::unexplained_structural);
+}
+
+TEST_CASE("A given noise level replaces the estimate and inconsistent candidates are refused") {
+  identify::StudySpec spec = synthetic_study(base_truth(), 51);
+  const AnalyticEffectsModel model(101);
+  DiagnoseOptions options;
+  options.noise_sigma = kNoise;
+  const Diagnosis d = run_diagnosis(spec, model, analytic_effect_candidates(), options);
+  CHECK(d.targets[0].sigma == kNoise);
+  CHECK(d.verdict == Verdict::no_missing_effect);
+  auto bad = analytic_effect_candidates();
+  bad[0].parameters[0].off_value = 5.0;
+  CHECK_THROWS_WITH(run_diagnosis(spec, model, bad, options), Catch::Contains("off_value"));
+  auto unknown = analytic_effect_candidates();
+  unknown[0].parameters[0].name = "cohesion_force";
+  CHECK_THROWS_WITH(run_diagnosis(spec, model, unknown, options), Catch::Contains("no parameter 'cohesion_force'"));
+}
+
+TEST_CASE("Over 20 noise seeds each hidden effect is named, and nothing is named without one or for the ripple") {
+  // Rates measured over 100 seeds (docs/diagnose.md): 100/100 in every row. 20 seeds here keep
+  // the test under a second; any miss is a failure.
+  const std::vector<std::pair<std::string, std::string>> hidden{
+      {"stiffening_coefficient", "stiffening"}, {"toe_shift", "toe_shift"}, {"yield_drop", "yield_drop"}};
+  const std::map<std::string, double> size{{"stiffening_coefficient", 1.5}, {"toe_shift", 0.05}, {"yield_drop", 0.25}};
+  for (unsigned seed = 1000; seed < 1020; ++seed) {
+    for (const auto& [parameter, effect] : hidden) {
+      const Diagnosis d = diagnose_hidden(parameter, size.at(parameter), seed);
+      INFO("seed " << seed << ", hidden " << effect << ": " << d.summary);
+      REQUIRE(d.chosen >= 0);
+      CHECK(d.refits[d.chosen].effect == effect);
+      CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
+    }
+    const Diagnosis none = diagnose_hidden("", 0.0, seed);
+    INFO("seed " << seed << ", no hidden effect: " << none.summary);
+    CHECK(none.verdict == Verdict::no_missing_effect);
+    const Diagnosis ripple = diagnose_hidden("ripple_amplitude", 0.03, seed);
+    INFO("seed " << seed << ", ripple: " << ripple.summary);
+    CHECK(ripple.verdict == Verdict::unexplained_structural);
+  }
+}
+
+TEST_CASE("The diagnosis does not depend on the number of parallel evaluations") {
+  identify::ParameterSet truth = base_truth();
+  truth["yield_drop"] = 0.25;
+  const identify::StudySpec spec = synthetic_study(truth, 61);
+  const AnalyticEffectsModel model(101);
+  DiagnoseOptions serial, parallel;
+  parallel.fit.jobs = 3;
+  const Diagnosis a = run_diagnosis(spec, model, analytic_effect_candidates(), serial);
+  const Diagnosis b = run_diagnosis(spec, model, analytic_effect_candidates(), parallel);
+  CHECK(a.base.chi_square == b.base.chi_square);  // bit-identical
+  REQUIRE(a.refits.size() == b.refits.size());
+  for (std::size_t i = 0; i < a.refits.size(); ++i) CHECK(a.refits[i].fit.chi_square == b.refits[i].fit.chi_square);
+  CHECK(a.summary == b.summary);
+}
