@@ -94,9 +94,10 @@ void register_diagnose(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "diagnose",
       "Fit the study's base model (local least squares from the study's initial values), test whether the "
-      "residual is noise (runs, lag-1 autocorrelation, variance vs the noise level) and, if not, screen candidate "
-      "effects by a score test, re-fit the best few and name one only if BIC improves by more than the threshold "
-      "AND the residual becomes noise. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates exist "
+      "residual is noise (runs, lag-1 autocorrelation, variance vs the noise level, smooth-structure projection) "
+      "and, if not, screen candidate effects by a score test, re-fit the best few and name one only if BIC improves "
+      "by more than the threshold AND the residual becomes noise (tests at 5 %); otherwise report an unexplained "
+      "or ambiguous residual. See docs/diagnose.md. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates exist "
       "for the \"analytic\" model (toe_shift, stiffening, yield_drop); DEM effects come later. Targets must use "
       "metric \"mse\".");
   cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
@@ -106,7 +107,7 @@ void register_diagnose(CLI::App& app) {
                   "from successive differences of each target)");
   cmd->add_option("--out", o->out, "Output folder (default: <study file stem>_diagnosis)");
   cmd->add_option("--jobs", o->jobs, "Model evaluations at once (default 1); results do not depend on it");
-  cmd->add_option("--alpha", o->alpha, "Family-wise level of the residual tests (default 0.01)");
+  cmd->add_option("--alpha", o->alpha, "Family-wise level of the tests that call the base residual structural (default 0.01)");
   cmd->add_option("--bic-threshold", o->bic_threshold, "BIC improvement needed to name an effect (default 10)");
   cmd->add_option("--refit-best", o->refit_best, "Candidates re-identified after screening (default 2)");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");

@@ -31,11 +31,12 @@ struct ReproduceArgs {
 // The shipped data folder: --data, else ./data, else <executable>/../../data (build tree).
 std::filesystem::path find_data_dir(const ReproduceArgs& a) {
   if (!a.data.empty()) return a.data;
-  for (const std::filesystem::path candidate :
-       {std::filesystem::path("data"), std::filesystem::read_symlink("/proc/self/exe").parent_path() / "../../data"}) {
-    std::error_code error;
-    if (std::filesystem::exists(candidate / "pellet_pressure_volume_synthetic.csv", error)) return candidate;
-  }
+  std::error_code error;
+  const std::filesystem::path here("data");
+  if (std::filesystem::exists(here / "pellet_pressure_volume_synthetic.csv", error)) return here;
+  std::filesystem::path tree = std::filesystem::read_symlink("/proc/self/exe", error).parent_path().parent_path().parent_path();
+  tree /= "data";
+  if (std::filesystem::exists(tree / "pellet_pressure_volume_synthetic.csv", error)) return tree;
   return "data";
 }
 

@@ -13,7 +13,11 @@ namespace demfit::cases {
 
 StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::move(target)) {
   if (target_.filename().empty()) target_ = target_.parent_path();  // "out/" -> "out"
-  staging_ = target_.parent_path() / ("." + target_.filename().string() + ".partial-" + std::to_string(getpid()));
+  std::string name = ".";  // built by appending: GCC 12 warns (-Wrestrict) on "literal" + string
+  name += target_.filename().string();
+  name += ".partial-";
+  name += std::to_string(getpid());
+  staging_ = target_.parent_path() / name;
 }
 
 StagedDirectory::~StagedDirectory() {

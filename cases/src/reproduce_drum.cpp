@@ -41,8 +41,12 @@ CaseSpec drum_spec(CoarseGraining model, double s, bool quick) {
 }
 
 // Runs gnuplot on a script file; a missing gnuplot is a warning in the text, not an error.
-std::string run_gnuplot(const fs::path& script) {
-  const std::string command = "gnuplot '" + script.string() + "' 2>/dev/null";
+std::string run_gnuplot(const fs::path& dir, const std::string& script) {
+  std::string command = "cd '";
+  command += dir.string();
+  command += "' && gnuplot '";
+  command += script;
+  command += "' 2>/dev/null";
   if (std::system(command.c_str()) != 0) return "(gnuplot not available or failed: PNG not written; data in CSV)\n";
   return "";
 }
@@ -96,7 +100,9 @@ std::string reproduce_figures(const ReproduceOptions& o) {
       run.progress = o.progress;
       bool computed = false;
       const CaseResult result = cached_case_result(spec, run, &computed);
-      const std::string name = to_string(model) + "_s" + fmt("%g", s);
+      std::string name = to_string(model);
+      name += "_s";
+      name += fmt("%g", s);
       runs.push_back(name);
       fs::create_directories(dir / name);
       write_case_result(dir / name, result, to_json(spec), {}, {});
@@ -110,10 +116,9 @@ std::string reproduce_figures(const ReproduceOptions& o) {
   }
   write_fig4_script(dir, runs, duration);
   write_fig5_script(dir, runs);
-  const fs::path previous = fs::current_path();
-  fs::current_path(dir);
-  text += "\n" + run_gnuplot("fig4_particles.gp") + run_gnuplot("fig5_torque.gp");
-  fs::current_path(previous);
+  text += "\n";
+  text += run_gnuplot(dir, "fig4_particles.gp");
+  text += run_gnuplot(dir, "fig5_torque.gp");
   text += "Pictures: figures/fig4_particles.png (cross-section, particles drawn at their radius), "
           "figures/fig5_torque.png; data: figures/<run>/*.csv.\n";
   return text;

@@ -109,7 +109,7 @@ SmoothStructureTest smooth_structure_test(const std::vector<std::vector<double>>
   int total = 0;
   for (std::size_t s = 0; s < x.size(); ++s) {
     const int n = static_cast<int>(normalised[s].size());
-    const int k = std::min(12, n / 4);
+    const int k = std::min(8, n / 4);
     if (k < 1) continue;
     bool increasing = true, decreasing = true;
     for (int i = 1; i < n; ++i) {

@@ -15,6 +15,7 @@ const char* verdict_text(Verdict verdict) {
     case Verdict::no_missing_effect: return "no missing effect";
     case Verdict::effect_identified: return "missing effect identified";
     case Verdict::unexplained_structural: return "unexplained structural residual";
+    case Verdict::ambiguous: return "ambiguous: several effects explain the residual";
   }
   return "?";
 }
@@ -108,6 +109,14 @@ std::string summarise(const Diagnosis& d) {
              format(". RMS gap %.4g -> %.4g, max %.4g -> %.4g", a.rms, c.analysis.rms, a.max_abs, c.analysis.max_abs) +
              format(" (noise sigma %.4g).", a.sigma);
     }
+    case Verdict::ambiguous: {
+      std::string names;
+      for (int i : d.tied)
+        names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" + format(" (delta BIC %.4g)", d.refits[i].delta_bic);
+      return "Ambiguous: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers +
+             ". Each of " + names + format(" whitens it, with BICs within %.3g of each other", d.bic_threshold) +
+             ": these data cannot tell them apart; no effect is named (add a curve or case that separates them).";
+    }
     case Verdict::unexplained_structural: {
       std::string best;
       if (!d.refits.empty()) {
@@ -129,6 +138,95 @@ std::string summarise(const Diagnosis& d) {
 
 }  // namespace
 
+namespace {
+
+// What every fit of one diagnosis shares.
+struct FitContext {
+  const identify::Model& model;
+  const identify::ParameterSet& fixed;  // defaults, study fixed values, effects off
+  const DiagnoseOptions& options;
+  int points = 0;
+  double dof_noise = 0.0;
+};
+
+// Base fit: several starts (study initial values, then v_lo + (v_hi - v_lo) i / starts): a base
+// fit caught in a local minimum would look like a structural residual.
+FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets) {
+  FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, c.options.fit);
+  for (int start = 1; start < c.options.base_starts; ++start) {
+    std::vector<FitVariable> vars = variables;
+    for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / c.options.base_starts;
+    try {
+      FitResult trial = fit_least_squares(c.model, c.fixed, vars, targets, c.options.fit);
+      if (trial.chi_square < best.chi_square) best = std::move(trial);
+    } catch (const std::exception&) {
+      // The study's start point worked; an unevaluable extra start is simply skipped.
+    }
+  }
+  return best;
+}
+
+// Re-identifies base variables + one effect's parameters. Several starts (the augmented problem
+// can have local minima, e.g. a toe shift traded against a lower rate): base optimum + linearised
+// effect estimate, study initial values + that estimate, study initial values + mid-range effect.
+// The lowest chi-square wins. Returns false if every start failed.
+bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
+                     CandidateFit& f) {
+  f.effect = effect.name;
+  bool fitted = false;
+  for (int start = 0; start < std::max(1, c.options.refit_starts); ++start) {
+    std::vector<FitVariable> vars = d.base_variables;
+    if (start == 0)
+      for (auto& v : vars) v.start = d.base.parameters.at(v.name);
+    identify::ParameterSet fixed = c.fixed;
+    for (std::size_t j = 0; j < effect.parameters.size(); ++j) {
+      const auto& p = effect.parameters[j];
+      const double towards = (p.upper - p.off_value) >= (p.off_value - p.lower) ? p.upper : p.lower;
+      const double mid = 0.5 * (p.off_value + towards);
+      vars.push_back({p.name, p.lower, p.upper, start < 2 ? score.start[j] : mid});
+      fixed.erase(p.name);
+    }
+    try {
+      FitResult trial = fit_least_squares(c.model, fixed, vars, d.targets, c.options.fit);
+      if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
+      fitted = true;
+    } catch (const std::exception& e) {
+      d.notes.push_back("effect '" + effect.name + "': a re-identification start failed (" + e.what() + ")");
+    }
+  }
+  if (!fitted) return false;
+  const int k = static_cast<int>(d.base_variables.size() + effect.parameters.size());
+  f.analysis = analyse(f.fit, d.targets, k, c.dof_noise, c.options.alpha_named);
+  f.bic = bic(f.fit.chi_square, k, c.points);
+  f.aicc = aicc(f.fit.chi_square, k, c.points);
+  f.delta_bic = d.base_bic - f.bic;
+  f.delta_aicc = d.base_aicc - f.aicc;
+  // 4. Name an effect only if the criterion favours it AND its residual is noise.
+  f.passes = f.delta_bic > c.options.bic_threshold && !f.analysis.structural;
+  return true;
+}
+
+// 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
+// another passing one is within the threshold (these data cannot tell them apart: name neither).
+void decide(Diagnosis& d, double bic_threshold) {
+  for (std::size_t i = 0; i < d.refits.size(); ++i)
+    if (d.refits[i].passes && (d.chosen < 0 || d.refits[i].delta_bic > d.refits[d.chosen].delta_bic))
+      d.chosen = static_cast<int>(i);
+  d.verdict = d.chosen >= 0 ? Verdict::effect_identified : Verdict::unexplained_structural;
+  if (d.chosen < 0) return;
+  for (std::size_t i = 0; i < d.refits.size(); ++i)
+    if (d.refits[i].passes && d.refits[d.chosen].delta_bic - d.refits[i].delta_bic <= bic_threshold)
+      d.tied.push_back(static_cast<int>(i));
+  if (d.tied.size() > 1) {
+    d.verdict = Verdict::ambiguous;
+    d.chosen = -1;
+  } else {
+    d.tied.clear();
+  }
+}
+
+}  // namespace
+
 Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model& model,
                         const std::vector<EffectCandidate>& candidates, const DiagnoseOptions& options) {
   validate_candidates(candidates);
@@ -138,12 +236,6 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   d.bic_threshold = options.bic_threshold;
   d.noise_given = options.noise_sigma > 0.0;
   d.targets = make_targets(study, options.noise_sigma, d.notes);
-  int points = 0;
-  double dof_noise = 0.0;
-  for (const auto& t : d.targets) {
-    points += static_cast<int>(t.data.x.size());
-    if (options.noise_sigma <= 0.0) dof_noise += noise_estimate_dof(static_cast<int>(t.data.x.size()));
-  }
   // Fixed: model defaults, the study's fixed values, every effect at its off value.
   identify::ParameterSet fixed = model.default_parameters();
   for (const auto& [name, value] : study.fixed_parameters) fixed[name] = value;
@@ -153,25 +245,18 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
     d.base_variables.push_back({v.name, v.lower, v.upper, v.initial});
     fixed.erase(v.name);
   }
+  FitContext context{model, fixed, options};
+  for (const auto& t : d.targets) {
+    context.points += static_cast<int>(t.data.x.size());
+    if (options.noise_sigma <= 0.0) context.dof_noise += noise_estimate_dof(static_cast<int>(t.data.x.size()));
+  }
   const int k_base = static_cast<int>(d.base_variables.size());
 
   // 1-2. Base fit and its residual tests.
-  // Two starts by default (study initial values, then the middle of the bounds): a base fit
-  // caught in a local minimum would look like a structural residual.
-  d.base = fit_least_squares(model, fixed, d.base_variables, d.targets, options.fit);
-  for (int start = 1; start < options.base_starts; ++start) {
-    std::vector<FitVariable> vars = d.base_variables;
-    for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / options.base_starts;
-    try {
-      FitResult trial = fit_least_squares(model, fixed, vars, d.targets, options.fit);
-      if (trial.chi_square < d.base.chi_square) d.base = std::move(trial);
-    } catch (const std::exception&) {
-      // The study's start point worked; an unevaluable extra start is simply skipped.
-    }
-  }
-  d.base_analysis = analyse(d.base, d.targets, k_base, dof_noise, options.alpha);
-  d.base_bic = bic(d.base.chi_square, k_base, points);
-  d.base_aicc = aicc(d.base.chi_square, k_base, points);
+  d.base = fit_base(context, d.base_variables, d.targets);
+  d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
+  d.base_bic = bic(d.base.chi_square, k_base, context.points);
+  d.base_aicc = aicc(d.base.chi_square, k_base, context.points);
 
   // 3. Screening (always: it is cheap and the report shows it).
   d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step, options.fit);
@@ -186,49 +271,10 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
                    [&](int a, int b) { return d.screening[a].score > d.screening[b].score; });
   // 3b. Re-identify the best few with their extra parameters.
   for (int rank = 0; rank < std::min<int>(options.refit_best, static_cast<int>(order.size())); ++rank) {
-    const EffectCandidate& c = candidates[order[rank]];
     CandidateFit f;
-    f.effect = c.name;
-    bool fitted = false;
-    // Several starts (the augmented problem can have local minima, e.g. a toe shift traded
-    // against a lower rate): base optimum + linearised effect estimate, study initial values +
-    // that estimate, study initial values + mid-range effect. The lowest chi-square wins.
-    for (int start = 0; start < std::max(1, options.refit_starts); ++start) {
-      std::vector<FitVariable> vars = d.base_variables;
-      if (start == 0)
-        for (auto& v : vars) v.start = d.base.parameters.at(v.name);
-      identify::ParameterSet fixed_c = fixed;
-      for (std::size_t j = 0; j < c.parameters.size(); ++j) {
-        const auto& p = c.parameters[j];
-        const double mid = p.off_value + 0.5 * ((p.upper - p.off_value) >= (p.off_value - p.lower) ? p.upper - p.off_value
-                                                                                                     : p.lower - p.off_value);
-        vars.push_back({p.name, p.lower, p.upper, start < 2 ? d.screening[order[rank]].start[j] : mid});
-        fixed_c.erase(p.name);
-      }
-      try {
-        FitResult trial = fit_least_squares(model, fixed_c, vars, d.targets, options.fit);
-        if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
-        fitted = true;
-      } catch (const std::exception& e) {
-        d.notes.push_back("effect '" + c.name + "': a re-identification start failed (" + e.what() + ")");
-      }
-    }
-    if (!fitted) continue;
-    const int k_base_effect = k_base + static_cast<int>(c.parameters.size());
-    const int k = k_base_effect;
-    f.analysis = analyse(f.fit, d.targets, k, dof_noise, options.alpha);
-    f.bic = bic(f.fit.chi_square, k, points);
-    f.aicc = aicc(f.fit.chi_square, k, points);
-    f.delta_bic = d.base_bic - f.bic;
-    f.delta_aicc = d.base_aicc - f.aicc;
-    // 4. Name an effect only if the criterion favours it AND its residual is noise.
-    f.passes = f.delta_bic > options.bic_threshold && !f.analysis.structural;
-    d.refits.push_back(std::move(f));
+    if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f)) d.refits.push_back(std::move(f));
   }
-  for (std::size_t i = 0; i < d.refits.size(); ++i)
-    if (d.refits[i].passes && (d.chosen < 0 || d.refits[i].delta_bic > d.refits[d.chosen].delta_bic))
-      d.chosen = static_cast<int>(i);
-  d.verdict = d.chosen >= 0 ? Verdict::effect_identified : Verdict::unexplained_structural;
+  decide(d, options.bic_threshold);
   d.summary = summarise(d);
   return d;
 }

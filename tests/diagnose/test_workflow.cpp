@@ -141,19 +141,24 @@ TEST_CASE("A given noise level replaces the estimate and inconsistent candidates
   CHECK_THROWS_WITH(run_diagnosis(spec, model, unknown, options), Catch::Contains("no parameter 'cohesion_force'"));
 }
 
-TEST_CASE("Over 20 noise seeds each hidden effect is named, and nothing is named without one or for the ripple") {
-  // Rates measured over 100 seeds (docs/diagnose.md): 100/100 in every row. 20 seeds here keep
-  // the test under a second; any miss is a failure.
+TEST_CASE("Over 20 noise seeds hidden effects are named correctly at least 85 percent of the time and never wrongly") {
+  // Over 100 seeds (docs/diagnose.md) the rates are 97-98 % named, the rest reported as
+  // unexplained (the safe failure: naming needs the residual to pass the tests at 5 %).
+  // Wrong names, and names without a hidden effect or for the ripple, must never occur.
   const std::vector<std::pair<std::string, std::string>> hidden{
       {"stiffening_coefficient", "stiffening"}, {"toe_shift", "toe_shift"}, {"yield_drop", "yield_drop"}};
   const std::map<std::string, double> size{{"stiffening_coefficient", 1.5}, {"toe_shift", 0.05}, {"yield_drop", 0.25}};
-  for (unsigned seed = 1000; seed < 1020; ++seed) {
+  std::map<std::string, int> named;
+  const int seeds = 20;
+  for (unsigned seed = 1000; seed < 1000 + seeds; ++seed) {
     for (const auto& [parameter, effect] : hidden) {
       const Diagnosis d = diagnose_hidden(parameter, size.at(parameter), seed);
       INFO("seed " << seed << ", hidden " << effect << ": " << d.summary);
-      REQUIRE(d.chosen >= 0);
+      CHECK(d.verdict != Verdict::no_missing_effect);
+      if (d.chosen < 0) continue;
       CHECK(d.refits[d.chosen].effect == effect);
       CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
+      named[effect] += d.refits[d.chosen].effect == effect;
     }
     const Diagnosis none = diagnose_hidden("", 0.0, seed);
     INFO("seed " << seed << ", no hidden effect: " << none.summary);
@@ -161,6 +166,10 @@ TEST_CASE("Over 20 noise seeds each hidden effect is named, and nothing is named
     const Diagnosis ripple = diagnose_hidden("ripple_amplitude", 0.03, seed);
     INFO("seed " << seed << ", ripple: " << ripple.summary);
     CHECK(ripple.verdict == Verdict::unexplained_structural);
+  }
+  for (const auto& [parameter, effect] : hidden) {
+    INFO(effect);
+    CHECK(named[effect] >= 17);
   }
 }
 
@@ -177,4 +186,44 @@ TEST_CASE("The diagnosis does not depend on the number of parallel evaluations")
   REQUIRE(a.refits.size() == b.refits.size());
   for (std::size_t i = 0; i < a.refits.size(); ++i) CHECK(a.refits[i].fit.chi_square == b.refits[i].fit.chi_square);
   CHECK(a.summary == b.summary);
+}
+
+TEST_CASE("Two targets get their own noise levels and a hidden effect is still named, localised per target") {
+  // The same curve measured twice: x in [0, 0.5] with sigma 0.01 and x in [0.5, 1] with sigma 0.03.
+  identify::ParameterSet truth = base_truth();
+  truth["yield_drop"] = 0.4;
+  const AnalyticEffectsModel model(201);
+  const identify::Curve full = model.evaluate(truth, {}).at("response");
+  std::mt19937 rng(71);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  identify::StudySpec spec = synthetic_study(base_truth(), 71);
+  spec.targets.clear();
+  for (int part = 0; part < 2; ++part) {
+    identify::TargetSpec t;
+    t.name = part == 0 ? "early" : "late";
+    t.curve = "response";
+    t.data = {"x_1", "y_1", {}, {}};
+    for (std::size_t i = 0; i < full.x.size(); ++i)
+      if ((part == 0 && full.x[i] <= 0.5) || (part == 1 && full.x[i] > 0.5)) {
+        t.data.x.push_back(full.x[i]);
+        t.data.y.push_back(full.y[i] + (part == 0 ? 0.01 : 0.03) * normal(rng));
+      }
+    spec.targets.push_back(t);
+  }
+  const Diagnosis d = run_diagnosis(spec, model, analytic_effect_candidates(), DiagnoseOptions{});
+  INFO(d.summary);
+  CHECK(d.targets[0].sigma == Approx(0.01).epsilon(0.25));  // ~100 points each: looser than 15 %
+  CHECK(d.targets[1].sigma == Approx(0.03).epsilon(0.25));
+  REQUIRE(d.chosen >= 0);
+  CHECK(d.refits[d.chosen].effect == "yield_drop");
+  REQUIRE(d.base_analysis.worst_region >= 0);
+  CHECK(d.base_analysis.regions[d.base_analysis.worst_region].label.rfind("late", 0) == 0);
+}
+
+TEST_CASE("A curve-mapping target is refused with a one-line message naming the target") {
+  identify::StudySpec spec = synthetic_study(base_truth(), 81);
+  spec.targets[0].metric = identify::CurveMetric::curve_mapping;
+  const AnalyticEffectsModel model(101);
+  CHECK_THROWS_WITH(run_diagnosis(spec, model, analytic_effect_candidates(), DiagnoseOptions{}),
+                    Catch::Contains("target 'response'") && Catch::Contains("use \"mse\""));
 }

@@ -16,7 +16,11 @@ namespace demfit::diagnose {
 
 struct DiagnoseOptions {
   double noise_sigma = 0.0;      // > 0: given noise level (y units, all targets); 0 = estimate per target
-  double alpha = 0.01;           // family-wise level of the residual tests
+  double alpha = 0.01;           // family-wise level of the residual tests on the base fit
+  // Family-wise level of the tests on an augmented fit before its effect may be named. Larger
+  // than alpha on purpose: naming needs positive evidence that the residual became noise, so a
+  // candidate that only half-explains an effect outside the list is not named (docs/diagnose.md).
+  double alpha_named = 0.05;
   double bic_threshold = 10.0;   // name an effect only if BIC(base) - BIC(augmented) exceeds this
   int base_starts = 2;           // base fits: study initial values, then v_lo + (v_hi - v_lo) i / base_starts
   int refit_best = 2;            // candidates re-identified after screening
@@ -29,6 +33,7 @@ enum class Verdict {
   no_missing_effect,       // base residual is noise
   effect_identified,       // one candidate passes the criterion and whitens the residual
   unexplained_structural,  // structure, and no candidate explains it
+  ambiguous,               // several candidates explain it equally well (delta BIC within the threshold)
 };
 const char* verdict_text(Verdict verdict);
 
@@ -52,6 +57,7 @@ struct Diagnosis {
   std::vector<CandidateFit> refits;       // the best few, in screening rank order
   Verdict verdict = Verdict::no_missing_effect;
   int chosen = -1;                        // index into refits when an effect is identified
+  std::vector<int> tied;                  // ambiguous: the refits that explain it equally well
   std::vector<EffectCandidate> candidates;
   double bic_threshold = 10.0;            // as used (DiagnoseOptions)
   bool noise_given = false;               // sigma given (--noise) rather than estimated
