@@ -43,8 +43,10 @@ MpiEvaluator::MpiEvaluator(MpiSession& session, MpiEvaluatorOptions options)
 }
 
 MpiEvaluator::~MpiEvaluator() {
+  // 'L': a rank was lost, so MPI_Finalize could wait for it forever: workers leave without it.
+  const char how = live_workers() + 1 < session_.size() ? 'L' : 'C';
   for (int worker = 1; worker < session_.size(); ++worker) {
-    if (alive_[static_cast<std::size_t>(worker)]) MPI_Send(nullptr, 0, MPI_CHAR, worker, tag_stop, MPI_COMM_WORLD);
+    if (alive_[static_cast<std::size_t>(worker)]) MPI_Send(&how, 1, MPI_CHAR, worker, tag_stop, MPI_COMM_WORLD);
   }
 }
 
@@ -64,7 +66,8 @@ void MpiEvaluator::retire(int worker, const std::string& why) {
   session_.mark_peer_lost();
   // A hung worker still listens on its MPI thread: tell it to leave (no wait if it is dead).
   MPI_Request request;
-  if (MPI_Isend(nullptr, 0, MPI_CHAR, worker, tag_stop, MPI_COMM_WORLD, &request) == MPI_SUCCESS) {
+  static const char lost = 'L';  // static: the send may complete after this function returns
+  if (MPI_Isend(&lost, 1, MPI_CHAR, worker, tag_stop, MPI_COMM_WORLD, &request) == MPI_SUCCESS) {
     MPI_Request_free(&request);
   }
   std::cerr << "demfit: warning: MPI rank " << worker << " retired (" << why << "); "

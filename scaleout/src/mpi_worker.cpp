@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <thread>
@@ -47,7 +48,13 @@ void run_worker(const identify::Model& model, int threads_per_job, unsigned long
     MPI_Status status;
     if (MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status) != MPI_SUCCESS) return;  // rank 0 gone
     const std::string text = receive_text(0, status.MPI_TAG, status);
-    if (status.MPI_TAG == tag_stop) return;
+    if (status.MPI_TAG == tag_stop) {
+      if (text == "L") {  // a peer was lost: finalising would wait for it
+        std::fflush(nullptr);
+        std::_Exit(0);
+      }
+      return;
+    }
     maybe_inject_fault(rank, ++runs_received, false);
     // The first 8 bytes carry the run's batch index, echoed back so rank 0 can match answers.
     const std::string index_prefix = text.substr(0, 8);
