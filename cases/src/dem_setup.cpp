@@ -108,4 +108,14 @@ void SnapshotSchedule::maybe_write(const dem_core::Simulation& simulation, doubl
   }
 }
 
+Fill fill_of(const dem_core::Simulation& simulation) {
+  Fill fill;
+  for (std::size_t i = 0; i < simulation.particle_count(); ++i) {
+    const auto p = simulation.positions()[i];
+    fill.positions.push_back({p.x, p.y, p.z});
+    fill.radii.push_back(simulation.radii()[i]);
+  }
+  return fill;
+}
+
 }  // namespace demfit::cases::detail

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/fill_cache.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "demfit/identify/model.hpp"
@@ -15,6 +16,9 @@ namespace demfit::cases::detail {
 inline constexpr double kFillTimeStepFactor = 0.15;
 
 dem_core::Material to_material(const MaterialSpec& spec);
+
+// The particles of a settled simulation as a cacheable fill (positions [m], radii [m]).
+Fill fill_of(const dem_core::Simulation& simulation);
 dem_core::ContactParameters to_contact(const ContactSpec& spec);
 dem_core::WallContactParameters to_wall_contact(const WallContactSpec& spec);
 

@@ -148,13 +148,7 @@ Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
   settle_options.frictionless = true;
   dem_core::settle(sim, settle_options);
   if (options.progress) options.progress("densify", spec.drum.densify_time, spec.drum.densify_time);
-  Fill fill;
-  for (std::size_t i = 0; i < sim.particle_count(); ++i) {
-    const Vec3 p = sim.positions()[i];
-    fill.positions.push_back({p.x, p.y, p.z});
-    fill.radii.push_back(sim.radii()[i]);
-  }
-  return fill;
+  return detail::fill_of(sim);
 }
 
 SurfaceProfile surface_now(const dem_core::Simulation& sim, const CaseSpec& spec) {

@@ -85,13 +85,7 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   settle_options.refriction_time = 0.1;
   dem_core::settle(sim, settle_options);
   if (options.progress) options.progress("settle", spec.pellet.settle_time, spec.pellet.settle_time);
-  Fill fill;
-  for (std::size_t i = 0; i < sim.particle_count(); ++i) {
-    const Vec3 p = sim.positions()[i];
-    fill.positions.push_back({p.x, p.y, p.z});
-    fill.radii.push_back(sim.radii()[i]);
-  }
-  return fill;
+  return detail::fill_of(sim);
 }
 
 // One averaged sample of the compression.
