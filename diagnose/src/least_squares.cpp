@@ -1,11 +1,11 @@
 // Bounded Levenberg-Marquardt on model evaluations; see least_squares.hpp.
 #include "demfit/diagnose/least_squares.hpp"
 
+#include "demfit/identify/evaluator.hpp"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
 #include "demfit/identify/objective.hpp"
 
@@ -40,25 +40,25 @@ Eigen::VectorXd normalised_residual(const identify::CurveSet& curves, const std:
 std::vector<identify::CurveSet> evaluate_many(const identify::Model& model,
                                               const std::vector<identify::ParameterSet>& sets, int jobs,
                                               unsigned long seed) {
-  std::vector<identify::CurveSet> out(sets.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t i = next++; i < sets.size(); i = next++) {
-      try {
-        out[i] = model.evaluate(sets[i], identify::EvaluationContext{1, seed});
-      } catch (const std::exception&) {
-        out[i].clear();  // a failed run: the caller treats it as infinite cost
-      }
-    }
-  };
-  const int threads = std::clamp(jobs, 1, static_cast<int>(std::max<std::size_t>(sets.size(), 1)));
-  if (threads == 1) {
-    work();
-    return out;
+  // The identify thread pool: same scheduling, failure capture and ordering as a study's runs.
+  identify::ThreadPoolEvaluator evaluator(model, jobs, 1, seed);
+  std::vector<identify::CurveSet> out;
+  for (auto& outcome : evaluator.evaluate_batch(sets, nullptr)) {
+    out.push_back(outcome.ok ? std::move(outcome.curves) : identify::CurveSet{});  // empty: failed run
   }
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-  for (auto& th : pool) th.join();
+  return out;
+}
+
+std::vector<Eigen::VectorXd> residuals_at(const identify::Model& model, const std::vector<identify::ParameterSet>& sets,
+                                          const std::vector<FitTarget>& targets, const FitOptions& options) {
+  std::vector<Eigen::VectorXd> out;
+  for (const auto& curves : evaluate_many(model, sets, options.jobs, options.seed)) {
+    Eigen::VectorXd r;
+    if (!curves.empty()) {
+      try { r = normalised_residual(curves, targets); } catch (const std::exception&) { r.resize(0); }
+    }
+    out.push_back(r);
+  }
   return out;
 }
 
@@ -82,17 +82,8 @@ struct Problem {
   std::vector<Eigen::VectorXd> residuals(const std::vector<Eigen::VectorXd>& points) {
     std::vector<identify::ParameterSet> sets;
     for (const auto& u : points) sets.push_back(parameters(u));
-    const auto curves = evaluate_many(model, sets, options.jobs, options.seed);
     evaluations += static_cast<int>(points.size());
-    std::vector<Eigen::VectorXd> out;
-    for (const auto& c : curves) {
-      Eigen::VectorXd r;
-      if (!c.empty()) {
-        try { r = normalised_residual(c, targets); } catch (const std::exception&) { r.resize(0); }
-      }
-      out.push_back(r);
-    }
-    return out;
+    return residuals_at(model, sets, targets, options);
   }
 };
 

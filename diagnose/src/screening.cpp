@@ -9,21 +9,6 @@
 namespace demfit::diagnose {
 namespace {
 
-// Residual at each parameter set; an empty vector where the evaluation failed.
-std::vector<Eigen::VectorXd> residuals_at(const identify::Model& model, const std::vector<identify::ParameterSet>& sets,
-                                          const std::vector<FitTarget>& targets, const FitOptions& options) {
-  const auto curves = evaluate_many(model, sets, options.jobs, options.seed);
-  std::vector<Eigen::VectorXd> out;
-  for (const auto& c : curves) {
-    Eigen::VectorXd r;
-    if (!c.empty()) {
-      try { r = normalised_residual(c, targets); } catch (const std::exception&) { r.resize(0); }
-    }
-    out.push_back(r);
-  }
-  return out;
-}
-
 // Step away from `from` by `fraction` of [lower, upper], towards the interior.
 double step_inside(double from, double lower, double upper, double fraction) {
   const double h = fraction * (upper - lower);

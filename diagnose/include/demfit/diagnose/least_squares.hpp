@@ -58,6 +58,11 @@ std::vector<identify::CurveSet> evaluate_many(const identify::Model& model,
                                               const std::vector<identify::ParameterSet>& sets, int jobs,
                                               unsigned long seed);
 
+// Normalised residual vector at each parameter set (evaluated `options.jobs` at a time); an empty
+// vector where the evaluation or the residual failed.
+std::vector<Eigen::VectorXd> residuals_at(const identify::Model& model, const std::vector<identify::ParameterSet>& sets,
+                                          const std::vector<FitTarget>& targets, const FitOptions& options);
+
 // Minimises the chi-square over the variables within their bounds, others at `fixed`.
 // Throws std::runtime_error if the start point cannot be evaluated.
 FitResult fit_least_squares(const identify::Model& model, const identify::ParameterSet& fixed,
