@@ -7,19 +7,14 @@
 #include <string>
 
 #include "commands.hpp"
-#if defined(DEMFIT_HAVE_DIAGNOSE)
+#include "demfit/cases/model_factory.hpp"
 #include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/diagnose/effect.hpp"
 #include "demfit/diagnose/report.hpp"
 #include "demfit/diagnose/workflow.hpp"
 #include "demfit/identify/study_spec.hpp"
-#if defined(DEMFIT_HAVE_CASES)
-#include "demfit/cases/model_factory.hpp"
-#endif
-#endif
 
 namespace demfit::apps {
-#if defined(DEMFIT_HAVE_DIAGNOSE)
 namespace {
 
 struct DiagnoseCliOptions {
@@ -49,15 +44,10 @@ std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec&
     candidates = diagnose::analytic_effect_candidates();
     return std::make_unique<diagnose::AnalyticEffectsModel>(points);
   }
-#if defined(DEMFIT_HAVE_CASES)
   candidates.clear();
   std::fprintf(stderr, "demfit: warning: no candidate effects are defined yet for model '%s' (DEM effects come "
                "later); only the residual analysis is done\n", spec.model_reference.c_str());
   return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-#else
-  throw std::runtime_error("study: model.case: '" + spec.model_reference +
-                           "' needs the cases module, which is not in this build; use \"analytic\"");
-#endif
 }
 
 void run_diagnose(const DiagnoseCliOptions& o) {
@@ -113,11 +103,4 @@ void register_diagnose(CLI::App& app) {
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }
-#else
-void register_diagnose(CLI::App& app) {
-  auto* cmd = app.add_subcommand("diagnose", "(not available in this build: the diagnose module is missing)");
-  cmd->allow_extras();
-  cmd->callback([] { throw std::runtime_error("'diagnose' is not available in this build (diagnose module missing)"); });
-}
-#endif
 }  // namespace demfit::apps

@@ -8,14 +8,11 @@
 #include <string>
 
 #include "commands.hpp"
-#include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/lsdyna_export.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
-#if defined(DEMFIT_HAVE_CASES)
 #include "demfit/cases/model_factory.hpp"
-#endif
 #if defined(DEMFIT_HAVE_SCALEOUT)
 #include <iostream>
 
@@ -36,15 +33,9 @@ struct IdentifyOptions {
   double run_timeout = 0.0;
 };
 
+// Built-in cases, case files and the "analytic" test model all come from the one case factory.
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  if (spec.model_reference == "analytic" && spec.model_overrides.empty())
-    return std::make_unique<identify::AnalyticCurveModel>();
-#if defined(DEMFIT_HAVE_CASES)
   return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-#else
-  throw std::runtime_error("study: model.case: '" + spec.model_reference +
-                           "' needs the cases module, which is not in this build; use \"analytic\"");
-#endif
 }
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
