@@ -60,6 +60,7 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   wall_history_.resize(p.size() * walls);
   invalidate_forces();
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
   return p.size() - 1;
 }
 
@@ -93,6 +94,7 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
   wall_history_.assign(kept * walls_.size(), ContactHistory{});
   invalidate_forces();
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
 }
 
 std::size_t Simulation::add_wall(const WallSpec& spec) {
@@ -102,6 +104,7 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
   wall_history_.assign(particles_.size() * walls_.size(), ContactHistory{});
   invalidate_forces();
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
   return walls_.size() - 1;
 }
 
@@ -138,6 +141,7 @@ void Simulation::set_contact_parameters(const ContactParameters& parameters) {
     std::fill(particles_.angular_velocity.begin(), particles_.angular_velocity.end(), Vec3{});
   update_compliances();
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
 }
 
 void Simulation::set_wall_contact_parameters(std::size_t index, const WallContactParameters& parameters) {
@@ -145,12 +149,14 @@ void Simulation::set_wall_contact_parameters(std::size_t index, const WallContac
   (void)wall(index);
   walls_[index].contact = parameters;
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
 }
 
 void Simulation::set_time_step(double time_step) {
   require_non_negative("time_step [s]", time_step);
   settings_.time_step = time_step;
   step_cache_valid_ = false;
+  wall_laws_valid_ = false;
 }
 
 void Simulation::set_threads(int threads) {

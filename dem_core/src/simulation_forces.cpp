@@ -240,15 +240,21 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
                              wall_rolling_torque_.data(), wall_energy_.data(), wall_touching_.data()};
   const bool rotation = settings_.contact.rotation_enabled();
   const ContactParameters& c = settings_.contact;
+  if (!wall_laws_valid_) {
+    linear_wall_laws_.clear();
+    hertz_wall_laws_.clear();
+    const bool linear = settings_.law == ContactLawKind::lsdyna_linear;  // fixed for a simulation
+    for (const Wall& w : walls_) {
+      if (linear) linear_wall_laws_.push_back(make_linear_wall_law(c, w.contact));
+      else hertz_wall_laws_.push_back(make_hertz_wall_law(c, w.contact));
+    }
+    wall_laws_valid_ = true;
+  }
   if (settings_.law == ContactLawKind::lsdyna_linear) {
-    std::vector<LsDynaLinearLaw> wall_laws;
-    for (const Wall& w : walls_) wall_laws.push_back(make_linear_wall_law(c, w.contact));
-    all_forces(make_linear_pair_law(c), wall_laws, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
+    all_forces(make_linear_pair_law(c), linear_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
                wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   } else {
-    std::vector<HertzMindlinLaw> wall_laws;
-    for (const Wall& w : walls_) wall_laws.push_back(make_hertz_wall_law(c, w.contact));
-    all_forces(make_hertz_pair_law(c), wall_laws, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
+    all_forces(make_hertz_pair_law(c), hertz_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
                wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   }
   diagnostics_valid_ = false;

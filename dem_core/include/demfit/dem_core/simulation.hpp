@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "demfit/dem_core/contact_geometry.hpp"
+#include "demfit/dem_core/contact_law_hertz.hpp"
+#include "demfit/dem_core/contact_law_linear.hpp"
 #include "demfit/dem_core/neighbor_list.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/particle_state.hpp"
@@ -160,6 +162,10 @@ class Simulation {
   bool forces_valid_ = false;
   mutable double cached_step_ = 0.0;
   mutable bool step_cache_valid_ = false;
+  // Particle-wall laws, rebuilt only when contact parameters or walls change (not every step).
+  std::vector<LsDynaLinearLaw> linear_wall_laws_;
+  std::vector<HertzMindlinLaw> hertz_wall_laws_;
+  bool wall_laws_valid_ = false;
 };
 
 }  // namespace demfit::dem_core
