@@ -83,6 +83,13 @@ std::string lsdyna_field(double value) {
   throw std::runtime_error("LS-DYNA export: value " + std::to_string(value) + " does not fit a 10-character field");
 }
 
+// Card layouts (10-character fields, LS-DYNA Keyword User's Manual Vol. I):
+//   *CONTROL_DISCRETE_ELEMENT card 1: NDAMP TDAMP FRICS FRICR NORMK SHEARK CAP MXNSC;
+//     card 2: GAMMA VOL ANG GAP (unused) IGNORE NBUF PARALLEL (capillary data, blank = dry);
+//     card 3: LNORM LSHEAR (unused) FRICD DC NCRB BT DT.
+//   *DEFINE_DE_TO_SURFACE_COUPLING card 1: SLAVE MASTER STYPE MTYPE; card 2: FRICS FRICD DAMP BSORT ...
+// Checked against the field schema of the keyword classes generated from the manual (Ansys pydyna,
+// keyword_classes/auto: control_discrete_element, define_de_to_surface_coupling) on 2026-11-24.
 std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title) {
   const ParameterSet p = with_defaults(parameters);
   std::ostringstream out;
@@ -92,9 +99,9 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& t
       << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
       << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),
                lsdyna_field(p.at("fricr")), lsdyna_field(p.at("normk")), lsdyna_field(p.at("sheark"))})
-      << "$    GAMMA       VOL       ANG       GAP    IGNORE      NBUF  PARALLEL\n"
+      << "$    GAMMA       VOL       ANG       GAP    unused    IGNORE      NBUF  PARALLEL\n"
       << card({blank()})
-      << "$    LNORM    LSHEAR    unused     FRICD        DC\n"
+      << "$    LNORM    LSHEAR    unused     FRICD        DC      NCRB        BT        DT\n"
       << card({blank(), blank(), blank(), lsdyna_field(p.at("fricd")), lsdyna_field(p.at("dc"))})
       << "*DEFINE_DE_TO_SURFACE_COUPLING\n"
       << "$ SLAVE/MASTER/STYPE/MTYPE are placeholders: set them to your DES and surface sets.\n"

@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "demfit/identify/lsdyna_export.hpp"
 #include "test_helpers.hpp"
@@ -38,4 +39,30 @@ TEST_CASE("Exported keyword cards parse back to the identified and default value
   const ParameterSet defaults = parse_lsdyna_keywords(lsdyna_keywords({}, "defaults"));
   CHECK(defaults.at("normk") == Approx(0.01));
   CHECK(defaults.at("sheark") == Approx(2.0 / 7.0).epsilon(1e-6));
+}
+
+// Column positions from the LS-DYNA Keyword User's Manual, read here independently of the
+// exporter's own parser: NORMK is field 5 (columns 41-50) of *CONTROL_DISCRETE_ELEMENT card 1,
+// SHEARK field 6, FRICD field 4 of card 3; wall DAMP is field 3 of the coupling's card 2.
+TEST_CASE("Exported values sit in the manual's columns of each card", "[identify][export]") {
+  const ParameterSet p{{"normk", 0.875046}, {"sheark", 0.299582}, {"frics", 0.3}, {"fricd", 0.25},
+                       {"wall_damp", 0.101806949}};
+  std::istringstream in(lsdyna_keywords(p, "columns"));
+  std::vector<std::string> control, coupling;
+  std::vector<std::string>* current = nullptr;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("*CONTROL_DISCRETE_ELEMENT", 0) == 0) current = &control;
+    else if (line.rfind("*DEFINE_DE_TO_SURFACE_COUPLING", 0) == 0) current = &coupling;
+    else if (!line.empty() && line[0] == '*') current = nullptr;
+    else if (current && !line.empty() && line[0] != '$') current->push_back(line);
+  }
+  REQUIRE(control.size() == 3);
+  REQUIRE(coupling.size() == 2);
+  auto column = [](const std::string& card, int first_column) { return std::stod(card.substr(first_column - 1, 10)); };
+  CHECK(column(control[0], 41) == Approx(0.875046).epsilon(1e-6));
+  CHECK(column(control[0], 51) == Approx(0.299582).epsilon(1e-6));
+  CHECK(column(control[0], 21) == Approx(0.3).epsilon(1e-9));
+  CHECK(column(control[2], 31) == Approx(0.25).epsilon(1e-9));
+  CHECK(column(coupling[1], 21) == Approx(0.101806949).epsilon(1e-6));
 }
