@@ -74,7 +74,8 @@ void run_simulate(const SimulateOptions& o) {
   }
   nlohmann::json resolved = cases::to_json(spec);
   resolved["description"] = spec.description +
-                            (parameters.empty() ? "" : " [run with --set parameters: see summary.txt; the fill uses the values below]");
+                            (parameters.empty() ? "" : " [run with --set parameters: see summary.txt; the fill uses the values below, except radius_spread, "
+                                                       "which is applied to the fill too]");
   cases::write_case_result(staged.path(), result, resolved, evaluated, {o.noise, o.seed});
   staged.commit();
   std::cout << "demfit simulate: " << o.case_file << " -> " << out.string() << '\n'

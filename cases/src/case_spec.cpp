@@ -13,17 +13,20 @@ using nlohmann::json;
 
 MaterialSpec parse_material(const json& j, MaterialSpec m) {
   const char* p = "particle";
-  require_known_keys(j, p, {"radius", "density", "youngs_modulus", "poisson_ratio"});
+  require_known_keys(j, p, {"radius", "density", "youngs_modulus", "poisson_ratio", "radius_spread"});
   m.radius = read_number(j, p, "radius", m.radius, Sign::positive);
   m.density = read_number(j, p, "density", m.density, Sign::positive);
   m.youngs_modulus = read_number(j, p, "youngs_modulus", m.youngs_modulus, Sign::positive);
   m.poisson_ratio = read_bounded(j, p, "poisson_ratio", m.poisson_ratio, -0.99, 0.499);
+  // Up to 0.3: the drum's lattice packing (gap 0.03) still holds the s = 1 fill (checked).
+  m.radius_spread = read_bounded(j, p, "radius_spread", m.radius_spread, 0.0, 0.3);
   return m;
 }
 
 ContactSpec parse_contact(const json& j, ContactSpec c) {
   const char* p = "contact";
-  require_known_keys(j, p, {"normk", "sheark", "ndamp", "tdamp", "frics", "fricd", "dc", "fricr"});
+  require_known_keys(j, p, {"normk", "sheark", "ndamp", "tdamp", "frics", "fricd", "dc", "fricr",
+                            "unloading_stiffness_ratio", "surface_energy", "stiffness_exponent"});
   c.normk = read_number(j, p, "normk", c.normk, Sign::positive);
   c.sheark = read_number(j, p, "sheark", c.sheark, Sign::non_negative);
   c.ndamp = read_bounded(j, p, "ndamp", c.ndamp, 0.0, 1.0);
@@ -33,6 +36,10 @@ ContactSpec parse_contact(const json& j, ContactSpec c) {
   c.fricd = read_number(j, p, "fricd", j.contains("fricd") ? c.fricd : c.frics, Sign::non_negative);
   c.dc = read_number(j, p, "dc", c.dc, Sign::non_negative);
   c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
+  c.unloading_stiffness_ratio =
+      read_bounded(j, p, "unloading_stiffness_ratio", c.unloading_stiffness_ratio, 1.0, 100.0);
+  c.surface_energy = read_number(j, p, "surface_energy", c.surface_energy, Sign::non_negative);
+  c.stiffness_exponent = read_bounded(j, p, "stiffness_exponent", c.stiffness_exponent, 1.0, 2.0);
   return c;
 }
 
@@ -165,10 +172,13 @@ json to_json(const CaseSpec& s) {
   j["description"] = s.description;
   j["particle"] = {{"radius", s.material.radius}, {"density", s.material.density},
                    {"youngs_modulus", s.material.youngs_modulus},
-                   {"poisson_ratio", s.material.poisson_ratio}};
+                   {"poisson_ratio", s.material.poisson_ratio},
+                   {"radius_spread", s.material.radius_spread}};
   const ContactSpec& c = s.contact;
   j["contact"] = {{"normk", c.normk}, {"sheark", c.sheark}, {"ndamp", c.ndamp}, {"tdamp", c.tdamp},
-                  {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr}};
+                  {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr},
+                  {"unloading_stiffness_ratio", c.unloading_stiffness_ratio},
+                  {"surface_energy", c.surface_energy}, {"stiffness_exponent", c.stiffness_exponent}};
   j["wall_contact"] = {{"frics", s.wall.frics}, {"fricd", s.wall.fricd}, {"damp", s.wall.damp},
                        {"sfp", s.wall.sfp}};
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
@@ -194,6 +204,15 @@ json to_json(const CaseSpec& s) {
   return j;
 }
 
+json to_key_json(const CaseSpec& s) {
+  json j = to_json(s);
+  if (s.material.radius_spread == 0.0) j["particle"].erase("radius_spread");
+  if (s.contact.unloading_stiffness_ratio == 1.0) j["contact"].erase("unloading_stiffness_ratio");
+  if (s.contact.surface_energy == 0.0) j["contact"].erase("surface_energy");
+  if (s.contact.stiffness_exponent == 1.0) j["contact"].erase("stiffness_exponent");
+  return j;
+}
+
 json read_case_json(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("case file '" + path + "' cannot be opened: check the path");
@@ -208,7 +227,10 @@ json read_case_json(const std::string& path) {
 const std::vector<std::string>& parameter_names() {
   static const std::vector<std::string> names{"normk", "sheark", "ndamp", "tdamp", "frics", "fricd",
                                               "dc", "fricr", "wall_frics", "wall_fricd",
-                                              "wall_damp", "wall_sfp"};
+                                              "wall_damp", "wall_sfp",
+                                              // effects library (issue #6), off by default
+                                              "unloading_stiffness_ratio", "surface_energy",
+                                              "stiffness_exponent", "radius_spread"};
   return names;
 }
 
@@ -216,6 +238,7 @@ std::string parameter_path(const std::string& name) {
   for (const std::string& n : parameter_names()) {
     if (n != name) continue;
     if (name.rfind("wall_", 0) == 0) return "wall_contact." + name.substr(5);
+    if (name == "radius_spread") return "particle.radius_spread";
     return "contact." + name;
   }
   return "";

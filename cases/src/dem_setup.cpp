@@ -27,6 +27,9 @@ dem_core::ContactParameters to_contact(const ContactSpec& spec) {
   c.fricd = spec.fricd;
   c.dc = spec.dc;
   c.fricr = spec.fricr;
+  c.unloading_stiffness_ratio = spec.unloading_stiffness_ratio;
+  c.surface_energy = spec.surface_energy;
+  c.stiffness_exponent = spec.stiffness_exponent;
   return c;
 }
 
@@ -54,7 +57,16 @@ CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& par
     else if (name == "wall_fricd") spec.wall.fricd = value;
     else if (name == "wall_damp") spec.wall.damp = value;
     else if (name == "wall_sfp") spec.wall.sfp = value;
-    else throw std::runtime_error("parameter '" + name + "' is unknown (known: normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp wall_sfp)");
+    else if (name == "unloading_stiffness_ratio") spec.contact.unloading_stiffness_ratio = value;
+    else if (name == "surface_energy") spec.contact.surface_energy = value;
+    else if (name == "stiffness_exponent") spec.contact.stiffness_exponent = value;
+    else if (name == "radius_spread") {
+      // Same range as the case file (dem_core checks the contact effects itself).
+      if (!(value >= 0.0 && value <= 0.3))
+        throw std::runtime_error("parameter 'radius_spread' = " + std::to_string(value) + " must lie in [0, 0.3]");
+      spec.material.radius_spread = value;
+    }
+    else throw std::runtime_error("parameter '" + name + "' is unknown (known: normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp wall_sfp unloading_stiffness_ratio surface_energy stiffness_exponent radius_spread)");
   }
   return spec;
 }
@@ -63,7 +75,11 @@ identify::ParameterSet parameters_of(const CaseSpec& spec) {
   return {{"normk", spec.contact.normk}, {"sheark", spec.contact.sheark}, {"ndamp", spec.contact.ndamp},
           {"tdamp", spec.contact.tdamp}, {"frics", spec.contact.frics}, {"fricd", spec.contact.fricd},
           {"dc", spec.contact.dc}, {"fricr", spec.contact.fricr}, {"wall_frics", spec.wall.frics},
-          {"wall_fricd", spec.wall.fricd}, {"wall_damp", spec.wall.damp}, {"wall_sfp", spec.wall.sfp}};
+          {"wall_fricd", spec.wall.fricd}, {"wall_damp", spec.wall.damp}, {"wall_sfp", spec.wall.sfp},
+          {"unloading_stiffness_ratio", spec.contact.unloading_stiffness_ratio},
+          {"surface_energy", spec.contact.surface_energy},
+          {"stiffness_exponent", spec.contact.stiffness_exponent},
+          {"radius_spread", spec.material.radius_spread}};
 }
 
 void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simulation) {

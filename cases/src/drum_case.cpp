@@ -72,8 +72,9 @@ std::size_t add_drum(dem_core::Simulation& sim, const CaseSpec& spec, double ome
   return first;
 }
 
+// to_key_json: effects at their off values leave the key (and so the cached fill) as before them.
 nlohmann::json fill_key(const CaseSpec& spec) {
-  const nlohmann::json full = to_json(spec);
+  const nlohmann::json full = to_key_json(spec);
   nlohmann::json drum = full["drum"];
   for (const char* k : {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points"}) {
     drum.erase(k);
@@ -84,24 +85,42 @@ nlohmann::json fill_key(const CaseSpec& spec) {
 
 // Fallback when the lattice cannot hold the count (coarse particles only a few diameters shorter
 // than the drum length): random sequential addition in the whole drum, seeded, no overlaps.
+// With a radius spread s the radii are uniform in [R(1-s), R(1+s)] (a second seeded stream, so
+// the monodisperse sequence is unchanged) and the target is the solid volume of `count` spheres.
 std::optional<dem_core::Packing> random_packing(const CaseSpec& spec, const Powder& powder) {
-  const double r = powder.particle.radius;
-  const double reach = 0.5 * spec.drum.diameter - r;
-  if (reach <= 0.0 || spec.drum.length < 2.0 * r) return std::nullopt;
+  const double spread = spec.material.radius_spread;
+  const double r_max = powder.particle.radius * (1.0 + spread);
+  const double reach = 0.5 * spec.drum.diameter - r_max;
+  if (reach <= 0.0 || spec.drum.length < 2.0 * r_max) return std::nullopt;
   std::mt19937_64 engine(static_cast<std::uint64_t>(spec.drum.fill_seed));
+  std::mt19937_64 size_engine(static_cast<std::uint64_t>(spec.drum.fill_seed) + 0x9e3779b97f4a7c15ULL);
   auto uniform = [&engine] { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
+  const double target = static_cast<double>(powder.count) * sphere_volume(powder.particle.radius);
+  auto done = [&](const dem_core::Packing& p) {
+    return spread > 0.0 ? p.solid_volume >= target : static_cast<long long>(p.centers.size()) >= powder.count;
+  };
   dem_core::Packing packing;
-  for (long long attempt = 0; attempt < 2000000 && static_cast<long long>(packing.centers.size()) < powder.count; ++attempt) {
-    const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r + uniform() * (spec.drum.length - 2.0 * r)};
+  double r = powder.particle.radius;
+  bool next_radius = spread > 0.0;  // a new radius for the first sphere and after each placement
+  for (long long attempt = 0; attempt < 2000000 && !done(packing); ++attempt) {
+    if (next_radius) {
+      r = powder.particle.radius * (1.0 + spread * (2.0 * static_cast<double>(size_engine() >> 11) * 0x1.0p-53 - 1.0));
+      next_radius = false;
+    }
+    const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r_max + uniform() * (spec.drum.length - 2.0 * r_max)};
     if (c.x * c.x + c.y * c.y > reach * reach) continue;
     bool free = true;
-    for (const Vec3& o : packing.centers) free = free && dem_core::norm2(o - c) >= 4.0 * r * r * 1.0001;
+    for (std::size_t k = 0; k < packing.centers.size() && free; ++k) {
+      const double contact = (packing.radii[k] + r) * (packing.radii[k] + r);
+      free = dem_core::norm2(packing.centers[k] - c) >= contact * 1.0001;
+    }
     if (!free) continue;
     packing.centers.push_back(c);
     packing.radii.push_back(r);
+    packing.solid_volume += sphere_volume(r);
+    next_radius = spread > 0.0;
   }
-  if (static_cast<long long>(packing.centers.size()) < powder.count) return std::nullopt;
-  packing.solid_volume = static_cast<double>(powder.count) * sphere_volume(r);
+  if (!done(packing)) return std::nullopt;
   return packing;
 }
 
@@ -120,7 +139,14 @@ Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
   const double rd = 0.5 * spec.drum.diameter;
   dem_core::PackingRequest request;
   request.radius_min = request.radius_max = powder.particle.radius;
-  request.count = static_cast<std::size_t>(powder.count);
+  if (spec.material.radius_spread > 0.0) {
+    // Polydisperse: the coarse-grained radius gets the same relative spread; the packing keeps
+    // the solid volume (hence the total mass of Table 2 and the fill's volume fraction).
+    request.radius_spread = spec.material.radius_spread;
+    request.solid_volume = static_cast<double>(powder.count) * sphere_volume(powder.particle.radius);
+  } else {
+    request.count = static_cast<std::size_t>(powder.count);
+  }
   request.seed = static_cast<std::uint64_t>(spec.drum.fill_seed);
   request.up = {0, 1, 0};
   std::optional<dem_core::Packing> packing;
@@ -235,9 +261,14 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   const auto start = Clock::now();
   bool generated = false;
   const Powder powder = powder_of(spec);
-  precheck_user_time_step(spec, powder.particle.radius, powder.particle.density);
-  const Fill fill = cached_fill(options.cache_dir, "drum", fill_key(fill_spec),
-                                [&] { return pack_and_densify(fill_spec, options); }, &generated);
+  // The smallest particle sets the stable step.
+  precheck_user_time_step(spec, powder.particle.radius * (1.0 - spec.material.radius_spread), powder.particle.density);
+  // radius_spread changes the particles themselves, so unlike the contact values it is taken
+  // from the evaluated spec for the fill too (one cached fill per distinct spread).
+  CaseSpec packed = fill_spec;
+  packed.material.radius_spread = spec.material.radius_spread;
+  const Fill fill = cached_fill(options.cache_dir, "drum", fill_key(packed),
+                                [&] { return pack_and_densify(packed, options); }, &generated);
   const double fill_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const auto rotate_start = Clock::now();
   const RotationRun run = rotate(spec, powder, fill, options);
@@ -264,7 +295,9 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   sum.emplace_back("particles", std::to_string(fill.radii.size()));
   sum.emplace_back("particle radius [mm]", fmt("%.4f", powder.particle.radius * 1e3));
   sum.emplace_back("particle density [kg/m3]", fmt("%.1f", powder.particle.density));
-  sum.emplace_back("total particle mass [g]", fmt("%.3f", static_cast<double>(fill.radii.size()) * powder.particle.mass * 1e3));
+  double total_mass = 0.0;  // summed per particle: radii differ with a radius spread
+  for (double r : fill.radii) total_mass += powder.particle.density * sphere_volume(r);
+  sum.emplace_back("total particle mass [g]", fmt("%.3f", total_mass * 1e3));
   sum.emplace_back("fill", generated ? "generated and cached" : "read from cache");
   sum.emplace_back("fill wall time [s]", fmt("%.1f", fill_seconds));
   sum.emplace_back("dynamic angle of repose [deg] (surface fit over |x| < R/2)",

@@ -34,8 +34,9 @@ std::string fmt(const char* pattern, double value) {
 double container_radius(const CaseSpec& spec) { return 0.5 * spec.pellet.container_diameter; }
 
 // Everything the settled fill depends on; the cache key.
+// to_key_json: effects at their off values leave the key (and so the cached fill) as before them.
 nlohmann::json fill_key(const CaseSpec& spec) {
-  const nlohmann::json full = to_json(spec);
+  const nlohmann::json full = to_key_json(spec);
   nlohmann::json pellet = full["pellet"];
   for (const char* k : {"piston_speed", "max_pressure", "max_travel", "unload", "curve_points"}) pellet.erase(k);
   return {{"fill_format", 1}, {"particle", full["particle"]}, {"contact", full["contact"]},
@@ -63,15 +64,24 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   settings.time_step_factor = kFillTimeStepFactor;
   dem_core::Simulation sim(settings);
   sim.add_material(to_material(spec.material));
-  const double r = spec.material.radius;
+  const double spread = spec.material.radius_spread;
+  const double r = spec.material.radius * (1.0 + spread);  // largest radius (sets the lattice)
   const double rc = container_radius(spec);
   // Lattice spacing 2r(1 + gap): layers of ~pi (rc - r)^2 / (2.4 r)^2 sites; leave 50 % margin.
   const double per_layer = std::max(1.0, std::numbers::pi * std::pow(rc - r, 2) / std::pow(2.4 * r, 2));
   const double height = 1.5 * 2.4 * r * (static_cast<double>(spec.pellet.particle_count) / per_layer + 2.0);
   dem_core::PackingRequest request;
   request.region = dem_core::CylinderRegion{{0, 0, 0}, {0, 0, 1}, rc, height};
-  request.radius_min = request.radius_max = r;
-  request.count = static_cast<std::size_t>(spec.pellet.particle_count);
+  request.radius_min = request.radius_max = spec.material.radius;
+  if (spread > 0.0) {
+    // Polydisperse: the same solid volume as particle_count pellets of the nominal radius
+    // (same mass of pellets, same bed volume), so fewer, on average larger spheres.
+    request.radius_spread = spread;
+    request.solid_volume = static_cast<double>(spec.pellet.particle_count) * 4.0 / 3.0 * std::numbers::pi *
+                           std::pow(spec.material.radius, 3);
+  } else {
+    request.count = static_cast<std::size_t>(spec.pellet.particle_count);
+  }
   request.seed = static_cast<std::uint64_t>(spec.pellet.fill_seed);
   dem_core::add_packing(sim, dem_core::generate_packing(request));
   add_container(sim, spec, height + 2.0 * r);
@@ -112,11 +122,16 @@ identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end
 
 CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec,
                                   const CaseRunOptions& options) {
-  precheck_user_time_step(spec, spec.material.radius, spec.material.density);
+  // The smallest pellet sets the stable step.
+  precheck_user_time_step(spec, spec.material.radius * (1.0 - spec.material.radius_spread), spec.material.density);
   const auto start = Clock::now();
   bool generated = false;
-  const Fill fill = cached_fill(options.cache_dir, "pellet", fill_key(fill_spec),
-                                [&] { return pour_and_settle(fill_spec, options); }, &generated);
+  // radius_spread changes the particles themselves, so unlike the contact values it is taken
+  // from the evaluated spec for the fill too (one cached fill per distinct spread).
+  CaseSpec poured = fill_spec;
+  poured.material.radius_spread = spec.material.radius_spread;
+  const Fill fill = cached_fill(options.cache_dir, "pellet", fill_key(poured),
+                                [&] { return pour_and_settle(poured, options); }, &generated);
   const double fill_seconds = seconds_since(start);
   const auto compress_start = Clock::now();
   const CompressionRun run = compress(spec, fill, options);

@@ -126,13 +126,20 @@ Packing generate_packing(const PackingRequest& q) {
   require_positive("packing.radius_min [m]", q.radius_min);
   require_positive("packing.radius_max [m]", q.radius_max);
   if (q.radius_min > q.radius_max) fail("packing.radius_min [m]", q.radius_min, "must be <= radius_max");
+  require_non_negative("packing.radius_spread", q.radius_spread);
+  if (q.radius_spread > 0.9) fail("packing.radius_spread", q.radius_spread, "must lie in [0, 0.9]");
+  if (q.radius_spread > 0.0 && q.radius_min != q.radius_max)
+    fail("packing.radius_spread", q.radius_spread, "needs radius_min == radius_max (the nominal radius)");
   require_non_negative("packing.gap", q.gap);
   require_non_negative("packing.solid_volume [m^3]", q.solid_volume);
   if (q.count == 0 && q.solid_volume <= 0.0)
     throw std::runtime_error("packing: set count > 0 or solid_volume > 0 (m^3)");
   const Frame f = frame_for(require_direction("packing.up", q.up));
-  const double spacing = 2.0 * q.radius_max * (1.0 + q.gap);
-  const double jitter = 0.4999 * (spacing - 2.0 * q.radius_max);
+  // Radius bounds: [radius_min, radius_max], or R(1 -+ s) with a spread (identical when s = 0).
+  const double r_lo = q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
+  const double r_hi = q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
+  const double spacing = 2.0 * r_hi * (1.0 + q.gap);
+  const double jitter = 0.4999 * (spacing - 2.0 * r_hi);
   const auto [center, extent] = bounding_sphere(q.region);
   const auto cells = static_cast<std::int64_t>(std::ceil(extent / spacing));
   std::mt19937_64 rng(q.seed);
@@ -142,7 +149,7 @@ Packing generate_packing(const PackingRequest& q) {
     for (std::int64_t j = -cells; j <= cells; ++j)
       for (std::int64_t i = -cells; i <= cells; ++i) {
         // Always draw the same numbers per site so the sequence does not depend on acceptance.
-        const double r = q.radius_min + (q.radius_max - q.radius_min) * uniform01(rng);
+        const double r = r_lo + (r_hi - r_lo) * uniform01(rng);
         const double a = (2.0 * uniform01(rng) - 1.0) * jitter;
         const double b = (2.0 * uniform01(rng) - 1.0) * jitter;
         const double c = (2.0 * uniform01(rng) - 1.0) * jitter;
@@ -173,6 +180,11 @@ Packing generate_packing(const PackingRequest& q) {
   }
   out.volume_fraction = out.solid_volume / region_volume(q.region);
   return out;
+}
+
+double mean_volume_factor(double radius_spread) {
+  // E[(1 + s u)^3] for u uniform in [-1, 1]: 1 + 3 s^2 E[u^2] = 1 + s^2 (odd moments vanish).
+  return 1.0 + radius_spread * radius_spread;
 }
 
 void add_packing(Simulation& simulation, const Packing& packing, std::size_t material) {

@@ -28,6 +28,13 @@ void validate(const ContactParameters& p) {
   require_non_negative("contact.fricr (FRICR)", p.fricr);
   require_positive("contact.restitution", p.restitution);
   if (p.restitution > 1.0) fail("contact.restitution", p.restitution, "must lie in (0, 1]");
+  require_finite("contact.unloading_stiffness_ratio", p.unloading_stiffness_ratio);
+  if (p.unloading_stiffness_ratio < 1.0)
+    fail("contact.unloading_stiffness_ratio", p.unloading_stiffness_ratio, "must be >= 1 (1 = elastic, no plasticity)");
+  require_non_negative("contact.surface_energy [J/m^2]", p.surface_energy);
+  require_finite("contact.stiffness_exponent", p.stiffness_exponent);
+  if (p.stiffness_exponent < 1.0 || p.stiffness_exponent > 2.0)
+    fail("contact.stiffness_exponent", p.stiffness_exponent, "must lie in [1, 2] (1 = linear, 1.5 = Hertzian shape)");
 }
 
 void validate(const WallContactParameters& p) {

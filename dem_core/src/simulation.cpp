@@ -12,9 +12,20 @@
 #include "validation.hpp"
 
 namespace demfit::dem_core {
+namespace {
+
+/// The effects library extends the LS-DYNA linear law only (contact_effects.hpp).
+void require_effects_law(ContactLawKind law, const ContactParameters& c) {
+  if (law != ContactLawKind::lsdyna_linear && c.effects_enabled())
+    throw std::runtime_error("contact.unloading_stiffness_ratio / surface_energy / stiffness_exponent apply to the "
+                             "lsdyna_linear law only: set them to 1 / 0 / 1 or use law lsdyna_linear");
+}
+
+}  // namespace
 
 Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
   validate(settings_.contact);
+  require_effects_law(settings_.law, settings_.contact);
   require_finite("gravity [m/s^2]", settings_.gravity);
   if (settings_.threads < 1) fail("threads", settings_.threads, "must be >= 1");
   require_non_negative("time_step [s]", settings_.time_step);
@@ -58,6 +69,7 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   update_compliance(p.size() - 1);
   const std::size_t walls = walls_.size();
   wall_history_.resize(p.size() * walls);
+  if (!wall_max_overlap_.empty()) wall_max_overlap_.resize(p.size() * walls, 0.0);
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -92,6 +104,8 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
   neighbors_ = NeighborList{};
   pair_history_.clear();
   wall_history_.assign(kept * walls_.size(), ContactHistory{});
+  pair_max_overlap_.clear();
+  wall_max_overlap_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -102,6 +116,7 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
   rebuild_requested_ = true;  // wall candidate lists must be rebuilt
   // The (particle, wall) layout changes: wall histories restart.
   wall_history_.assign(particles_.size() * walls_.size(), ContactHistory{});
+  wall_max_overlap_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -135,6 +150,7 @@ void Simulation::set_gravity(const Vec3& gravity) {
 
 void Simulation::set_contact_parameters(const ContactParameters& parameters) {
   validate(parameters);
+  require_effects_law(settings_.law, parameters);
   const bool had_rotation = settings_.contact.rotation_enabled();
   settings_.contact = parameters;
   if (had_rotation && !parameters.rotation_enabled())

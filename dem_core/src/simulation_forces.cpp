@@ -18,6 +18,7 @@ struct PairOutputs {
   Vec3* torque_second;
   double* energy;
   std::uint8_t* touching;
+  double* max_overlap;    // per pair, only for laws that track it (plasticity), else null
 };
 
 template <class Law>
@@ -36,6 +37,7 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
     if (dist2 >= r_sum * r_sum) {
       if (!out.touching[k]) continue;  // already cleared
       history[k] = {};
+      if constexpr (Law::tracks_max_overlap) out.max_overlap[k] = 0.0;
       out.force[k] = {}; out.torque_first[k] = {}; out.torque_second[k] = {};
       out.energy[k] = 0.0; out.touching[k] = 0;
       continue;
@@ -57,7 +59,9 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
     g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
     g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
     g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
-    const ContactForce f = law.force(g, history[k], dt);
+    ContactForce f;
+    if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap + k);
+    else f = law.force(g, history[k], dt);
     out.force[k] = f.force;
     if (rotation) {
       out.torque_first[k] = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
@@ -74,6 +78,7 @@ struct WallOutputs {
   Vec3* rolling_torque;  // on the particle
   double* energy;
   std::uint8_t* touching;
+  double* max_overlap;   // index i * walls + w, only for laws that track it, else null
 };
 
 /// Loads of all walls on particle i, accumulated into the particle's force/torque in wall order.
@@ -88,6 +93,7 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     const WallProximity prox = wall_proximity(walls[w].geometry, p.position[i], p.radius[i]);
     if (!prox.touching) {
       history[slot] = {};
+      if constexpr (Law::tracks_max_overlap) out.max_overlap[slot] = 0.0;
       out.touching[slot] = 0;
       continue;
     }
@@ -106,7 +112,9 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     g.normal_compliance = p.normal_compliance[i] / walls[w].contact.sfp;  // k_n,w = SFP k_i
     g.shear_compliance = p.shear_compliance[i];
     g.inverse_inertia_sum = p.inverse_inertia[i];
-    const ContactForce f = laws[w].force(g, history[slot], dt);
+    ContactForce f;
+    if constexpr (Law::tracks_max_overlap) f = laws[w].force(g, history[slot], dt, out.max_overlap + slot);
+    else f = laws[w].force(g, history[slot], dt);
     p.force[i] += f.force;
     if (rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
     out.force[slot] = f.force;
@@ -179,6 +187,8 @@ void Simulation::ensure_neighbors(double moved) {
   old_history.swap(pair_history_);
   std::vector<std::uint8_t> old_touching;
   old_touching.swap(pair_touching_);
+  std::vector<double> old_max_overlap;  // plasticity only; empty otherwise
+  old_max_overlap.swap(pair_max_overlap_);
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
   const std::size_t pairs = neighbors_.pair_count();
   pair_history_.assign(pairs, ContactHistory{});
@@ -187,6 +197,8 @@ void Simulation::ensure_neighbors(double moved) {
   pair_torque_second_.assign(pairs, Vec3{});
   pair_energy_.assign(pairs, 0.0);
   pair_touching_.assign(pairs, 0);
+  const bool plastic = !old_max_overlap.empty();
+  if (plastic) pair_max_overlap_.assign(pairs, 0.0);
   if (old_history.empty() || old.particle_count() != particles_.size()) return;
   // Carry contact history across the rebuild: look each new pair up in the old list.
   const auto first = neighbors_.first();
@@ -199,6 +211,7 @@ void Simulation::ensure_neighbors(double moved) {
     if (old_k != NeighborList::npos) {
       pair_history_[k] = old_history[old_k];
       pair_touching_[k] = old_touching[old_k];  // so the pair loop clears it if it has ended
+      if (plastic) pair_max_overlap_[k] = old_max_overlap[old_k];
     }
   }
 }
@@ -217,6 +230,7 @@ void Simulation::find_wall_candidates() {
       if (!wall_candidate_[slot] && slot < wall_touching_.size()) {
         wall_touching_[slot] = 0;
         wall_history_[slot] = {};
+        if (slot < wall_max_overlap_.size()) wall_max_overlap_[slot] = 0.0;
       }
     }
   }
@@ -234,23 +248,38 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
     wall_touching_.assign(p.size() * walls, 0);
   }
   ensure_neighbors(moved);
-  const PairOutputs pair_out{pair_force_.data(), pair_torque_first_.data(), pair_torque_second_.data(),
-                             pair_energy_.data(), pair_touching_.data()};
-  const WallOutputs wall_out{wall_force_on_particle_.data(), wall_contact_point_.data(),
-                             wall_rolling_torque_.data(), wall_energy_.data(), wall_touching_.data()};
-  const bool rotation = settings_.contact.rotation_enabled();
   const ContactParameters& c = settings_.contact;
+  // One switch per evaluation picks the law type; the effects law only when an effect is on.
+  const bool linear = settings_.law == ContactLawKind::lsdyna_linear;  // fixed for a simulation
+  const bool effects = linear && c.effects_enabled();
+  if (effects) {  // largest-overlap memory: allocated (zero = new contacts) on first use
+    if (pair_max_overlap_.size() != neighbors_.pair_count()) pair_max_overlap_.assign(neighbors_.pair_count(), 0.0);
+    if (wall_max_overlap_.size() != p.size() * walls) wall_max_overlap_.assign(p.size() * walls, 0.0);
+  } else if (!pair_max_overlap_.empty() || !wall_max_overlap_.empty()) {  // effects switched off
+    pair_max_overlap_.clear();
+    wall_max_overlap_.clear();
+  }
+  const PairOutputs pair_out{pair_force_.data(), pair_torque_first_.data(), pair_torque_second_.data(),
+                             pair_energy_.data(), pair_touching_.data(), pair_max_overlap_.data()};
+  const WallOutputs wall_out{wall_force_on_particle_.data(), wall_contact_point_.data(),
+                             wall_rolling_torque_.data(), wall_energy_.data(), wall_touching_.data(),
+                             wall_max_overlap_.data()};
+  const bool rotation = settings_.contact.rotation_enabled();
   if (!wall_laws_valid_) {
     linear_wall_laws_.clear();
+    effects_wall_laws_.clear();
     hertz_wall_laws_.clear();
-    const bool linear = settings_.law == ContactLawKind::lsdyna_linear;  // fixed for a simulation
     for (const Wall& w : walls_) {
-      if (linear) linear_wall_laws_.push_back(make_linear_wall_law(c, w.contact));
+      if (effects) effects_wall_laws_.push_back(make_effects_wall_law(c, w.contact));
+      else if (linear) linear_wall_laws_.push_back(make_linear_wall_law(c, w.contact));
       else hertz_wall_laws_.push_back(make_hertz_wall_law(c, w.contact));
     }
     wall_laws_valid_ = true;
   }
-  if (settings_.law == ContactLawKind::lsdyna_linear) {
+  if (effects) {
+    all_forces(make_effects_pair_law(c), effects_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
+               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
+  } else if (linear) {
     all_forces(make_linear_pair_law(c), linear_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
                wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   } else {

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "demfit/dem_core/contact_effects.hpp"
+
 namespace demfit::dem_core {
 namespace {
 
@@ -20,7 +22,12 @@ TimeStepEstimate linear_estimate(const ParticleState& p, const ContactParameters
   double a_min = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < p.size(); ++i) a_min = std::min(a_min, p.mass[i] * p.normal_compliance[i]);
   if (max_wall_sfp > 1.0) a_min /= max_wall_sfp;
-  const double omega = 1.0 / std::sqrt(a_min);  // two-body normal frequency sqrt(k_n/m*)
+  const double omega = 1.0 / std::sqrt(a_min);  // two-body frequency sqrt(k_n/m*) of the tangential spring
+  // Normal mode: the effects (plasticity, stiffness exponent) raise the tangent stiffness up to
+  // normal_stiffness_scale() k_n (contact_effects.hpp); the damping ratio is kept (conservative:
+  // c_n stays 2 NDAMP sqrt(m* k_n), a smaller fraction of the stiffer mode's critical damping).
+  const double stiffness_scale = normal_stiffness_scale(c);
+  const double omega_n = stiffness_scale == 1.0 ? omega : omega * std::sqrt(stiffness_scale);
   const bool rotation = c.rotation_enabled();
   // Tangential mode of two spheres with rotation: effective mass 2m*/7, so omega_t =
   // sqrt(3.5 SHEARK) omega and the damping ratio of c_t = 2 TDAMP sqrt(m* k_t) is sqrt(3.5) TDAMP.
@@ -28,13 +35,13 @@ TimeStepEstimate linear_estimate(const ParticleState& p, const ContactParameters
   const double zeta_n = std::max(c.ndamp, max_wall_damp);
   const double zeta_t = std::sqrt(3.5) * std::max(c.tdamp, max_wall_damp);
   TimeStepEstimate e;
-  e.stable_limit = damped_limit(omega, zeta_n);
+  e.stable_limit = damped_limit(omega_n, zeta_n);
   if (rotation && omega_t > 0.0) e.stable_limit = std::min(e.stable_limit, damped_limit(omega_t, zeta_t));
   // Automatic: LS-DYNA's factor * 2 pi sqrt(m*/k_n), but also 0.9 x the bound of a particle
   // loaded from both sides (chains, packings, wall + neighbour): frequency and, with damping
   // proportional to stiffness, damping ratio both sqrt(2) times the two-body values.
   const double root2 = std::sqrt(2.0);
-  double bound = damped_limit(root2 * omega, root2 * zeta_n);
+  double bound = damped_limit(root2 * omega_n, root2 * zeta_n);
   if (rotation && omega_t > 0.0) {
     bound = std::min(bound, damped_limit(root2 * omega_t, root2 * zeta_t));
     // Rotational "gear" mode of a packing: a sphere with z sticking contacts whose neighbours
@@ -44,7 +51,7 @@ TimeStepEstimate linear_estimate(const ParticleState& p, const ContactParameters
     const double zeta_g = std::sqrt(2.5 * coordination) * std::max(c.tdamp, max_wall_damp);
     bound = std::min(bound, damped_limit(omega_g, zeta_g));
   }
-  e.automatic = std::min(factor * 2.0 * std::numbers::pi / std::max(omega, rotation ? omega_t : 0.0), 0.9 * bound);
+  e.automatic = std::min(factor * 2.0 * std::numbers::pi / std::max(omega_n, rotation ? omega_t : 0.0), 0.9 * bound);
   return e;
 }
 

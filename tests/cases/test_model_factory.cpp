@@ -22,9 +22,11 @@ TEST_CASE("Built-in cases are the shipped case files") {
         cases::read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json"));
 }
 
-TEST_CASE("A case model exposes the twelve contact parameters with the case's values as defaults") {
+TEST_CASE("A case model exposes the twelve contact parameters and four effect parameters with the case's values as defaults") {
   const auto model = cases::make_model("pellet_compression", json::object(), DEMFIT_SOURCE_DIR);
-  CHECK(model->parameter_names().size() == 12);
+  CHECK(model->parameter_names().size() == 16);
+  CHECK(model->default_parameters().at("unloading_stiffness_ratio") == 1.0);  // effects off by default
+  CHECK(model->default_parameters().at("surface_energy") == 0.0);
   CHECK(model->default_parameters().at("normk") == 0.875046);
   CHECK(model->default_parameters().at("wall_damp") == 0.5);
   const auto drum = cases::make_model("cases/rotary_drum.json", json{{"drum", {{"scale_factor", 4}}}}, DEMFIT_SOURCE_DIR);

@@ -19,6 +19,10 @@ struct MaterialSpec {
   double density = 1000.0;         // [kg/m^3]
   double youngs_modulus = 1.0e9;   // E [Pa]
   double poisson_ratio = 0.3;      // nu [-], < 0.5
+  // Polydispersity (effects library): relative radius spread s, radii uniform in
+  // [R(1 - s), R(1 + s)] at the same solid volume (dem_core PackingRequest::radius_spread);
+  // 0 = monodisperse (off). Changes the fill, so it is part of the fill cache key when > 0.
+  double radius_spread = 0.0;      // [-], in [0, 0.3]
   double bulk_modulus() const;     // K [Pa]
 };
 
@@ -32,6 +36,10 @@ struct ContactSpec {
   double fricd = 0.0;  // dynamic friction; defaults to frics when absent in the file
   double dc = 0.0;     // exponential decay coefficient [s/m]
   double fricr = 0.0;
+  // Effects library (issue #6, dem_core/contact_effects.hpp); each off at its default.
+  double unloading_stiffness_ratio = 1.0;  // Walton–Braun k2/k1 [-], >= 1 (1 = elastic)
+  double surface_energy = 0.0;             // cohesion gamma [J/m^2], F_c = 1.5 pi gamma R*
+  double stiffness_exponent = 1.0;         // n of F = k_n d_ref (delta/d_ref)^n, in [1, 2]
 };
 
 // *DEFINE_DE_TO_SURFACE_COUPLING card 2 (SPEC 1): fricd is the wall ROLLING friction.
@@ -102,17 +110,25 @@ struct CaseSpec {
 CaseSpec parse_case(const nlohmann::json& document);
 nlohmann::json to_json(const CaseSpec& spec);
 
+// to_json without the effects-library fields that are at their off values
+// (particle.radius_spread = 0, contact.unloading_stiffness_ratio = 1, contact.surface_energy = 0,
+// contact.stiffness_exponent = 1): the text of a case without effects is the text it had before
+// the effects existed, so cache keys built from it (fills, results) stay valid.
+nlohmann::json to_key_json(const CaseSpec& spec);
+
 // Reads a case file; a missing file or malformed JSON is an error naming the file.
 nlohmann::json read_case_json(const std::string& path);
 
 // Applies "name=value" overrides to a case document before parsing. `name` is an identified
 // parameter (normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp
-// wall_sfp) or a dotted path ("pellet.piston_speed"); `value` is JSON (a number, true/false or a
+// wall_sfp, and the effects unloading_stiffness_ratio surface_energy stiffness_exponent
+// radius_spread) or a dotted path ("pellet.piston_speed"); `value` is JSON (a number, true/false or a
 // quoted string; a bare word is taken as a string).
 void apply_setting(nlohmann::json& document, const std::string& assignment);
 
 // Dotted JSON path of an identified parameter name ("normk" -> "contact.normk",
-// "wall_damp" -> "wall_contact.damp"); empty when the name is not a parameter.
+// "wall_damp" -> "wall_contact.damp", "radius_spread" -> "particle.radius_spread");
+// empty when the name is not a parameter.
 std::string parameter_path(const std::string& name);
 
 // The identified-parameter names, in a fixed order.

@@ -23,6 +23,8 @@ struct ContactGeometry {
 /// default) when the contact ends.
 struct ContactHistory {
   Vec3 tangential_displacement{};  ///< incremental tangential spring elongation xi_t [m]
+  // The plasticity effect's largest overlap lives in a separate per-contact array of the
+  // simulation (allocated only while an effect is on), so the plain law's history stays small.
 };
 
 /// Loads a law returns for body i (body j receives the opposite force; the loop turns the

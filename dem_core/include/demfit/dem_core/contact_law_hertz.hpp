@@ -39,6 +39,7 @@ struct HertzNormal {
 };
 
 struct HertzMindlinLaw {
+  static constexpr bool tracks_max_overlap = false;
   HertzNormal normal{};
   CoulombTangentialSpring tangential{};
   ConstantTorqueRolling rolling{};

@@ -1,5 +1,6 @@
 #pragma once
 // Umbrella header of the DEM kernel (std + OpenMP only).
+#include "demfit/dem_core/contact_effects.hpp"
 #include "demfit/dem_core/contact_geometry.hpp"
 #include "demfit/dem_core/contact_law_hertz.hpp"
 #include "demfit/dem_core/contact_law_linear.hpp"

@@ -51,6 +51,13 @@ struct PackingRequest {
   Region region{};
   double radius_min = 0.0;  ///< [m]; radii uniform in [radius_min, radius_max] (equal = monodisperse)
   double radius_max = 0.0;  ///< [m]
+  /// Polydispersity (effects library): relative radius spread s in [0, 0.9]; 0 = off. When > 0,
+  /// radius_min must equal radius_max = R (the nominal radius) and the radii are uniform in
+  /// [R(1 - s), R(1 + s)] (uniform rather than a truncated normal: the bounds are exact, so the
+  /// lattice spacing and the stable step are known, and the spread has one meaning). The mean
+  /// sphere volume is R^3 (1 + s^2) (mean_volume_factor): a solid_volume request (count = 0)
+  /// therefore keeps the solid volume, hence the volume fraction, and places fewer spheres.
+  double radius_spread = 0.0;
   std::size_t count = 0;    ///< number of spheres; 0 = use solid_volume
   double solid_volume = 0.0;  ///< [m^3] target total sphere volume when count == 0
   std::uint64_t seed = 1;
@@ -65,6 +72,9 @@ struct Packing {
   double volume_fraction = 0.0;  ///< solid_volume / region_volume
   std::size_t capacity = 0;    ///< lattice sites that fitted in the region
 };
+
+/// E[r^3]/R^3 = 1 + s^2 for radii uniform in [R(1 - s), R(1 + s)] (relative spread s).
+double mean_volume_factor(double radius_spread);
 
 /// Throws std::runtime_error (naming count/solid_volume and the capacity) when the region cannot
 /// hold the request at this gap.

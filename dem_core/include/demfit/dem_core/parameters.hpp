@@ -34,9 +34,26 @@ struct ContactParameters {
   double fricr = 0.0;         ///< FRICR [-]: rolling friction, constant-torque model
   double restitution = 1.0;   ///< e [-], Hertz–Mindlin only (the linear law uses NDAMP/TDAMP)
 
+  // ---- Effects library (issue #6; linear law only, pairs AND walls; see contact_effects.hpp).
+  // Each is off at its default value; with all three off the simulation takes exactly the code
+  // path of the plain LS-DYNA law (bit-identical results, no extra cost).
+  /// Walton–Braun (1986) plasticity: unloading stiffness k2 = ratio * k1 [-], ratio >= 1;
+  /// 1 = elastic (off). Undamped head-on restitution e = 1/sqrt(ratio).
+  double unloading_stiffness_ratio = 1.0;
+  /// Cohesion: surface energy gamma [J/m^2] >= 0 of a constant JKR-like pull-off force
+  /// F_c = 1.5 pi gamma R* (walls: R* = R), attractive, acting only while overlap > 0; 0 = off.
+  double surface_energy = 0.0;
+  /// Nonlinear normal stiffness exponent n in [1, 2]: F_el = k_n d_ref (delta/d_ref)^n with
+  /// d_ref = 0.01 R*; 1 = linear (off), 1.5 = Hertzian shape.
+  double stiffness_exponent = 1.0;
+
   /// FRICD with the LS-DYNA default resolved (FRICD unset => FRICS).
   [[nodiscard]] double dynamic_friction() const { return fricd < 0.0 ? frics : fricd; }
   [[nodiscard]] bool rotation_enabled() const { return frics > 0.0; }
+  /// True when any effect of the effects library is switched on (selects the effects law).
+  [[nodiscard]] bool effects_enabled() const {
+    return unloading_stiffness_ratio != 1.0 || surface_energy != 0.0 || stiffness_exponent != 1.0;
+  }
 };
 
 /// Particle-to-wall parameters (*DEFINE_DE_TO_SURFACE_COUPLING card 2 semantics).

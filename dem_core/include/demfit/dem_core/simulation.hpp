@@ -29,7 +29,8 @@ namespace demfit::dem_core {
 
 struct SimulationSettings {
   ContactLawKind law = ContactLawKind::lsdyna_linear;
-  ContactParameters contact{};            ///< particle–particle parameters (SPEC 1)
+  ContactParameters contact{};            ///< particle–particle parameters (SPEC 1); its effects
+                                          ///< (plasticity, cohesion, stiffness exponent) need the linear law
   Vec3 gravity{0.0, 0.0, -9.81};        ///< [m/s^2], global frame
   /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). On a shared,
   /// loaded machine run with OMP_WAIT_POLICY=passive: spinning threads waiting at the 3 barriers
@@ -153,6 +154,10 @@ class Simulation {
   std::vector<Vec3> wall_force_on_particle_, wall_contact_point_, wall_rolling_torque_;
   std::vector<double> wall_energy_{};
   std::vector<std::uint8_t> wall_touching_{};
+  // Largest overlap per pair / per (particle, wall) contact, for the plasticity effect only:
+  // empty while no effect is on (the plain law pays no memory for it), zero for new contacts.
+  std::vector<double> pair_max_overlap_{};
+  std::vector<double> wall_max_overlap_{};
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
   mutable double elastic_energy_ = 0.0;
@@ -164,6 +169,7 @@ class Simulation {
   mutable bool step_cache_valid_ = false;
   // Particle-wall laws, rebuilt only when contact parameters or walls change (not every step).
   std::vector<LsDynaLinearLaw> linear_wall_laws_;
+  std::vector<LsDynaEffectsLaw> effects_wall_laws_;  // linear law with the effects library on
   std::vector<HertzMindlinLaw> hertz_wall_laws_;
   bool wall_laws_valid_ = false;
 };

@@ -22,6 +22,10 @@
 // 0.3-0.8 (it kept creeping at KE ~ 1e-3 m g R per particle) are unstable at 0.15 * 2 pi / omega;
 // with these bounds the bed comes to rest. Cost: with SHEARK = 2/7 and TDAMP = 0.5 the automatic
 // step is ~0.22/omega instead of 0.94/omega.
+// Effects library (contact_effects.hpp): plasticity and the stiffness exponent stiffen the normal
+// spring; the normal-mode bounds use omega_n = omega sqrt(normal_stiffness_scale), the tangent
+// stiffness at a planned largest overlap of 5 % of the smaller radius (n (delta/d_ref)^(n-1) with
+// delta/d_ref = 10) times the unloading ratio. Beds loaded beyond 5 % overlap need a user step.
 // Hertz–Mindlin. Rayleigh time T_R = pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest
 // particle; automatic step = 0.2 T_R (common LIGGGHTS practice), stability limit = T_R.
 #include <vector>

@@ -1,0 +1,102 @@
+// The effects catalogue (see effect_catalogue.hpp; physics in dem_core/contact_effects.hpp and
+// docs/cases.md "Effects").
+#include "demfit/cases/effect_catalogue.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <stdexcept>
+
+#include "builtin_cases.hpp"
+#include "demfit/cases/case_spec.hpp"
+
+namespace demfit::cases {
+namespace {
+
+const char* const kPellet = "pellet_compression";
+const char* const kDrum = "rotary_drum";
+
+// Cohesion upper bound of a built-in case, from its particle (the drum at its default scale
+// factor 1; a coarse-grained SCG particle of scale s needs s^2 times more for the same
+// cohesion-to-weight ratio).
+double case_cohesion_bound(const char* builtin_text) {
+  const CaseSpec spec = parse_case(nlohmann::json::parse(builtin_text));
+  return cohesion_surface_energy_bound(spec.material.radius, spec.material.density);
+}
+
+EffectInfo cohesion(double upper, std::vector<std::string> cases) {
+  return {"cohesion",
+          "constant JKR-like pull-off force F_c = 1.5 pi gamma R* while particles (or a particle and a wall) "
+          "overlap; the contact breaks at zero overlap (upper bound: F_c of two equal spheres = 5 particle weights)",
+          {{"surface_energy", 0.0, upper, 0.0, "J/m^2"}},
+          std::move(cases),
+          {}};
+}
+
+std::vector<EffectInfo> build(double pellet_cohesion, double drum_cohesion, const std::string& only) {
+  std::vector<EffectInfo> all;
+  auto keep = [&](std::vector<std::string> cases) {
+    if (only.empty()) return cases;
+    return std::find(cases.begin(), cases.end(), only) != cases.end() ? std::vector<std::string>{only}
+                                                                      : std::vector<std::string>{};
+  };
+  const double cohesion_upper = only == kPellet ? pellet_cohesion
+                                : only == kDrum ? drum_cohesion
+                                                : std::max(pellet_cohesion, drum_cohesion);
+  all.push_back({"plasticity",
+                 "Walton-Braun hysteretic normal spring: unloading stiffness k2 = ratio k1, delta0 = delta_max (1 - k1/k2); "
+                 "undamped restitution 1/sqrt(ratio). Shows mainly on unloading (pellet.unload = true, curve "
+                 "pressure_volume_cycle); contacts that unload during rearrangement change the loading curve too",
+                 {{"unloading_stiffness_ratio", 1.0, 4.0, 1.0, "-"}},
+                 keep({kPellet}),
+                 {}});
+  all.push_back(cohesion(cohesion_upper, keep({kPellet, kDrum})));
+  all.push_back({"hertz_stiffness",
+                 "nonlinear normal spring F = k_n d_ref (delta/d_ref)^n, d_ref = 0.01 R* (equal to the linear law at "
+                 "1 % of R*); n = 1.5 is the Hertzian shape",
+                 {{"stiffness_exponent", 1.0, 1.5, 1.0, "-"}},
+                 keep({kPellet, kDrum}),
+                 {}});
+  all.push_back({"wall_friction",
+                 "particle-wall sliding friction (wall FRICS): Janssen effect in the pellet cylinder (the bottom plate "
+                 "carries less than the piston), drag of the bed by the drum wall",
+                 {{"wall_frics", 0.0, 0.6, 0.0, "-"}},
+                 keep({kPellet, kDrum}),
+                 {}});
+  all.push_back({"rolling_resistance",
+                 "constant-torque rolling friction between particles (FRICR; acts only with FRICS > 0)",
+                 {{"fricr", 0.0, 0.3, 0.0, "-"}},
+                 keep({kPellet, kDrum}),
+                 {}});
+  all.push_back({"polydispersity",
+                 "radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (the drum's coarse-grained radius gets "
+                 "the same relative spread); changes the fill, which is regenerated and cached per spread",
+                 {{"radius_spread", 0.0, 0.25, 0.0, "-"}},
+                 keep({kPellet, kDrum}),
+                 {}});
+  if (!only.empty()) std::erase_if(all, [](const EffectInfo& e) { return e.cases.empty(); });
+  return all;
+}
+
+}  // namespace
+
+double cohesion_surface_energy_bound(double radius, double density, double gravity) {
+  const double weight = density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius * gravity;
+  // 1.5 pi gamma R* = 5 m g with R* = R/2 (two equal spheres).
+  return 5.0 * weight / (1.5 * std::numbers::pi * 0.5 * radius);
+}
+
+const std::vector<EffectInfo>& effect_catalogue() {
+  static const std::vector<EffectInfo> all = build(case_cohesion_bound(detail::kBuiltinPelletCompression),
+                                                   case_cohesion_bound(detail::kBuiltinRotaryDrum), "");
+  return all;
+}
+
+std::vector<EffectInfo> effects_for_case(const std::string& case_name) {
+  if (case_name != kPellet && case_name != kDrum)
+    throw std::runtime_error("effects_for_case: case '" + case_name +
+                             "' is unknown: use \"pellet_compression\" or \"rotary_drum\"");
+  return build(case_cohesion_bound(detail::kBuiltinPelletCompression),
+               case_cohesion_bound(detail::kBuiltinRotaryDrum), case_name);
+}
+
+}  // namespace demfit::cases

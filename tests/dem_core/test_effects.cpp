@@ -1,0 +1,461 @@
+// Effects library (issue #6, contact_effects.hpp): plasticity, cohesion, nonlinear stiffness and
+// polydispersity against closed-form results. Every expected number is derived here.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "demfit/dem_core/contact_law_linear.hpp"
+#include "demfit/dem_core/packing.hpp"
+#include "demfit/dem_core/simulation.hpp"
+
+using namespace demfit::dem_core;
+
+namespace {
+
+const Material material{1.0e9, 2500.0, 0.3};
+constexpr double radius = 1.0e-3;
+
+double mass_of(double r) { return material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+
+/// Pair spring of two equal spheres (series): k_n = NORMK K R / 2.
+double pair_stiffness(const ContactParameters& c) { return c.normk * material.bulk_modulus * radius / 2.0; }
+
+struct Impact {
+  double restitution;  // separation speed / approach speed
+  double duration;     // [s] from first to last overlap (interpolated inside the step)
+};
+
+/// Two equal spheres approaching head-on along x at relative speed `speed`, no gravity.
+Impact pair_impact(const ContactParameters& contact, double speed, double factor, double skin = 0.0) {
+  SimulationSettings settings;
+  settings.skin = skin;  // 0 = default (0.3 R)
+  settings.gravity = {0, 0, 0};
+  settings.contact = contact;
+  settings.time_step_factor = factor;
+  Simulation sim(settings);
+  sim.add_material(material);
+  sim.add_particle({-radius - 1e-6, 0, 0}, radius, 0, {0.5 * speed, 0, 0});
+  sim.add_particle({radius + 1e-6, 0, 0}, radius, 0, {-0.5 * speed, 0, 0});
+  const double dt = sim.time_step();
+  double start = -1.0, end = -1.0;
+  for (int s = 0; s < 10000000 && end < 0.0; ++s) {
+    sim.step();
+    const double distance = sim.positions()[1].x - sim.positions()[0].x;
+    const double closing = sim.velocities()[1].x - sim.velocities()[0].x;
+    const double previous = distance - dt * closing;
+    if (distance < 2.0 * radius && start < 0.0) start = sim.time() - dt * (2.0 * radius - distance) / (previous - distance);
+    if (distance >= 2.0 * radius && start >= 0.0) end = sim.time() - dt * (distance - 2.0 * radius) / (distance - previous);
+  }
+  return {(sim.velocities()[1].x - sim.velocities()[0].x) / speed, end - start};
+}
+
+/// A sphere moving at `speed` against a fixed plane x = 0 (normal +x), no gravity.
+double wall_restitution(const ContactParameters& contact, double speed, double factor) {
+  SimulationSettings settings;
+  settings.gravity = {0, 0, 0};
+  settings.contact = contact;
+  settings.time_step_factor = factor;
+  Simulation sim(settings);
+  sim.add_material(material);
+  sim.add_wall({PlaneGeometry{{0, 0, 0}, {1, 0, 0}}});
+  sim.add_particle({radius + 1e-6, 0, 0}, radius, 0, {-speed, 0, 0});
+  while (sim.velocities()[0].x < 0.0 || sim.positions()[0].x < radius) sim.step();
+  return sim.velocities()[0].x / speed;
+}
+
+/// Settles one sphere on a plane z = 0 under gravity (-g_z) and returns its overlap.
+double resting_overlap(const ContactParameters& contact, double gravity) {
+  SimulationSettings settings;
+  settings.gravity = {0, 0, -gravity};
+  settings.contact = contact;
+  Simulation sim(settings);
+  sim.add_material(material);
+  WallSpec floor{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+  floor.contact.damp = 0.5;
+  sim.add_wall(floor);
+  sim.add_particle({0, 0, radius}, radius);
+  sim.run_until(0.05);
+  return radius - sim.positions()[0].z;
+}
+
+}  // namespace
+
+TEST_CASE("Plasticity: the Walton-Braun spring loads with k1, unloads and reloads with k2 = ratio k1, never pulls",
+          "[dem_core][effects]") {
+  // Direct evaluation of the normal part against F = k1 delta (virgin), F = k2 (delta - delta0),
+  // delta0 = delta_max (1 - k1/k2) below delta_max, F = 0 below delta0 (tolerance 1e-12 relative).
+  const double k1 = 5000.0, ratio = 2.5, k2 = ratio * k1;
+  EffectsNormal normal;
+  normal.unloading_ratio = ratio;
+  ContactGeometry g;
+  g.normal = {1, 0, 0};
+  g.effective_mass = 1e-5;
+  g.effective_radius = 0.5e-3;
+  g.normal_compliance = 1.0 / k1;
+  double h = 0.0;  // the contact's largest overlap, kept by the simulation per contact
+  const double delta_max = 4e-6, delta0 = delta_max * (1.0 - k1 / k2);
+  for (double d : {1e-6, 2e-6, 4e-6}) {
+    g.overlap = d;
+    CHECK(normal.evaluate(g, &h).force == Approx(k1 * d).epsilon(1e-12));
+  }
+  CHECK(h == delta_max);
+  for (double d : {3.5e-6, 3e-6, 2.5e-6}) {  // unloading
+    g.overlap = d;
+    const auto r = normal.evaluate(g, &h);
+    CHECK(r.force == Approx(k2 * (d - delta0)).epsilon(1e-12));
+    CHECK(r.energy == Approx(0.5 * k2 * (d - delta0) * (d - delta0)).epsilon(1e-12));  // recoverable part
+  }
+  g.overlap = 0.5 * delta0;  // below delta0: no force, and in particular no attraction
+  CHECK(normal.evaluate(g, &h).force == 0.0);
+  g.overlap = 3.8e-6;  // reloading stays on the k2 line below delta_max ...
+  CHECK(normal.evaluate(g, &h).force == Approx(k2 * (3.8e-6 - delta0)).epsilon(1e-12));
+  g.overlap = 5e-6;  // ... and continues on the loading line beyond it
+  CHECK(normal.evaluate(g, &h).force == Approx(k1 * 5e-6).epsilon(1e-12));
+  CHECK(h == 5e-6);
+}
+
+TEST_CASE("Plasticity: undamped head-on restitution is 1/sqrt(ratio) for pairs and walls, also with a stiffness exponent",
+          "[dem_core][effects]") {
+  // Energy absorbed on loading (area under k1 delta up to delta_max) vs returned on unloading
+  // (area under k2 (delta - delta0)): e^2 = k1/k2 (Walton & Braun 1986); for the power-law
+  // variant both areas scale as F_max/(n+1) times their spans, ratio again k1/k2. Tolerance 1 %
+  // (time discretisation at factor 0.01).
+  for (double ratio : {1.5, 2.0, 4.0}) {
+    for (double exponent : {1.0, 1.5}) {
+      ContactParameters c;
+      c.unloading_stiffness_ratio = ratio;
+      c.stiffness_exponent = exponent;
+      const double expected = 1.0 / std::sqrt(ratio);
+      INFO("ratio " << ratio << " exponent " << exponent);
+      CHECK(pair_impact(c, 0.2, 0.01).restitution == Approx(expected).epsilon(0.01));
+      CHECK(wall_restitution(c, 0.1, 0.01) == Approx(expected).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("Plasticity: the largest overlap survives neighbour-list rebuilds during a contact", "[dem_core][effects]") {
+  // A skin of 1e-7 m (0.01 % of R) makes the list rebuild about every step of the impact; the
+  // restitution must still be 1/sqrt(ratio) (1 %), as without rebuilds.
+  ContactParameters c;
+  c.unloading_stiffness_ratio = 2.0;
+  CHECK(pair_impact(c, 0.2, 0.01, 1e-7).restitution == Approx(1.0 / std::sqrt(2.0)).epsilon(0.01));
+}
+
+TEST_CASE("Cohesion: a sphere resting on a plane sinks to (m g + F_c)/k_wall with F_c = 1.5 pi gamma R",
+          "[dem_core][effects]") {
+  // Wall contact: R* = R, k_w = NORMK K R. gamma chosen so that F_c = 2 m g. Tolerance 0.2 %.
+  ContactParameters c;
+  const double weight = mass_of(radius) * 9.81;
+  c.surface_energy = 2.0 * weight / (1.5 * std::numbers::pi * radius);
+  const double k_wall = c.normk * material.bulk_modulus * radius;
+  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * radius;
+  CHECK(resting_overlap(c, 9.81) == Approx((weight + f_c) / k_wall).epsilon(0.002));
+}
+
+TEST_CASE("Cohesion: a sphere hangs under a ceiling when F_c > m g and drops off when F_c < m g", "[dem_core][effects]") {
+  // Ceiling plane z = 0 with normal -z, sphere below it, gravity -z. Hanging equilibrium needs
+  // k_w delta = F_c - m g > 0 (overlap (F_c - m g)/k_w, tolerance 0.5 %); otherwise it falls.
+  const double weight = mass_of(radius) * 9.81;
+  const double k_wall = 0.01 * material.bulk_modulus * radius;
+  for (double pull_over_weight : {1.0 / 0.9, 1.0 / 1.1}) {
+    ContactParameters c;
+    const double f_c = pull_over_weight * weight;
+    c.surface_energy = f_c / (1.5 * std::numbers::pi * radius);
+    SimulationSettings settings;
+    settings.contact = c;
+    Simulation sim(settings);
+    sim.add_material(material);
+    WallSpec ceiling{PlaneGeometry{{0, 0, 0}, {0, 0, -1}}};
+    ceiling.contact.damp = 0.5;
+    sim.add_wall(ceiling);
+    sim.add_particle({0, 0, -radius + 0.5 * f_c / k_wall}, radius);  // touching, at rest
+    sim.run_until(0.05);
+    const double overlap = radius + sim.positions()[0].z;
+    INFO("F_c / m g = " << pull_over_weight);
+    if (f_c > weight) CHECK(overlap == Approx((f_c - weight) / k_wall).epsilon(0.005));
+    else CHECK(overlap < -radius);  // fell more than a radius away
+  }
+}
+
+TEST_CASE("Cohesion: a pair separates only above the speed that pays the pull-off work F_c^2/(2 k_n)",
+          "[dem_core][effects]") {
+  // Free pair at its cohesive equilibrium delta_e = F_c/k_n (elastic push = pull-off force,
+  // R* = R/2). Pulling the contact open from delta_e to 0 costs int (F_c - k delta) = F_c^2/(2k),
+  // so the critical relative speed is v_c = F_c/sqrt(k m*) and a faster pair leaves with
+  // sqrt(v^2 - v_c^2) (tolerance 1 %); a slower pair stays in contact (undamped, 10 periods).
+  // The pull-off force drops to zero at zero overlap within one step, a work error of up to
+  // F_c v dt: a small factor 0.001 keeps it below 0.5 % of F_c^2/(2k).
+  ContactParameters c;
+  c.surface_energy = 0.05;
+  const double k = pair_stiffness(c);
+  const double m_star = 0.5 * mass_of(radius);
+  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * 0.5 * radius;
+  const double v_c = f_c / std::sqrt(k * m_star);
+  const double period = 2.0 * std::numbers::pi * std::sqrt(m_star / k);
+  for (double v_over_vc : {0.9, 1.1}) {
+    SimulationSettings settings;
+    settings.gravity = {0, 0, 0};
+    settings.contact = c;
+    settings.time_step_factor = 0.001;
+    Simulation sim(settings);
+    sim.add_material(material);
+    const double gap = radius - 0.5 * f_c / k;  // centres at 2R - delta_e
+    const double v = v_over_vc * v_c;
+    sim.add_particle({-gap, 0, 0}, radius, 0, {-0.5 * v, 0, 0});
+    sim.add_particle({gap, 0, 0}, radius, 0, {0.5 * v, 0, 0});
+    bool separated = false;
+    while (sim.time() < 10.0 * period) {
+      sim.step();
+      separated = separated || sim.positions()[1].x - sim.positions()[0].x > 2.0 * radius;
+    }
+    INFO("v / v_c = " << v_over_vc);
+    if (v_over_vc < 1.0) {
+      CHECK_FALSE(separated);
+    } else {
+      REQUIRE(separated);
+      const double leaving = sim.velocities()[1].x - sim.velocities()[0].x;
+      CHECK(leaving == Approx(std::sqrt(v * v - v_c * v_c)).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("Cohesion presses the surfaces together: a sphere that slides on a tilted plane without it sticks with it",
+          "[dem_core][effects]") {
+  // Gravity tilted by theta against the plane z = 0, wall FRICS mu, particle FRICS 0 (no
+  // rotation, so the sphere can only slide). Coulomb limit mu x repulsive load = mu (m g cos +
+  // F_c): with tan theta = 1.5 mu it slides without cohesion (acceleration g (sin - mu cos),
+  // distance 1/2 a t^2, 2 %) and sticks with F_c = m g cos theta (limit 2 mu m g cos > m g sin).
+  const double mu = 0.3, theta = std::atan(1.5 * mu), g = 9.81, t_end = 0.05;
+  const double weight = mass_of(radius) * g;
+  for (bool cohesive : {false, true}) {
+    SimulationSettings settings;
+    settings.gravity = {g * std::sin(theta), 0, -g * std::cos(theta)};
+    if (cohesive) settings.contact.surface_energy = weight * std::cos(theta) / (1.5 * std::numbers::pi * radius);
+    Simulation sim(settings);
+    sim.add_material(material);
+    WallSpec floor{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+    floor.contact.frics = mu;
+    floor.contact.damp = 0.5;
+    sim.add_wall(floor);
+    const double k_wall = 0.01 * material.bulk_modulus * radius;
+    const double load = weight * std::cos(theta) + (cohesive ? weight * std::cos(theta) : 0.0);
+    sim.add_particle({0, 0, radius - load / k_wall}, radius);  // at its static overlap
+    sim.run_until(t_end);
+    const double travel = sim.positions()[0].x;
+    INFO("cohesion " << cohesive << " travel " << travel);
+    if (cohesive) CHECK(std::fabs(travel) < 1e-3 * radius);
+    else CHECK(travel == Approx(0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t_end * t_end).epsilon(0.02));
+  }
+}
+
+TEST_CASE("Stiffness exponent: a resting sphere sinks to d_ref (m g/(k d_ref))^(1/n) with d_ref = 0.01 R",
+          "[dem_core][effects]") {
+  // Wall contact (R* = R): F = k d_ref (delta/d_ref)^n balances m g. Gravity 500 m/s^2 puts the
+  // overlap well below d_ref, where the exponent matters (linear: m g/k). Tolerance 0.3 %.
+  const double gravity = 500.0;
+  const double k = 0.01 * material.bulk_modulus * radius;
+  const double d_ref = 0.01 * radius;
+  const double load = mass_of(radius) * gravity;
+  for (double n : {1.0, 1.5, 2.0}) {
+    ContactParameters c;
+    c.stiffness_exponent = n;
+    INFO("exponent " << n);
+    CHECK(resting_overlap(c, gravity) == Approx(d_ref * std::pow(load / (k * d_ref), 1.0 / n)).epsilon(0.003));
+  }
+}
+
+TEST_CASE("Stiffness exponent: an elastic impact lasts 2 (delta_max/v) sqrt(pi) Gamma(1+1/p)/Gamma(1/2+1/p), p = n+1",
+          "[dem_core][effects]") {
+  // F = K delta^n with K = k d_ref^(1-n): energy conservation gives delta_max =
+  // (p m* v^2/(2K))^(1/p) and the duration 2 int_0^dmax d delta / v(delta) in closed form (for
+  // n = 1.5 this is Hertz's 2.94 delta_max/v). Restitution 1 (energy conserved): 0.5 %; duration 1 %.
+  for (double n : {1.5, 2.0}) {
+    ContactParameters c;
+    c.stiffness_exponent = n;
+    const double k = pair_stiffness(c);
+    const double d_ref = 0.01 * 0.5 * radius;  // R* = R/2
+    const double big_k = k * std::pow(d_ref, 1.0 - n);
+    const double m_star = 0.5 * mass_of(radius);
+    const double v = 0.2, p = n + 1.0;
+    const double delta_max = std::pow(p * m_star * v * v / (2.0 * big_k), 1.0 / p);
+    const double expected = 2.0 * delta_max / v * std::sqrt(std::numbers::pi) * std::tgamma(1.0 + 1.0 / p) /
+                            std::tgamma(0.5 + 1.0 / p);
+    const Impact impact = pair_impact(c, v, 0.01);
+    INFO("exponent " << n << " delta_max/R " << delta_max / radius);
+    CHECK(impact.restitution == Approx(1.0).epsilon(0.005));
+    CHECK(impact.duration == Approx(expected).epsilon(0.01));
+  }
+}
+
+TEST_CASE("Stiffness exponent and plasticity shrink the automatic step by the tangent stiffness at 5 % overlap, "
+          "and a 5 % overlap impact stays energy-conserving at that step",
+          "[dem_core][effects]") {
+  // Undamped, no rotation: automatic step = 0.15 2 pi / omega_n, omega_n^2 = scale k_n/m*, scale =
+  // ratio n (delta/d_ref)^(n-1) at delta = 5 % of R for a pair (delta/d_ref = 10).
+  const ContactParameters plain;
+  for (const auto& [ratio, n] : {std::pair{1.0, 1.5}, std::pair{2.0, 1.0}, std::pair{2.0, 1.5}}) {
+    ContactParameters c;
+    c.unloading_stiffness_ratio = ratio;
+    c.stiffness_exponent = n;
+    auto step_of = [](const ContactParameters& p) {
+      SimulationSettings s;
+      s.contact = p;
+      Simulation sim(s);
+      sim.add_material(material);
+      sim.add_particle({0, 0, 0}, radius);
+      return sim.time_step();
+    };
+    const double scale = ratio * n * std::pow(10.0, n - 1.0);
+    INFO("ratio " << ratio << " n " << n);
+    CHECK(step_of(c) == Approx(step_of(plain) / std::sqrt(scale)).epsilon(1e-12));
+  }
+  // Impact reaching 5 % of R with n = 1.5 at the default factor 0.15: energy kept within 1 %.
+  ContactParameters c;
+  c.stiffness_exponent = 1.5;
+  const double k = pair_stiffness(c), d_ref = 0.005 * radius, m_star = 0.5 * mass_of(radius);
+  const double delta_max = 0.05 * radius, p = 2.5;
+  const double v = std::sqrt(2.0 * k * std::pow(d_ref, -0.5) * std::pow(delta_max, p) / (p * m_star));
+  CHECK(pair_impact(c, v, 0.15).restitution == Approx(1.0).epsilon(0.01));
+}
+
+TEST_CASE("Effects at their off values give the plain LS-DYNA law's loads", "[dem_core][effects]") {
+  // The simulation never uses the effects law with every effect off (it selects the plain law,
+  // hence bit-identical results); the effects law itself must still agree with it (1e-13).
+  ContactParameters p;
+  p.ndamp = 0.3; p.tdamp = 0.2; p.frics = 0.4; p.fricr = 0.1; p.sheark = 0.3;
+  CHECK_FALSE(p.effects_enabled());
+  const LsDynaLinearLaw plain = make_linear_pair_law(p);
+  const LsDynaEffectsLaw effects = make_effects_pair_law(p);
+  ContactGeometry g;
+  g.normal = normalized(Vec3{1, 2, 2});
+  g.overlap = 3e-6;
+  g.contact_velocity = {0.01, -0.02, 0.005};
+  g.relative_angular_velocity = {1.0, 0.0, -2.0};
+  g.effective_mass = 5e-6;
+  g.effective_radius = 0.5e-3;
+  g.normal_compliance = 2e-4;
+  g.inverse_inertia_sum = 1e9;
+  ContactHistory h1, h2;
+  double max_overlap = 0.0;
+  for (int step = 0; step < 5; ++step) {
+    const ContactForce a = plain.force(g, h1, 1e-6);
+    const ContactForce b = effects.force(g, h2, 1e-6, &max_overlap);
+    CHECK(norm(a.force - b.force) <= 1e-13 * norm(a.force));
+    CHECK(norm(a.rolling_torque - b.rolling_torque) <= 1e-13 * norm(a.rolling_torque));
+    CHECK(b.elastic_energy == Approx(a.elastic_energy).epsilon(1e-13));
+    g.overlap += 1e-7;
+  }
+}
+
+TEST_CASE("Polydispersity: radii uniform in [R(1-s), R(1+s)], mean volume R^3 (1+s^2), solid volume kept",
+          "[dem_core][effects]") {
+  // Statistical tolerances: 4 standard errors of the sample means (u uniform in [-1, 1]:
+  // var(1+su) = s^2/3; var((1+su)^3) <= max|f'|^2 E[u^2] = 3 s^2 (1+s)^4); the solid volume
+  // overshoots its target by less than one sphere.
+  const double r = 1.0e-3, s = 0.25;
+  PackingRequest q;
+  q.region = BoxRegion{{0, 0, 0}, {0.04, 0.04, 0.04}};
+  q.radius_min = q.radius_max = r;
+  q.radius_spread = s;
+  q.solid_volume = 1500 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  q.seed = 5;
+  const Packing packing = generate_packing(q);
+  const auto n = static_cast<double>(packing.radii.size());
+  double sum = 0.0, sum3 = 0.0, volume = 0.0, lo = 1.0, hi = 0.0;
+  for (double x : packing.radii) {
+    sum += x / r;
+    sum3 += std::pow(x / r, 3);
+    volume += 4.0 / 3.0 * std::numbers::pi * x * x * x;
+    lo = std::min(lo, x / r);
+    hi = std::max(hi, x / r);
+  }
+  CHECK(lo >= 1.0 - s);
+  CHECK(hi <= 1.0 + s);
+  CHECK(hi - lo > 1.8 * s);  // the whole range is used
+  CHECK(sum / n == Approx(1.0).margin(4.0 * s / std::sqrt(3.0 * n)));
+  // E[(1+su)^3] = 1 + s^2 (odd moments of u vanish).
+  CHECK(sum3 / n == Approx(mean_volume_factor(s)).margin(4.0 * std::sqrt(3.0) * s * std::pow(1.0 + s, 2) / std::sqrt(n)));
+  CHECK(volume >= q.solid_volume);
+  CHECK(volume - q.solid_volume < 4.0 / 3.0 * std::numbers::pi * std::pow(r * (1 + s), 3));
+  CHECK(n < 1500.0);  // larger mean volume: fewer spheres for the same solid volume
+  // No overlaps (the lattice spacing follows the largest radius).
+  double worst = 1.0;
+  for (std::size_t i = 0; i < packing.radii.size(); ++i)
+    for (std::size_t j = i + 1; j < packing.radii.size(); ++j)
+      worst = std::min(worst, norm(packing.centers[j] - packing.centers[i]) / (packing.radii[i] + packing.radii[j]));
+  CHECK(worst >= 1.0);
+  // Seeded: the same request gives the same packing.
+  const Packing again = generate_packing(q);
+  CHECK(std::memcmp(again.radii.data(), packing.radii.data(), packing.radii.size() * sizeof(double)) == 0);
+  q.radius_max = 1.1e-3;
+  CHECK_THROWS_AS(generate_packing(q), std::runtime_error);  // the spread needs one nominal radius
+}
+
+TEST_CASE("Runs with every effect on are bit-identical between 1 and 2 threads", "[dem_core][effects]") {
+  // The plastic memory (largest overlap) is carried across list rebuilds like the tangential one.
+  auto run = [](int threads) {
+    SimulationSettings settings;
+    settings.threads = threads;
+    settings.gravity = {0, 0, -200.0};  // strong, so that the bed compacts within few steps
+    settings.contact = {0.01, 2.0 / 7.0, 0.3, 0.3, 0.4, 0.3, 0.0, 0.05, 1.0};
+    settings.contact.unloading_stiffness_ratio = 2.0;
+    settings.contact.surface_energy = 0.02;
+    settings.contact.stiffness_exponent = 1.5;
+    Simulation sim(settings);
+    sim.add_material(material);
+    const double half = 0.008;
+    for (const Vec3& n : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}, Vec3{0, 0, 1}}) {
+      WallSpec w{PlaneGeometry{-half * n, n}};
+      w.contact = {0.4, 0.05, 0.3, 1.0};
+      sim.add_wall(w);
+    }
+    PackingRequest request;
+    request.region = BoxRegion{{-half, -half, -half}, {half, half, 3 * half}};
+    request.radius_min = request.radius_max = 0.8e-3;
+    request.radius_spread = 0.2;
+    request.count = 150;
+    request.seed = 3;
+    request.gap = 0.05;
+    add_packing(sim, generate_packing(request));
+    sim.run_steps(2000);
+    std::vector<Vec3> state(sim.positions().begin(), sim.positions().end());
+    state.insert(state.end(), sim.velocities().begin(), sim.velocities().end());
+    state.push_back({sim.wall_force(4).z, sim.elastic_energy(), static_cast<double>(sim.contact_count())});
+    return state;
+  };
+  const std::vector<Vec3> one = run(1), two = run(2);
+  CHECK(one.back().z > 0.0);  // contacts happened
+  REQUIRE(one.size() == two.size());
+  CHECK(std::memcmp(one.data(), two.data(), one.size() * sizeof(Vec3)) == 0);
+}
+
+TEST_CASE("Effect parameters out of range are refused with the field's name", "[dem_core][effects]") {
+  auto message = [](ContactParameters c, ContactLawKind law = ContactLawKind::lsdyna_linear) -> std::string {
+    try {
+      SimulationSettings s;
+      s.contact = c;
+      s.law = law;
+      Simulation sim(s);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  ContactParameters c;
+  c.unloading_stiffness_ratio = 0.9;
+  CHECK(message(c).find("unloading_stiffness_ratio") != std::string::npos);
+  c = {};
+  c.surface_energy = -1.0;
+  CHECK(message(c).find("surface_energy") != std::string::npos);
+  c = {};
+  c.stiffness_exponent = 2.5;
+  CHECK(message(c).find("stiffness_exponent") != std::string::npos);
+  c = {};
+  c.surface_energy = 0.1;
+  CHECK(message(c, ContactLawKind::hertz_mindlin).find("lsdyna_linear") != std::string::npos);
+  CHECK(message(ContactParameters{}, ContactLawKind::hertz_mindlin).empty());
+}
