@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "atomic_file.hpp"
@@ -33,6 +34,25 @@ std::string shorten_exponent(std::string text) {
   }
   while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
   return mantissa + "e" + sign + exponent;
+}
+
+// demfit effect parameters (issue #6) with the value at which each effect is off. LS-DYNA's DES
+// contact has no equivalent of these (its CAP liquid bridge is a different cohesion model), so a
+// study that identified one gets a warning comment instead of a silently dropped value.
+const std::vector<std::pair<std::string, double>> kEffectsWithoutLsDynaField = {
+    {"unloading_stiffness_ratio", 1.0}, {"surface_energy", 0.0}, {"stiffness_exponent", 1.0}, {"radius_spread", 0.0}};
+
+std::string effect_warnings(const ParameterSet& given) {
+  std::string text;
+  for (const auto& [name, off_value] : kEffectsWithoutLsDynaField) {
+    const auto it = given.find(name);
+    if (it == given.end() || it->second == off_value) continue;
+    char line[160];
+    std::snprintf(line, sizeof line, "$ WARNING: %s = %.6g has no LS-DYNA DES field; not exported (off value %g)\n",
+                  name.c_str(), it->second, off_value);
+    text += line;
+  }
+  return text;
 }
 
 std::string blank() { return std::string(kField, ' '); }
@@ -95,6 +115,7 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& t
   std::ostringstream out;
   out << "*KEYWORD\n$ demfit export: " << title << "\n"
       << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
+      << effect_warnings(parameters)
       << "*CONTROL_DISCRETE_ELEMENT\n"
       << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
       << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),

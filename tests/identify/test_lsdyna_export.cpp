@@ -66,3 +66,11 @@ TEST_CASE("Exported values sit in the manual's columns of each card", "[identify
   CHECK(column(control[2], 31) == Approx(0.25).epsilon(1e-9));
   CHECK(column(coupling[1], 21) == Approx(0.101806949).epsilon(1e-6));
 }
+
+TEST_CASE("An identified effect without an LS-DYNA field is named in a warning comment, not dropped silently", "[identify][export]") {
+  const std::string with_effect = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 2.5}}, "plastic");
+  CHECK(with_effect.find("$ WARNING: unloading_stiffness_ratio = 2.5 has no LS-DYNA DES field") != std::string::npos);
+  const std::string effect_off = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 1.0}}, "elastic");
+  CHECK(effect_off.find("WARNING") == std::string::npos);
+  CHECK(parse_lsdyna_keywords(with_effect).at("normk") == Approx(0.5));
+}
