@@ -2,7 +2,8 @@
 """Baselines for bench_rbf_surrogate: scipy differential evolution, scipy Nelder-Mead and a
 scikit-learn Gaussian-process expected-improvement loop, on the same problems, targets and budgets
 as the C++ bench. Prints one line per run:  RESULT <method> <problem> <seed> <evaluations|-1>
-(-1: target not reached within the budget). Needs python3-scipy and python3-sklearn
+(-1: target not reached within the budget).
+Usage: baselines.py [seeds] [method,method,...] [problem,problem,...]. Needs python3-scipy and python3-sklearn
 (scripts/setup --bench); prints "SKIPPED <reason>" and exits 0 when they are missing."""
 import math
 import sys
@@ -88,11 +89,11 @@ def run_nm(c, bounds, seed):
         minimize(c, x0, method="Nelder-Mead", bounds=bounds, options={"xatol": 1e-8, "fatol": 1e-10})
 
 
-def run_gp_ei(c, bounds, seed):
+def run_gp_ei(c, bounds, seed, initial=None):
     d = len(bounds)
     lo, hi = np.array(bounds, float).T
     rng = np.random.default_rng(seed)
-    u = qmc.LatinHypercube(d=d, seed=seed).random(2 * (d + 1))
+    u = qmc.LatinHypercube(d=d, seed=seed).random(initial or 2 * (d + 1))
     xs = [list(lo + ui * (hi - lo)) for ui in u]
     ys = [c(x) for x in xs]
     kernel = ConstantKernel(1.0) * Matern(length_scale=[0.2] * d, nu=2.5) + WhiteKernel(1e-6, (1e-10, 1e-1))
@@ -127,18 +128,29 @@ def run_gp_ei(c, bounds, seed):
         ys.append(c(x))
 
 
-METHODS = {"scipy_de": run_de, "scipy_nelder_mead": run_nm, "sklearn_gp_ei": run_gp_ei}
+def run_gp_ei_small_design(c, bounds, seed):
+    """The same GP-EI loop started from d+1 points (demfit_ei's default design size), to check that
+    demfit_ei's lead is not only its smaller initial design."""
+    run_gp_ei(c, bounds, seed, initial=len(bounds) + 1)
+
+
+METHODS = {"scipy_de": run_de, "scipy_nelder_mead": run_nm, "sklearn_gp_ei": run_gp_ei,
+           "sklearn_gp_ei_d1": run_gp_ei_small_design}
+DEFAULT_METHODS = ["scipy_de", "scipy_nelder_mead", "sklearn_gp_ei"]
 
 
 def main():
     seeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    methods = sys.argv[2].split(",") if len(sys.argv) > 2 else list(METHODS)
+    methods = sys.argv[2].split(",") if len(sys.argv) > 2 else DEFAULT_METHODS
+    problems = sys.argv[3].split(",") if len(sys.argv) > 3 else list(PROBLEMS)
     for method in methods:
         for name, (f, bounds, target, budget, noisy) in PROBLEMS.items():
+            if name not in problems:
+                continue
             for seed in range(1, seeds + 1):
                 # Cheap direct-search baselines get 20x the budget so that the evaluations they need
                 # can be measured at all; the GP loop gets the surrogate methods' budget.
-                limit = budget if method == "sklearn_gp_ei" else 20 * budget
+                limit = budget if method.startswith("sklearn_gp_ei") else 20 * budget
                 c = Counter(f, target, limit, noisy, 1000 + seed)
                 try:
                     METHODS[method](c, bounds, seed)

@@ -1,7 +1,9 @@
 #pragma once
-// A small surrogate-based minimisation driver: design -> fit -> optimise -> infill, with either
-// SRSM domain reduction (LS-OPT-like) or adaptive (stochastic-RBF) infill. Used by tests and bench;
-// identify/ runs its own loop with the same building blocks.
+// A small surrogate-based minimisation driver: design -> fit -> optimise -> infill, with SRSM
+// domain reduction (LS-OPT-like), adaptive (stochastic-RBF) infill or kriging expected improvement.
+// Used by tests and bench; identify/ runs its own loop with the same building blocks.
+#include "demfit/rbf_surrogate/expected_improvement.hpp"
+#include "demfit/rbf_surrogate/kriging.hpp"
 #include "demfit/rbf_surrogate/optimize.hpp"
 #include "demfit/rbf_surrogate/rbf_network.hpp"
 #include "demfit/rbf_surrogate/srsm.hpp"
@@ -12,12 +14,21 @@
 
 namespace demfit::rbf_surrogate {
 
-enum class InfillStrategy { srsm, adaptive };
+// srsm: LS-OPT-like domain reduction; adaptive: stochastic-RBF candidates (Regis & Shoemaker 2007);
+// expected_improvement: one point per iteration maximising the kriging expected improvement, with
+// model selection, output warping and basin exclusion (README; expected_improvement.hpp) — the
+// fewest evaluations on every bench_rbf_surrogate problem.
+enum class InfillStrategy { srsm, adaptive, expected_improvement };
+
+// Transform of the values before the kriging fit (expected_improvement strategy): none, log
+// (w = log(y − min y + δ), δ = 10 % of median − min) or automatic (the one with the larger
+// likelihood of the raw values, Jacobian included; chosen again at every fit).
+enum class OutputWarp { none, log, automatic };
 
 struct ExpensiveOptions {
     InfillStrategy strategy = InfillStrategy::srsm;
     int max_evaluations = 100;
-    int initial_points = 0;          // 0: 2(n+1)
+    int initial_points = 0;          // 0: 2(n+1); expected_improvement n+1
     int points_per_iteration = 0;    // 0: srsm 1.5(n+1)+1 rounded up (SPEC 3), adaptive 1
     std::uint64_t seed = 1;
     RbfOptions rbf;
@@ -30,6 +41,22 @@ struct ExpensiveOptions {
     // SRSM strategy: centre the next subregion on the best point run so far (the predicted optimum
     // when it is the best, which is the usual case); false = always the predicted optimum (LS-OPT).
     bool recentre_on_best = true;
+    // expected_improvement strategy. The nugget is estimated when kriging.estimate_noise or
+    // rbf.smoothing is set (noisy values); the incumbent is then the lowest predicted mean at a run point.
+    KrigingOptions kriging;
+    AcquisitionOptions acquisition;
+    // Every exploit_every-th point is the minimiser of the kriging mean instead of the EI maximiser
+    // (pure exploitation); 0: EI only (k = 2, 3, 4 measured no better on Hartmann-6).
+    int exploit_every = 0;
+    OutputWarp output_warp = OutputWarp::automatic;
+    // Fit both kriging kernels (Matérn-5/2 and Gaussian) and use the more likely one at each fit.
+    bool select_kernel = true;
+    // After stall_evaluations points without a 0.1 % improvement the incumbent's basin (a ball of
+    // radius stall_exclusion_radius·√n, unit coordinates) is excluded and EI continues on the rest of
+    // the domain against the best value found there; a basin there that stalls is excluded too.
+    // The exclusions are dropped after 7 stall lengths without improvement. 0: never.
+    int stall_evaluations = 12;
+    double stall_exclusion_radius = 0.35;
 };
 
 struct ExpensiveResult {
