@@ -7,6 +7,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/model_factory.hpp"
 #include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/diagnose/effect.hpp"
@@ -29,10 +31,54 @@ struct DiagnoseCliOptions {
   bool no_plots = false;
 };
 
+// The case kind ("pellet_compression" / "rotary_drum") of a DEM study: a built-in name, or the
+// "case" field of the case file (after the study's overrides).
+std::string case_kind(const identify::StudySpec& spec) {
+  if (spec.model_reference == "pellet_compression" || spec.model_reference == "rotary_drum") return spec.model_reference;
+  std::filesystem::path path(spec.model_reference);
+  if (path.is_relative()) path = spec.base_dir / path;
+  nlohmann::json document = cases::read_case_json(path.string());
+  if (spec.model_overrides.is_object()) document.merge_patch(spec.model_overrides);
+  if (!document.contains("case") || !document["case"].is_string())
+    throw std::runtime_error("case file '" + path.string() + "': field 'case' is missing; set it to \"pellet_compression\" or \"rotary_drum\"");
+  return document["case"].get<std::string>();
+}
+
+// The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
+// to the study's case. An effect is left out, with a note, when one of its parameters is a study
+// variable or already differs from its off value in the model (the effect is then part of the
+// base model, not a candidate).
+std::vector<diagnose::EffectCandidate> dem_candidates(const identify::StudySpec& spec, const identify::Model& model) {
+  identify::ParameterSet values = model.default_parameters();
+  for (const auto& [name, value] : spec.fixed_parameters) values[name] = value;
+  std::vector<diagnose::EffectCandidate> out;
+  for (const auto& effect : cases::effects_for_case(case_kind(spec))) {
+    diagnose::EffectCandidate c{effect.name, effect.description, {}, effect.curves};
+    std::string reason;
+    for (const auto& p : effect.parameters) {
+      c.parameters.push_back({p.name, p.lower, p.upper, p.off_value});
+      for (const auto& v : spec.variables)
+        if (v.name == p.name) reason = "'" + p.name + "' is a study variable";
+      const auto found = values.find(p.name);
+      if (reason.empty() && found != values.end() && found->second != p.off_value)
+        reason = "the model already has " + p.name + " = " + std::to_string(found->second) + " (off: " +
+                 std::to_string(p.off_value) + ")";
+    }
+    if (reason.empty()) {
+      out.push_back(std::move(c));
+    } else {
+      std::fprintf(stderr, "demfit: note: effect '%s' is not a candidate: %s\n", effect.name.c_str(), reason.c_str());
+    }
+  }
+  return out;
+}
+
 // The model and its candidate effects. "analytic" gets the analytic family with effect terms
-// (same base curve as identify's analytic model); DEM cases have no candidates yet.
+// (same base curve as identify's analytic model); DEM cases get the cases catalogue's effects
+// and the options for expensive, chaotic models.
 std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
-                                                      std::vector<diagnose::EffectCandidate>& candidates) {
+                                                      std::vector<diagnose::EffectCandidate>& candidates, bool& dem) {
+  dem = false;
   if (spec.model_reference == "analytic") {
     int points = 41;
     for (const auto& [key, value] : spec.model_overrides.items()) {
@@ -44,10 +90,10 @@ std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec&
     candidates = diagnose::analytic_effect_candidates();
     return std::make_unique<diagnose::AnalyticEffectsModel>(points);
   }
-  candidates.clear();
-  std::fprintf(stderr, "demfit: warning: no candidate effects are defined yet for model '%s' (DEM effects come "
-               "later); only the residual analysis is done\n", spec.model_reference.c_str());
-  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  dem = true;
+  auto model = cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  candidates = dem_candidates(spec, *model);
+  return model;
 }
 
 void run_diagnose(const DiagnoseCliOptions& o) {
@@ -57,9 +103,10 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
   const identify::StudySpec spec = identify::load_study_file(o.study_file);
   std::vector<diagnose::EffectCandidate> candidates;
-  const auto model = model_and_candidates(spec, candidates);
+  bool dem = false;
+  const auto model = model_and_candidates(spec, candidates, dem);
   if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
-  diagnose::DiagnoseOptions options;
+  diagnose::DiagnoseOptions options = dem ? diagnose::expensive_model_options() : diagnose::DiagnoseOptions{};
   options.noise_sigma = o.noise;
   options.alpha = o.alpha;
   options.bic_threshold = o.bic_threshold;
@@ -87,11 +134,13 @@ void register_diagnose(CLI::App& app) {
       "residual is noise (runs, lag-1 autocorrelation, variance vs the noise level, smooth-structure projection) "
       "and, if not, screen candidate effects by a score test, re-fit the best few and name one only if BIC improves "
       "by more than the threshold AND the residual becomes noise (tests at 5 %); otherwise report an unexplained "
-      "or ambiguous residual. See docs/diagnose.md. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates exist "
-      "for the \"analytic\" model (toe_shift, stiffening, yield_drop); DEM effects come later. Targets must use "
-      "metric \"mse\".");
+      "or ambiguous residual. See docs/diagnose.md. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates: "
+      "for pellet_compression / rotary_drum studies the effects of the cases catalogue that apply to the case (plasticity, "
+      "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is left "
+      "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of each "
+      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch).");
   cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all for the model)");
+  cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all that apply to the model or case)");
   cmd->add_option("--noise", o->noise,
                   "Noise standard deviation of the target y values, in the targets' y units (default: estimated "
                   "from successive differences of each target)");

@@ -117,7 +117,10 @@ nlohmann::json to_json(const Diagnosis& d) {
           {"base", {{"parameters", d.base.parameters}, {"chi_square", d.base.chi_square}, {"bic", d.base_bic},
                     {"aicc", d.base_aicc}, {"evaluations", d.base.evaluations},
                     {"residual", analysis_json(d.base_analysis)}}},
-          {"screening", screening}, {"refits", refits}, {"notes", d.notes}};
+          {"screening", screening}, {"refits", refits}, {"notes", d.notes},
+          {"cost", {{"evaluations", d.evaluations}, {"base_evaluations", d.base_evaluations},
+                    {"screening_evaluations", d.screening_evaluations}, {"refit_evaluations", d.refit_evaluations},
+                    {"wall_seconds", d.wall_seconds}}}};
 }
 
 std::string markdown_report(const Diagnosis& d) {
@@ -169,6 +172,8 @@ std::string markdown_report(const Diagnosis& d) {
     for (const auto& r : d.refits) md << format(" | %.6g", r.fit.parameters.at(name));
     md << " |\n";
   }
+  md << format("\n## Cost\n\n%d model evaluations (base fit %d, screening %d, re-fits %d), wall time %.1f s.\n",
+               d.evaluations, d.base_evaluations, d.screening_evaluations, d.refit_evaluations, d.wall_seconds);
   if (!d.notes.empty()) {
     md << "\n## Notes\n\n";
     for (const auto& n : d.notes) md << "- " << n << "\n";

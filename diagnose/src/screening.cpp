@@ -21,18 +21,21 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
                                               const std::vector<FitVariable>& variables,
                                               const std::vector<FitTarget>& targets,
                                               const std::vector<EffectCandidate>& candidates, double step,
-                                              const FitOptions& options) {
+                                              const FitOptions& options, int* evaluations) {
   const Eigen::VectorXd& r = base.residual;
-  // One batch: base-variable perturbations (for the projection), then every effect parameter.
+  const bool reuse = base.jacobian.rows() == r.size() && base.jacobian.cols() == static_cast<Eigen::Index>(variables.size());
+  // One batch: base-variable perturbations (for the projection, unless the fit's Jacobian is
+  // reused), then every effect parameter.
   std::vector<identify::ParameterSet> sets;
   std::vector<double> steps;
-  for (const auto& v : variables) {
-    identify::ParameterSet p = base.parameters;
-    const double h = step_inside(p.at(v.name), v.lower, v.upper, options.fd_step);
-    p[v.name] += h;
-    sets.push_back(p);
-    steps.push_back(h);
-  }
+  if (!reuse)
+    for (const auto& v : variables) {
+      identify::ParameterSet p = base.parameters;
+      const double h = step_inside(p.at(v.name), v.lower, v.upper, options.fd_step);
+      p[v.name] += h;
+      sets.push_back(p);
+      steps.push_back(h);
+    }
   for (const auto& c : candidates)
     for (const auto& e : c.parameters) {
       identify::ParameterSet p = base.parameters;
@@ -42,6 +45,7 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
       steps.push_back(h);
     }
   const auto rs = residuals_at(model, sets, targets, options);
+  if (evaluations) *evaluations = static_cast<int>(sets.size());
   // Only base variables free at the optimum can absorb a change: one held at a bound cannot move
   // outwards, and the residual is not orthogonal to its column, so it is left out of the span.
   std::vector<Eigen::VectorXd> free_columns;
@@ -49,14 +53,18 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
     const auto& v = variables[j];
     const double value = base.parameters.at(v.name), margin = 1e-6 * (v.upper - v.lower);
     const bool at_bound = value <= v.lower + margin || value >= v.upper - margin;
-    if (!at_bound && rs[j].size() == r.size()) free_columns.push_back((rs[j] - r) / steps[j]);
+    if (at_bound) continue;
+    if (reuse) free_columns.push_back(base.jacobian.col(static_cast<Eigen::Index>(j)));
+    else if (rs[j].size() == r.size()) free_columns.push_back((rs[j] - r) / steps[j]);
   }
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(r.size(), static_cast<Eigen::Index>(free_columns.size()));
   for (std::size_t j = 0; j < free_columns.size(); ++j) J.col(static_cast<Eigen::Index>(j)) = free_columns[j];
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> base_span(J);
+  // (Eigen's decompositions do not accept a matrix without columns: every variable at a bound.)
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> base_span;
+  if (!free_columns.empty()) base_span.compute(J);
 
   std::vector<ScreeningScore> scores;
-  std::size_t k = variables.size();
+  std::size_t k = reuse ? 0 : variables.size();
   for (const auto& c : candidates) {
     ScreeningScore s;
     s.effect = c.name;
@@ -66,6 +74,7 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
       if (rs[k].size() != r.size()) { s.evaluated = false; S.col(j).setZero(); continue; }
       S.col(j) = (rs[k] - r) / steps[k];
     }
+    s.sensitivity = S;
     // What the base variables can already absorb is no evidence for the effect: project it out.
     const Eigen::MatrixXd S_perp = free_columns.empty() ? S : Eigen::MatrixXd(S - J * base_span.solve(S));
     const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> effect_span(S_perp);

@@ -2,6 +2,7 @@
 #include "demfit/diagnose/workflow.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -18,6 +19,20 @@ const char* verdict_text(Verdict verdict) {
     case Verdict::ambiguous: return "ambiguous: several effects explain the residual";
   }
   return "?";
+}
+
+DiagnoseOptions expensive_model_options() {
+  DiagnoseOptions o;
+  o.base_starts = 1;
+  o.refit_starts = 1;
+  o.screen_step = 0.2;
+  o.fit.fd_step = 0.02;
+  o.fit.central_differences = true;
+  o.fit.broyden = true;
+  o.fit.absolute_tolerance = 0.1;
+  o.fit.relative_tolerance = 1e-5;
+  o.fit.max_evaluations = 60;
+  return o;
 }
 
 double bic(double chi_square, int parameters, int points) { return chi_square + parameters * std::log(points); }
@@ -149,15 +164,25 @@ struct FitContext {
   double dof_noise = 0.0;
 };
 
-// Base fit: several starts (study initial values, then v_lo + (v_hi - v_lo) i / starts): a base
-// fit caught in a local minimum would look like a structural residual.
-FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets) {
+// Base fit from the study's initial values. A fit that ends with a variable on a bound may sit in
+// a corner minimum of the box (a long first step can land there), and a base fit caught in a local
+// minimum would look like a structural residual: then further starts follow,
+// v_lo + (v_hi - v_lo) i / base_starts, and the best is kept.
+FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets,
+                   int& evaluations) {
   FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, c.options.fit);
-  for (int start = 1; start < c.options.base_starts; ++start) {
+  evaluations += best.evaluations;
+  bool on_bound = false;
+  for (std::size_t j = 0; j < variables.size(); ++j) {
+    const double margin = 1e-6 * (variables[j].upper - variables[j].lower);
+    on_bound = on_bound || best.values[j] <= variables[j].lower + margin || best.values[j] >= variables[j].upper - margin;
+  }
+  for (int start = 1; start < c.options.base_starts && on_bound; ++start) {
     std::vector<FitVariable> vars = variables;
     for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / c.options.base_starts;
     try {
       FitResult trial = fit_least_squares(c.model, c.fixed, vars, targets, c.options.fit);
+      evaluations += trial.evaluations;
       if (trial.chi_square < best.chi_square) best = std::move(trial);
     } catch (const std::exception&) {
       // The study's start point worked; an unevaluable extra start is simply skipped.
@@ -166,13 +191,39 @@ FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variable
   return best;
 }
 
-// Re-identifies base variables + one effect's parameters. Several starts (the augmented problem
-// can have local minima, e.g. a toe shift traded against a lower rate): base optimum + linearised
-// effect estimate, study initial values + that estimate, study initial values + mid-range effect.
+// Residual tests and information criteria of a re-fit; true when it passes the criterion.
+bool assess(const FitContext& c, const Diagnosis& d, int k, CandidateFit& f) {
+  f.analysis = analyse(f.fit, d.targets, k, c.dof_noise, c.options.alpha_named);
+  f.bic = bic(f.fit.chi_square, k, c.points);
+  f.aicc = aicc(f.fit.chi_square, k, c.points);
+  f.delta_bic = d.base_bic - f.bic;
+  f.delta_aicc = d.base_aicc - f.aicc;
+  // 4. Name an effect only if the criterion favours it AND its residual is noise.
+  f.passes = f.delta_bic > c.options.bic_threshold && !f.analysis.structural;
+  return f.passes;
+}
+
+// Re-identifies base variables + one effect's parameters. Start 0: the base optimum with the
+// score test's linearised estimate, its Jacobian assembled from the base fit's and the screening
+// sensitivities (no finite differences). The augmented problem can have local minima (e.g. a toe
+// shift traded against a lower rate), so if that start does not pass the criterion, further
+// starts follow: study initial values + the estimate, study initial values + mid-range effect.
 // The lowest chi-square wins. Returns false if every start failed.
 bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
                      CandidateFit& f) {
   f.effect = effect.name;
+  const int k = static_cast<int>(d.base_variables.size() + effect.parameters.size());
+  const Eigen::Index rows = d.base.residual.size();
+  // Seed Jacobian in normalised coordinates (d r / d u = d r / d value * range).
+  Eigen::MatrixXd seed;
+  if (d.base.jacobian.rows() == rows && score.sensitivity.rows() == rows &&
+      score.sensitivity.cols() == static_cast<Eigen::Index>(effect.parameters.size())) {
+    seed.resize(rows, k);
+    seed.leftCols(d.base.jacobian.cols()) = d.base.jacobian;
+    for (std::size_t j = 0; j < effect.parameters.size(); ++j)
+      seed.col(d.base.jacobian.cols() + static_cast<Eigen::Index>(j)) =
+          score.sensitivity.col(static_cast<Eigen::Index>(j)) * (effect.parameters[j].upper - effect.parameters[j].lower);
+  }
   bool fitted = false;
   for (int start = 0; start < std::max(1, c.options.refit_starts); ++start) {
     std::vector<FitVariable> vars = d.base_variables;
@@ -187,23 +238,17 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
       fixed.erase(p.name);
     }
     try {
-      FitResult trial = fit_least_squares(c.model, fixed, vars, d.targets, c.options.fit);
+      FitResult trial = fit_least_squares(c.model, fixed, vars, d.targets, c.options.fit,
+                                          start == 0 && seed.size() > 0 ? &seed : nullptr);
+      d.refit_evaluations += trial.evaluations;
       if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
       fitted = true;
     } catch (const std::exception& e) {
       d.notes.push_back("effect '" + effect.name + "': a re-identification start failed (" + e.what() + ")");
     }
+    if (fitted && assess(c, d, k, f)) break;  // passes: further starts cannot change the verdict
   }
-  if (!fitted) return false;
-  const int k = static_cast<int>(d.base_variables.size() + effect.parameters.size());
-  f.analysis = analyse(f.fit, d.targets, k, c.dof_noise, c.options.alpha_named);
-  f.bic = bic(f.fit.chi_square, k, c.points);
-  f.aicc = aicc(f.fit.chi_square, k, c.points);
-  f.delta_bic = d.base_bic - f.bic;
-  f.delta_aicc = d.base_aicc - f.aicc;
-  // 4. Name an effect only if the criterion favours it AND its residual is noise.
-  f.passes = f.delta_bic > c.options.bic_threshold && !f.analysis.structural;
-  return true;
+  return fitted;
 }
 
 // 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
@@ -229,6 +274,7 @@ void decide(Diagnosis& d, double bic_threshold) {
 
 Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model& model,
                         const std::vector<EffectCandidate>& candidates, const DiagnoseOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
   validate_candidates(candidates);
   check_model_accepts(model, candidates);
   Diagnosis d;
@@ -253,16 +299,22 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   const int k_base = static_cast<int>(d.base_variables.size());
 
   // 1-2. Base fit and its residual tests.
-  d.base = fit_base(context, d.base_variables, d.targets);
+  d.base = fit_base(context, d.base_variables, d.targets, d.base_evaluations);
   d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
   d.base_bic = bic(d.base.chi_square, k_base, context.points);
   d.base_aicc = aicc(d.base.chi_square, k_base, context.points);
 
   // 3. Screening (always: it is cheap and the report shows it).
-  d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step, options.fit);
+  d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step, options.fit,
+                                  &d.screening_evaluations);
+  auto finish = [&] {
+    d.summary = summarise(d);
+    d.evaluations = d.base_evaluations + d.screening_evaluations + d.refit_evaluations;
+    d.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
   if (!d.base_analysis.structural) {
     d.verdict = Verdict::no_missing_effect;
-    d.summary = summarise(d);
+    finish();
     return d;
   }
   std::vector<int> order(candidates.size());
@@ -275,7 +327,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
     if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f)) d.refits.push_back(std::move(f));
   }
   decide(d, options.bic_threshold);
-  d.summary = summarise(d);
+  finish();
   return d;
 }
 

@@ -21,15 +21,19 @@ struct ScreeningScore {
   double fraction_explained = 0.0;  // score / |r|^2: share of the residual sum of squares
   std::vector<double> start;        // linearised estimate of the effect parameters (clamped)
   bool evaluated = true;            // false if a perturbed evaluation failed
+  // d residual / d effect parameter (model units) at the base optimum, one column per parameter,
+  // before projection: seeds the Jacobian of the candidate's re-fit.
+  Eigen::MatrixXd sensitivity;
 };
 
 // `base` is the base fit (normalised residual, parameters); `variables` the base fit variables.
-// Returns one score per candidate, in candidate order. `step` = perturbation, fraction of each
+// The base variables' sensitivities come from base.jacobian when it fits (no evaluation), else
+// from one forward difference each. Returns one score per candidate, in candidate order. `step` = perturbation, fraction of each
 // effect parameter's range, away from its off value.
 std::vector<ScreeningScore> screen_candidates(const identify::Model& model, const FitResult& base,
                                               const std::vector<FitVariable>& variables,
                                               const std::vector<FitTarget>& targets,
                                               const std::vector<EffectCandidate>& candidates, double step,
-                                              const FitOptions& options);
+                                              const FitOptions& options, int* evaluations = nullptr);
 
 }  // namespace demfit::diagnose

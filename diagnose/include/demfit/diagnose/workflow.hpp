@@ -22,12 +22,27 @@ struct DiagnoseOptions {
   // candidate that only half-explains an effect outside the list is not named (docs/diagnose.md).
   double alpha_named = 0.05;
   double bic_threshold = 10.0;   // name an effect only if BIC(base) - BIC(augmented) exceeds this
-  int base_starts = 2;           // base fits: study initial values, then v_lo + (v_hi - v_lo) i / base_starts
+  // Base fits: study initial values, then (only if that fit ends on a bound of some variable)
+  // v_lo + (v_hi - v_lo) i / base_starts, i = 1 .. base_starts - 1.
+  int base_starts = 2;
   int refit_best = 2;            // candidates re-identified after screening
-  int refit_starts = 3;          // local fits per re-identified candidate (1..3), best kept
+  // Local fits per re-identified candidate (1..3). The first starts at the base optimum with the
+  // score test's estimate and the base/screening Jacobian (no new finite differences); the others
+  // (study initial values + estimate, + mid-range effect) run only if the first does not pass.
+  int refit_starts = 3;
   double screen_step = 0.02;     // score-test perturbation, fraction of the effect range
   FitOptions fit;
 };
+
+// Options for an expensive model whose curves change chaotically under small parameter changes
+// (DEM): central differences with a step of 2 % of each range (the difference must be dominated
+// by the parameter's systematic effect, not by trajectory noise; small enough for the
+// linearisation), fits stopped when the chi-square gains less than 0.1 per step (far below the BIC
+// threshold of 10), a screening step of 20 % of each effect's range (a weak effect switched on by
+// 2 % would drown in trajectory noise; the score statistic does not depend on the step's size),
+// one start for the base fit and per re-fit, at most 60 evaluations per fit.
+// docs/diagnose.md gives the measured costs.
+DiagnoseOptions expensive_model_options();
 
 enum class Verdict {
   no_missing_effect,       // base residual is noise
@@ -62,6 +77,9 @@ struct Diagnosis {
   double bic_threshold = 10.0;            // as used (DiagnoseOptions)
   bool noise_given = false;               // sigma given (--noise) rather than estimated
   std::vector<std::string> notes;         // plain-language statements for the report
+  // Model evaluations spent: base fit, screening, re-fits, total; wall time [s].
+  int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
+  double wall_seconds = 0.0;
   std::string summary;                    // one paragraph: the verdict with its numbers
 };
 
