@@ -27,10 +27,18 @@ std::string fmt(const char* pattern, double value) {
   return buffer;
 }
 
-// Drum settings of a reproduction: full = SPEC 2.2 (3 s); quick = 1 s of rotation.
+// Drum settings of a reproduction: full = SPEC 2.2 (25 mm long, 0.4 s densification, 3 s of
+// rotation). Quick = a cheaper drum of the same cross-section and fill fraction: half the axial
+// length (12.5 mm, end walls as before: periodic ends are not available), 0.25 s densification,
+// 1 s of rotation, so the s = 1 runs (the cost of a cold quick run) hold half the particles for
+// a third of the time. Every quick run, the Table 3 target included, uses the same drum.
 json drum_overrides(CoarseGraining model, double s, bool quick) {
   json drum = {{"coarse_graining", to_string(model)}, {"scale_factor", s}};
-  if (quick) drum["duration"] = 1.0;
+  if (quick) {
+    drum["duration"] = 1.0;
+    drum["length"] = 0.0125;
+    drum["densify_time"] = 0.25;
+  }
   return {{"drum", drum}};
 }
 
@@ -88,8 +96,8 @@ std::string reproduce_figures(const ReproduceOptions& o) {
   const fs::path dir = o.out_dir / "figures";
   fs::create_directories(dir);
   std::vector<std::string> runs;
-  std::string text = "Figs. 4-5: rotary drum, s = 1, 2, 4, SCG and CVF (" + std::string(o.quick ? "quick: 1 s" : "3 s") +
-                     " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque [N m] | cached |\n|---|---|---|---|---|---|\n";
+  std::string text = "Figs. 4-5: rotary drum, s = 1, 2, 4, SCG and CVF (" +
+                     std::string(o.quick ? "quick: 12.5 mm long drum, 1 s" : "3 s") + " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque [N m] | cached |\n|---|---|---|---|---|---|\n";
   double duration = 0.0;
   for (CoarseGraining model : {CoarseGraining::scg, CoarseGraining::cvf}) {
     for (double s : {1.0, 2.0, 4.0}) {
@@ -136,10 +144,13 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   write_curve_table(dir / "target_free_surface.csv",
                     curve_table(target, {"free surface of the original (s = 1) drum at the end time: Table 3 target"}));
   struct Var { const char* name; double lower, upper, initial, paper; bool log; };
-  const Var vars[] = {{"ndamp", 0.05, 0.95, 0.5, 0.558648808, false},   {"tdamp", 0.05, 0.95, 0.5, 0.547304765, false},
-                      {"frics", 0.05, 1.0, 0.3, 0.437766112, false},    {"fricr", 0.0, 0.3, 0.1, 0.088137162, false},
-                      {"normk", 0.003, 0.3, 0.01, 0.095010325, true},   {"sheark", 0.001, 0.3, 0.0029, 0.004870718, true},
-                      {"wall_frics", 0.05, 1.0, 0.3, 0.398444369, false}, {"wall_fricd", 0.0, 0.5, 0.3, 0.186624382, false},
+  // Bounds: the earlier runs ended with ndamp, frics and sheark on their lower and wall_fricd on
+  // its upper bound (the s = 4 bed stands ~7 deg steeper than the s = 1 bed, so the fit wants
+  // less friction), so those bounds are wider than the paper's values alone would suggest.
+  const Var vars[] = {{"ndamp", 0.01, 0.95, 0.5, 0.558648808, false},   {"tdamp", 0.05, 0.95, 0.5, 0.547304765, false},
+                      {"frics", 0.01, 1.0, 0.3, 0.437766112, false},    {"fricr", 0.0, 0.3, 0.1, 0.088137162, false},
+                      {"normk", 0.003, 0.3, 0.01, 0.095010325, true},   {"sheark", 0.0003, 0.3, 0.0029, 0.004870718, true},
+                      {"wall_frics", 0.05, 1.0, 0.3, 0.398444369, false}, {"wall_fricd", 0.0, 1.0, 0.3, 0.186624382, false},
                       {"wall_damp", 0.05, 0.95, 0.5, 0.101806949, false}};
   json variables = json::array();
   for (const Var& v : vars) {
@@ -151,7 +162,10 @@ std::string reproduce_table3(const ReproduceOptions& o) {
       {"variables", variables},
       {"targets", json::array({{{"name", "free_surface"}, {"curve", "free_surface"}, {"x_column", "x_mm"},
                                 {"y_column", "height_mm"}, {"x", target.x}, {"y", target.y}, {"metric", "mse"}}})},
-      {"sampling", {{"points_per_iteration", 16}}},
+      // Adaptive infill over the whole box, not SRSM: the surface error is so noisy that SRSM
+      // shrinks onto one basin (measured ratio 0.57 in 193 runs) while the global infill keeps
+      // finding better regions (ratio 0.37 in 193 runs; docs/reproduce.md).
+      {"sampling", {{"points_per_iteration", 16}, {"strategy", "adaptive_infill"}}},
       // 16 points per iteration (as the paper): 12 iterations + verification = 193 runs <= 200.
       {"stopping", {{"max_iterations", o.quick ? 2 : 12}}},
       {"seed", 1}};
@@ -182,7 +196,7 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   t += "\nSurface RMS error against the s = 1 target: " + fmt("%.3f", error_before) + " mm at the initial values, " +
        fmt("%.3f", error_after) + " mm after identification (ratio " + fmt("%.2f", error_after / error_before) + ").\n";
   t += "Runs used: " + std::to_string(r.runs) + " (" + std::to_string(r.failed_runs) + " failed), " +
-       std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) + " s with " +
+       std::to_string(r.iterations) + " iterations, wall time in this session " + fmt("%.0f", r.wall_seconds) + " s with " +
        std::to_string(o.jobs) + " parallel runs; the paper used 1,600 runs (16 x 100) at 390-4,688 s CPU each.\n";
   t += "The target (" + std::string(computed ? "computed now" : "read from cache") +
        ") is the s = 1 SCG run's free surface; our drum geometry is SPEC 2.2's choice, so optimal values differ from the paper's.\n";

@@ -35,7 +35,9 @@ CaseResult from_json(const json& j) {
 CaseResult cached_case_result(const CaseSpec& spec, const CaseRunOptions& options, bool* computed) {
   CaseRunOptions resolved = options;
   if (resolved.cache_dir.empty()) resolved.cache_dir = default_cache_dir();
-  const json key = {{"result_format", 1}, {"case", cases::to_json(spec)}};
+  // to_key_json: effect settings at their "off" values are left out, so results cached before
+  // the effects existed stay valid.
+  const json key = {{"result_format", 1}, {"case", cases::to_key_json(spec)}};
   std::filesystem::path path = fill_cache_path(resolved.cache_dir, "result", key);
   path.replace_extension(".json");
   if (computed) *computed = false;

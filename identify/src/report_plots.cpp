@@ -98,9 +98,22 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
        << (v.log_scale ? " log" : "") << " | " << identifiable << " |\n";
   }
   if (!uncertainty.is_object()) return;
-  md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = surrogate Jacobian of the residual vector at "
-        "the best run, s² = residual variance, "
-     << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
+  if (uncertainty.value("jacobian", std::string()) == "regression") {
+    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹). J is the slope of a linear regression of the "
+          "evaluated residual vectors on the variables over the "
+       << uncertainty["runs_used"] << " runs nearest the optimum; s² = residual variance at the best run ("
+       << uncertainty["degrees_of_freedom"] << " degrees of freedom) plus the regression's scatter (simulation noise, "
+       << number_or_dash(uncertainty["simulation_noise_variance"])
+       << " per residual). A variable is not identifiable when its interval exceeds half its bounds or its effect "
+          "on the curve is below twice that noise (effect/noise:";
+    for (const auto& v : spec.variables)
+      md << " " << v.name << " " << number_or_dash(uncertainty["effect_significance"].value(v.name, nlohmann::json()));
+    md << "). Correlation matrix:\n\n| |";
+  } else {
+    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = Jacobian of the residual vector at "
+          "the best run, s² = residual variance, "
+       << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
+  }
   for (const auto& v : spec.variables) md << " " << v.name << " |";
   md << "\n|---|";
   for (std::size_t j = 0; j < spec.variables.size(); ++j) md << "---|";

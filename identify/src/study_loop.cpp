@@ -66,6 +66,7 @@ class StudyLoop {
                            std::uint64_t seed) const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
+  RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
   void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
 
   const StudySpec& spec_;
@@ -257,6 +258,29 @@ MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region
   return rbf_surrogate::adaptive_infill(model, existing_rows, count, region, seed, iteration);
 }
 
+RunSample StudyLoop::uncertainty_sample(const Run& best, const Box& final_region) const {
+  // The 3P distinct runs nearest the best run (at least 2n + 3; distance in final-subregion
+  // widths): the last subregion alone is often so small that the simulation noise swamps every
+  // slope, the last few iterations' runs give the regression leverage while staying local.
+  const int maximum = std::max(2 * dims_ + 3, 3 * spec_.points_per_iteration);
+  const int minimum = maximum;
+  std::vector<VectorXd> units;
+  for (const Run& r : runs_) units.push_back(r.unit);
+  const std::vector<int> chosen =
+      detail::nearest_distinct(units, best.unit, final_region.width(), minimum, maximum);
+  RunSample sample;
+  sample.unit_points.resize(chosen.size(), dims_);
+  sample.residuals.resize(chosen.size(), objective_.residual_size());
+  for (std::size_t r = 0; r < chosen.size(); ++r) {
+    sample.unit_points.row(r) = runs_[chosen[r]].unit.transpose();
+    sample.residuals.row(r) = objective_.residuals(runs_[chosen[r]].responses).transpose();
+  }
+  sample.best_unit = best.unit;
+  sample.best_residuals = objective_.residuals(best.responses);
+  sample.unit_per_physical = detail::unit_per_physical(spec_, variables_, best.unit);
+  return sample;
+}
+
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
   const Run& best = *best_run();
   StudyResult result;
@@ -268,12 +292,10 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.iterations = verification_iteration;
   result.converged = converged;
   nlohmann::json uncertainty = nullptr;
-  // Uncertainty at the best run: surrogate Jacobian of the residuals (all runs, including the
-  // verification run), evaluated residuals for the variance.
-  if (const auto surrogate = fit(fit_box(final_region))) {
-    const MatrixXd jacobian_unit = surrogate->residual_jacobian(best.unit, objective_);
-    const MatrixXd jacobian = jacobian_unit * detail::unit_per_physical(spec_, variables_, best.unit).asDiagonal();
-    const auto estimate = estimate_uncertainty(jacobian, objective_.residuals(best.responses), spec_.variables);
+  // Uncertainty at the best run (issue #4): Jacobian and simulation noise from a linear
+  // regression of the evaluated residuals over the runs near the optimum (see uncertainty.hpp).
+  {
+    const auto estimate = estimate_uncertainty_from_runs(uncertainty_sample(best, final_region), spec_.variables);
     uncertainty = detail::uncertainty_json(spec_, estimate);
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;

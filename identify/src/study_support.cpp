@@ -96,6 +96,25 @@ rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surro
   return rbf_surrogate::minimize(function, region, options);
 }
 
+std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, const Eigen::VectorXd& center,
+                                  const Eigen::VectorXd& width, int minimum, int maximum) {
+  const Eigen::VectorXd w = width.cwiseMax(1e-12);
+  std::vector<std::pair<double, int>> order;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i)
+    order.push_back({((points[i] - center).array() / w.array()).abs().maxCoeff(), i});
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<int> chosen;
+  for (const auto& entry : order) {
+    if (static_cast<int>(chosen.size()) >= maximum) break;
+    if (entry.first > 1.0 + 1e-12 && static_cast<int>(chosen.size()) >= minimum) break;
+    bool duplicate = false;  // a repeated point (e.g. the verification run) adds no information
+    for (int c : chosen) duplicate = duplicate || (points[c] - points[entry.second]).cwiseAbs().maxCoeff() < 1e-14;
+    if (!duplicate) chosen.push_back(entry.second);
+  }
+  std::sort(chosen.begin(), chosen.end());  // run order: deterministic
+  return chosen;
+}
+
 std::vector<double> to_std(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 std::string format_number(double value) {
@@ -122,7 +141,11 @@ nlohmann::json uncertainty_json(const StudySpec& spec, const UncertaintyEstimate
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   nlohmann::json json = {{"confidence", 0.95}, {"residual_variance", estimate.residual_variance},
                          {"degrees_of_freedom", estimate.degrees_of_freedom},
-                         {"condition_number", finite_or_null(estimate.condition_number)}};
+                         {"condition_number", finite_or_null(estimate.condition_number)},
+                         {"jacobian", estimate.jacobian_source}, {"runs_used", estimate.runs_used},
+                         {"simulation_noise_variance", estimate.simulation_noise_variance}};
+  if (!estimate.effect_significance.empty()) json["effect_significance"] = nlohmann::json::object();
+  if (!estimate.least_squares_estimate.empty()) json["least_squares_estimate"] = nlohmann::json::object();
   json["variables"] = nlohmann::json::array();
   json["correlation"] = nlohmann::json::array();
   json["standard_error"] = nlohmann::json::object();
@@ -134,6 +157,10 @@ nlohmann::json uncertainty_json(const StudySpec& spec, const UncertaintyEstimate
     json["standard_error"][name] = finite_or_null(estimate.standard_error[j]);
     json["ci_half_width"][name] = finite_or_null(estimate.ci_half_width[j]);
     if (estimate.unidentifiable[j]) json["unidentifiable"].push_back(name);
+    if (!estimate.effect_significance.empty())
+      json["effect_significance"][name] = finite_or_null(estimate.effect_significance[j]);
+    if (!estimate.least_squares_estimate.empty())
+      json["least_squares_estimate"][name] = finite_or_null(estimate.least_squares_estimate[j]);
     nlohmann::json row = nlohmann::json::array();
     for (std::size_t i = 0; i < spec.variables.size(); ++i) row.push_back(finite_or_null(estimate.correlation(j, i)));
     json["correlation"].push_back(row);

@@ -36,6 +36,12 @@ std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration);
 rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
                                                   const rbf_surrogate::Box& region, std::uint64_t seed);
 
+// Indices (ascending) of the distinct points (repeated points count once) within one `width` of
+// `center` (distance max_j |x_j - c_j| / width_j <= 1), nearest first, topped up with the next
+// nearest to `minimum` and cut at `maximum`: the uncertainty regression's sample.
+std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, const Eigen::VectorXd& center,
+                                  const Eigen::VectorXd& width, int minimum, int maximum);
+
 std::vector<double> to_std(const Eigen::VectorXd& v);
 std::string format_number(double value);      // "%.6g", "nan" for NaN
 std::string format_duration(double seconds);  // "1h02m03s"

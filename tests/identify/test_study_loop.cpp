@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <random>
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/evaluator.hpp"
@@ -52,6 +54,46 @@ class ExtraParameterModel final : public Model {
     auto q = p;
     q.erase("ignored");
     return inner_.evaluate(q, c);
+  }
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+// The analytic model with DEM-like simulation noise: every parameter set gives a slightly
+// different smooth curve (as a different packing history would), sigma = 0.5 % of max|y|. Plus
+// "weak", which moves the curve by at most 0.1 % of max|y| over its bounds (below the noise),
+// and "ignored", which does nothing.
+class NoisySimulationModel final : public Model {
+ public:
+  std::vector<std::string> parameter_names() const override {
+    return {"amplitude", "rate", "slope", "weak", "ignored"};
+  }
+  ParameterSet default_parameters() const override {
+    auto p = inner_.default_parameters();
+    p["weak"] = 0.5;
+    p["ignored"] = 0.5;
+    return p;
+  }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
+    auto q = p;
+    q.erase("weak");
+    q.erase("ignored");
+    CurveSet curves = inner_.evaluate(q, c);
+    Curve& response = curves.at("response");
+    // Deterministic in the parameters (same input -> same curve), chaotic between them.
+    std::uint64_t seed = 1469598103934665603ull;
+    for (const auto& [name, value] : p) seed = (seed ^ std::hash<double>{}(value)) * 1099511628211ull;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const double g1 = normal(rng), g2 = normal(rng), g3 = normal(rng);
+    const double sigma = 0.005 * 1.8;  // max|y| of the target is about 1.8
+    for (std::size_t i = 0; i < response.x.size(); ++i) {
+      const double x = response.x[i];
+      response.y[i] += 0.0018 * (p.at("weak") - 0.5) * x +
+                       sigma * (g1 * x + g2 * std::sin(6.283185307179586 * x) + g3 * (2.0 * x * x - 1.0)) / 1.7;
+    }
+    return curves;
   }
 
  private:
@@ -233,4 +275,24 @@ TEST_CASE("A plug-in evaluator finishing runs in another order gives the same re
   CHECK(evaluator.runs == reference.runs);
   CHECK(result.best == reference.best);
   CHECK(result.best_objective == reference.best_objective);
+}
+
+TEST_CASE("With simulation noise, variables below it are flagged and the others lie inside their intervals",
+          "[identify][loop][uncertainty]") {
+  // Regression Jacobian (issue #4): the runs' trajectory noise must neither give "weak" a narrow
+  // interval nor make amplitude and rate look unidentifiable.
+  auto study = test::analytic_study(0.01, 10);
+  study["variables"].push_back({{"name", "weak"}, {"lower", 0.0}, {"upper", 1.0}, {"initial", 0.3}});
+  study["variables"].push_back({{"name", "ignored"}, {"lower", 0.0}, {"upper", 1.0}, {"initial", 0.5}});
+  const auto result =
+      run_study(parse_study(study, "."), NoisySimulationModel(), quiet_options(test::fresh_dir("simulation_noise")));
+  const double a = result.best.at("amplitude"), r = result.best.at("rate"), w = result.best.at("weak");
+  INFO("amplitude " << a << " +- " << result.ci_half_width.at("amplitude") << ", rate " << r << " +- "
+                    << result.ci_half_width.at("rate") << ", weak " << w << " +- " << result.ci_half_width.at("weak"));
+  CHECK(std::abs(a - 1.3) <= result.ci_half_width.at("amplitude"));
+  CHECK(std::abs(r - 4.2) <= result.ci_half_width.at("rate"));
+  CHECK(result.ci_half_width.at("amplitude") < 0.1 * 1.5);
+  CHECK(result.unidentifiable == std::vector<std::string>{"weak", "ignored"});
+  // "Says so and contains the truth": an unbounded interval, or one that covers 0.5.
+  CHECK(std::abs(w - 0.5) <= result.ci_half_width.at("weak"));
 }
