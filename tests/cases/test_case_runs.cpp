@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "case_test_options.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/coarse_graining.hpp"
@@ -18,11 +19,7 @@ using nlohmann::json;
 
 namespace {
 
-CaseRunOptions test_options() {
-  CaseRunOptions options;
-  options.cache_dir = std::string(DEMFIT_BINARY_DIR) + "/test_cache";
-  return options;
-}
+using test::test_options;
 
 // 120 pellets in a 24 mm cylinder; frictionless walls so that statics are exact.
 CaseSpec small_pellet_case() {

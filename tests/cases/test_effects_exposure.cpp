@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "case_test_options.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
@@ -20,11 +21,7 @@ using nlohmann::json;
 
 namespace {
 
-CaseRunOptions test_options() {
-  CaseRunOptions options;
-  options.cache_dir = std::string(DEMFIT_BINARY_DIR) + "/test_cache";
-  return options;
-}
+using test::test_options;
 
 // Base variants with every catalogue effect at its off value (wall FRICS and FRICR are effects
 // here, so they are 0), small and soft so that one evaluation takes a fraction of a second.
