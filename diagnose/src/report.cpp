@@ -1,5 +1,6 @@
 // Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
 #include "demfit/diagnose/report.hpp"
+#include "text_format.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -10,12 +11,7 @@
 namespace demfit::diagnose {
 namespace {
 
-template <typename... Args>
-std::string format(const char* fmt, Args... args) {
-  char buffer[600];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
+using detail::format;
 
 nlohmann::json analysis_json(const ResidualAnalysis& a) {
   nlohmann::json regions = nlohmann::json::array();

@@ -1,5 +1,6 @@
 // The diagnosis workflow; see workflow.hpp and docs/diagnose.md.
 #include "demfit/diagnose/workflow.hpp"
+#include "text_format.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -45,12 +46,7 @@ double aicc(double chi_square, int parameters, int points) {
 
 namespace {
 
-template <typename... Args>
-std::string format(const char* fmt, Args... args) {
-  char buffer[400];
-  std::snprintf(buffer, sizeof buffer, fmt, args...);
-  return buffer;
-}
+using detail::format;
 
 std::string tests_text(const ResidualAnalysis& a) {
   return format("runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
