@@ -8,6 +8,7 @@
 
 #include "builtin_cases.hpp"
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/coarse_graining.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -15,12 +16,20 @@ namespace {
 const char* const kPellet = "pellet_compression";
 const char* const kDrum = "rotary_drum";
 
-// Cohesion upper bound of a built-in case, from its particle (the drum at its default scale
-// factor 1; a coarse-grained SCG particle of scale s needs s^2 times more for the same
-// cohesion-to-weight ratio).
-double case_cohesion_bound(const char* builtin_text) {
-  const CaseSpec spec = parse_case(nlohmann::json::parse(builtin_text));
+// Cohesion upper bound of a case, from the particle the simulation carries: the pellet's own,
+// the drum's coarse-grained one (SCG of scale s has radius s R0, so its bound is s^2 times the
+// original's: the same range of cohesion-to-weight ratio at every scale).
+double case_cohesion_bound(const CaseSpec& spec) {
+  if (spec.kind == CaseKind::rotary_drum) {
+    const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor, spec.drum.volume_fraction,
+                                          {spec.material.radius, spec.material.density});
+    return cohesion_surface_energy_bound(p.radius, p.density);
+  }
   return cohesion_surface_energy_bound(spec.material.radius, spec.material.density);
+}
+
+double case_cohesion_bound(const char* builtin_text) {
+  return case_cohesion_bound(parse_case(nlohmann::json::parse(builtin_text)));
 }
 
 EffectInfo cohesion(double upper, std::vector<std::string> cases) {
@@ -91,12 +100,21 @@ const std::vector<EffectInfo>& effect_catalogue() {
   return all;
 }
 
-std::vector<EffectInfo> effects_for_case(const std::string& case_name) {
+std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides) {
   if (case_name != kPellet && case_name != kDrum)
     throw std::runtime_error("effects_for_case: case '" + case_name +
                              "' is unknown: use \"pellet_compression\" or \"rotary_drum\"");
-  return build(case_cohesion_bound(detail::kBuiltinPelletCompression),
-               case_cohesion_bound(detail::kBuiltinRotaryDrum), case_name);
+  nlohmann::json document =
+      nlohmann::json::parse(case_name == kPellet ? detail::kBuiltinPelletCompression : detail::kBuiltinRotaryDrum);
+  if (overrides.is_object()) document.merge_patch(overrides);
+  return effects_for_case_document(document);
+}
+
+std::vector<EffectInfo> effects_for_case_document(const nlohmann::json& case_document) {
+  const CaseSpec spec = parse_case(case_document);
+  const double bound = case_cohesion_bound(spec);
+  const bool drum = spec.kind == CaseKind::rotary_drum;
+  return build(drum ? 0.0 : bound, drum ? bound : 0.0, drum ? kDrum : kPellet);
 }
 
 }  // namespace demfit::cases

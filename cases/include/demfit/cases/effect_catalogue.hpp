@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace demfit::cases {
 
 struct EffectParameterInfo {
@@ -30,9 +32,14 @@ struct EffectInfo {
 const std::vector<EffectInfo>& effect_catalogue();
 
 // The effects that apply to a case ("pellet_compression" or "rotary_drum"), with that case's
-// bounds (computed from the built-in case's particle); throws std::runtime_error naming the
+// bounds: cohesion's follows the particle the simulation carries (the built-in case with
+// `overrides` merged in, e.g. a drum's drum.scale_factor); throws std::runtime_error naming the
 // case otherwise.
-std::vector<EffectInfo> effects_for_case(const std::string& case_name);
+std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides = {});
+
+// The same for a whole case document (a case file after the study's overrides); its "case"
+// field names the case. Throws std::runtime_error (one line) on a bad document.
+std::vector<EffectInfo> effects_for_case_document(const nlohmann::json& case_document);
 
 // Upper bound of surface_energy [J/m^2] for a particle of radius R [m] and density rho
 // [kg/m^3] under gravity g [m/s^2]: the pull-off force 1.5 pi gamma R* of two equal spheres
