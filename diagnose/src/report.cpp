@@ -81,7 +81,7 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
       << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label) << "\n"
       << "plot " << gnuplot_quote(data.string()) << " u 1:2 w p pt 7 ps 0.5 t 'target', '' u 1:3 w l lw 2 t 'base fit'"
       << (aug ? ", '' u 1:4 w l lw 2 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
-      << "set title 'residual (fit - target)'\nset ylabel 'residual'\n"
+      << "set title 'residual (fit - target)'\nset ylabel " << gnuplot_quote("residual, " + target.data.y_label) << "\n"
       << format("plot %s u 1:5 w lp pt 7 ps 0.4 t 'base', %.10g w l lt 0 t '+-2 sigma', %.10g w l lt 0 notitle",
                 gnuplot_quote(data.string()).c_str(), 2 * target.sigma, -2 * target.sigma)
       << (aug ? ", '' u 1:6 w lp pt 7 ps 0.4 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
