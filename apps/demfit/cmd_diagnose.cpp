@@ -31,20 +31,6 @@ struct DiagnoseCliOptions {
   bool no_plots = false;
 };
 
-// The catalogue's effects for a DEM study's case, with that case's bounds: a built-in name with
-// the study's overrides, or a case file (its "case" field) after them.
-std::vector<cases::EffectInfo> case_effects(const identify::StudySpec& spec) {
-  if (spec.model_reference == "pellet_compression" || spec.model_reference == "rotary_drum")
-    return cases::effects_for_case(spec.model_reference, spec.model_overrides);
-  std::filesystem::path path(spec.model_reference);
-  if (path.is_relative()) path = spec.base_dir / path;
-  nlohmann::json document = cases::read_case_json(path.string());
-  if (spec.model_overrides.is_object()) document.merge_patch(spec.model_overrides);
-  if (!document.contains("case") || !document["case"].is_string())
-    throw std::runtime_error("case file '" + path.string() + "': field 'case' is missing; set it to \"pellet_compression\" or \"rotary_drum\"");
-  return cases::effects_for_case_document(document);
-}
-
 // The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
 // to the study's case. An effect is left out, with a note, when one of its parameters is a study
 // variable or already differs from its off value in the model (the effect is then part of the
@@ -53,7 +39,7 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const identify::StudySpec&
   identify::ParameterSet values = model.default_parameters();
   for (const auto& [name, value] : spec.fixed_parameters) values[name] = value;
   std::vector<diagnose::EffectCandidate> out;
-  for (const auto& effect : case_effects(spec)) {
+  for (const auto& effect : cases::effects_for_case(cases::resolve_case(spec.model_reference, spec.model_overrides, spec.base_dir))) {
     diagnose::EffectCandidate c{effect.name, effect.description, {}, effect.curves};
     std::string reason;
     for (const auto& p : effect.parameters) {

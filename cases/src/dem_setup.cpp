@@ -17,31 +17,6 @@ dem_core::Material to_material(const MaterialSpec& spec) {
   return m;
 }
 
-dem_core::ContactParameters to_contact(const ContactSpec& spec) {
-  dem_core::ContactParameters c;
-  c.normk = spec.normk;
-  c.sheark = spec.sheark;
-  c.ndamp = spec.ndamp;
-  c.tdamp = spec.tdamp;
-  c.frics = spec.frics;
-  c.fricd = spec.fricd;
-  c.dc = spec.dc;
-  c.fricr = spec.fricr;
-  c.unloading_stiffness_ratio = spec.unloading_stiffness_ratio;
-  c.surface_energy = spec.surface_energy;
-  c.stiffness_exponent = spec.stiffness_exponent;
-  return c;
-}
-
-dem_core::WallContactParameters to_wall_contact(const WallContactSpec& spec) {
-  dem_core::WallContactParameters w;
-  w.frics = spec.frics;
-  w.fricd = spec.fricd;
-  w.damp = spec.damp;
-  w.sfp = spec.sfp;
-  return w;
-}
-
 CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters) {
   CaseSpec spec = base;
   for (const auto& [name, value] : parameters) {
@@ -97,7 +72,7 @@ void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simu
 void precheck_user_time_step(const CaseSpec& spec, double radius, double density) {
   if (spec.time_step.value <= 0.0) return;
   dem_core::SimulationSettings settings;
-  settings.contact = to_contact(spec.contact);
+  settings.contact = spec.contact;
   settings.time_step_factor = spec.time_step.factor;
   dem_core::Simulation probe(settings);
   dem_core::Material material = to_material(spec.material);
@@ -105,7 +80,7 @@ void precheck_user_time_step(const CaseSpec& spec, double radius, double density
   probe.add_material(material);
   probe.add_particle({0, 0, 0}, radius);
   probe.add_wall({dem_core::PlaneGeometry{{0, 0, -radius}, {0, 0, 1}}, dem_core::FixedMotion{},
-                  to_wall_contact(spec.wall), {}, "probe"});
+                  spec.wall, {}, "probe"});
   check_user_time_step(spec, probe);
 }
 

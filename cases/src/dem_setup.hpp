@@ -19,8 +19,6 @@ dem_core::Material to_material(const MaterialSpec& spec);
 
 // The particles of a settled simulation as a cacheable fill (positions [m], radii [m]).
 Fill fill_of(const dem_core::Simulation& simulation);
-dem_core::ContactParameters to_contact(const ContactSpec& spec);
-dem_core::WallContactParameters to_wall_contact(const WallContactSpec& spec);
 
 // Copies `base` with the identified parameters in `parameters` applied (names as in
 // parameter_names()); unknown names are errors naming the parameter.

@@ -62,7 +62,7 @@ dem_core::Material powder_material(const CaseSpec& spec, const Powder& powder) {
 // wall index (three walls: shell, end at z = 0, end at z = length).
 std::size_t add_drum(dem_core::Simulation& sim, const CaseSpec& spec, double omega) {
   const double rd = 0.5 * spec.drum.diameter, len = spec.drum.length;
-  const auto contact = to_wall_contact(spec.wall);
+  const auto& contact = spec.wall;
   const dem_core::RotatingMotion motion{{0, 0, 0}, {0, 0, 1}, omega};
   const dem_core::Axis axis{{0, 0, 0}, {0, 0, 1}};
   const std::size_t first =
@@ -130,7 +130,7 @@ std::optional<dem_core::Packing> random_packing(const CaseSpec& spec, const Powd
 Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
   const Powder powder = powder_of(spec);
   dem_core::SimulationSettings settings;
-  settings.contact = to_contact(spec.contact);
+  settings.contact = spec.contact;
   settings.gravity = {0.0, -9.81, 0.0};
   settings.threads = options.threads;
   settings.time_step_factor = kFillTimeStepFactor;
@@ -196,7 +196,7 @@ struct RotationRun {
 
 RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
-  settings.contact = to_contact(spec.contact);
+  settings.contact = spec.contact;
   settings.gravity = {0.0, -9.81, 0.0};
   settings.threads = options.threads;
   settings.time_step = spec.time_step.value;

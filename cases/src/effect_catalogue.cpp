@@ -6,15 +6,22 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "builtin_cases.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/coarse_graining.hpp"
+#include "demfit/cases/model_factory.hpp"
 
 namespace demfit::cases {
 namespace {
 
 const char* const kPellet = "pellet_compression";
 const char* const kDrum = "rotary_drum";
+
+// Pull-off force at the cohesion bound, in weights of the simulated particle. Pellet: five.
+// Drum: one — above it the bed stops flowing and slumps as a cohesive block (s = 4 drum at
+// 30 rpm: 0.57 weights lift the surface by 30 mm at the wall, 0.29 weights by 3 mm), a regime
+// where the surface jumps rather than follows the parameter (docs/cases.md "Effects").
+constexpr double kPelletCohesionWeights = 5.0;
+constexpr double kDrumCohesionWeights = 1.0;
 
 // Cohesion upper bound of a case, from the particle the simulation carries: the pellet's own,
 // the drum's coarse-grained one (SCG of scale s has radius s R0, so its bound is s^2 times the
@@ -23,102 +30,78 @@ double case_cohesion_bound(const CaseSpec& spec) {
   if (spec.kind == CaseKind::rotary_drum) {
     const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor, spec.drum.volume_fraction,
                                           {spec.material.radius, spec.material.density});
-    // One particle weight, not five: above it the bed of the drum stops flowing and slumps as a
-    // cohesive block (s = 4 drum at 30 rpm: 0.57 weights lift the surface by 30 mm at the wall,
-    // 0.29 weights by 3 mm), a regime where the surface jumps rather than follows the parameter.
-    return cohesion_surface_energy_bound(p.radius, p.density) / 5.0;
+    return cohesion_surface_energy_bound(p.radius, p.density, kDrumCohesionWeights);
   }
-  return cohesion_surface_energy_bound(spec.material.radius, spec.material.density);
+  return cohesion_surface_energy_bound(spec.material.radius, spec.material.density, kPelletCohesionWeights);
 }
 
-double case_cohesion_bound(const char* builtin_text) {
-  return case_cohesion_bound(parse_case(nlohmann::json::parse(builtin_text)));
-}
-
-EffectInfo cohesion(double upper, std::vector<std::string> cases) {
+EffectInfo cohesion(double upper) {
   return {"cohesion",
           "constant JKR-like pull-off force F_c = 1.5 pi gamma R* while particles (or a particle and a wall) "
-          "overlap; the contact breaks at zero overlap (upper bound: F_c of two equal simulated spheres = 5 particle "
-          "weights in the pellet, 1 in the drum)",
+          "overlap; the contact breaks at zero overlap (upper bound: F_c of two equal simulated spheres = " +
+              std::to_string(static_cast<int>(kPelletCohesionWeights)) + " particle weights in the pellet, " +
+              std::to_string(static_cast<int>(kDrumCohesionWeights)) + " in the drum)",
           {{"surface_energy", 0.0, upper, 0.0, "J/m^2"}},
-          std::move(cases),
+          {kPellet, kDrum},
           {}};
 }
 
-std::vector<EffectInfo> build(double pellet_cohesion, double drum_cohesion, const std::string& only) {
+// The effects of case `case_name`, each with `cases` = {case_name}.
+std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_name) {
   std::vector<EffectInfo> all;
-  auto keep = [&](std::vector<std::string> cases) {
-    if (only.empty()) return cases;
-    return std::find(cases.begin(), cases.end(), only) != cases.end() ? std::vector<std::string>{only}
-                                                                      : std::vector<std::string>{};
-  };
-  const double cohesion_upper = only == kPellet ? pellet_cohesion
-                                : only == kDrum ? drum_cohesion
-                                                : std::max(pellet_cohesion, drum_cohesion);
   all.push_back({"plasticity",
                  "Walton-Braun hysteretic normal spring: unloading stiffness k2 = ratio k1, delta0 = delta_max (1 - k1/k2); "
                  "undamped restitution 1/sqrt(ratio). Shows mainly on unloading (pellet.unload = true, curve "
                  "pressure_volume_cycle); contacts that unload during rearrangement change the loading curve too",
                  {{"unloading_stiffness_ratio", 1.0, 4.0, 1.0, "-"}},
-                 keep({kPellet}),
+                 {kPellet},
                  {}});
-  all.push_back(cohesion(cohesion_upper, keep({kPellet, kDrum})));
+  all.push_back(cohesion(cohesion_upper));
   all.push_back({"hertz_stiffness",
                  "nonlinear normal spring F = k_n d_ref (delta/d_ref)^n, d_ref = 0.01 R* (equal to the linear law at "
                  "1 % of R*); n = 1.5 is the Hertzian shape",
                  {{"stiffness_exponent", 1.0, 1.5, 1.0, "-"}},
-                 keep({kPellet, kDrum}),
+                 {kPellet, kDrum},
                  {}});
   all.push_back({"wall_friction",
                  "particle-wall sliding friction (wall FRICS): Janssen effect in the pellet cylinder (the bottom plate "
                  "carries less than the piston), drag of the bed by the drum wall",
                  {{"wall_frics", 0.0, 0.6, 0.0, "-"}},
-                 keep({kPellet, kDrum}),
+                 {kPellet, kDrum},
                  {}});
   all.push_back({"rolling_resistance",
                  "constant-torque rolling friction between particles (FRICR; acts only with FRICS > 0)",
                  {{"fricr", 0.0, 0.3, 0.0, "-"}},
-                 keep({kPellet, kDrum}),
+                 {kPellet, kDrum},
                  {}});
   all.push_back({"polydispersity",
                  "radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (the drum's coarse-grained radius gets "
                  "the same relative spread); changes the fill, which is regenerated and cached per spread",
                  {{"radius_spread", 0.0, 0.25, 0.0, "-"}},
-                 keep({kPellet, kDrum}),
+                 {kPellet, kDrum},
                  {}});
-  if (!only.empty()) std::erase_if(all, [](const EffectInfo& e) { return e.cases.empty(); });
+  std::erase_if(all, [&](const EffectInfo& e) { return std::find(e.cases.begin(), e.cases.end(), case_name) == e.cases.end(); });
+  for (EffectInfo& e : all) e.cases = {case_name};
   return all;
 }
 
 }  // namespace
 
-double cohesion_surface_energy_bound(double radius, double density, double gravity) {
-  const double weight = density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius * gravity;
-  // 1.5 pi gamma R* = 5 m g with R* = R/2 (two equal spheres).
-  return 5.0 * weight / (1.5 * std::numbers::pi * 0.5 * radius);
-}
-
-const std::vector<EffectInfo>& effect_catalogue() {
-  static const std::vector<EffectInfo> all = build(case_cohesion_bound(detail::kBuiltinPelletCompression),
-                                                   case_cohesion_bound(detail::kBuiltinRotaryDrum), "");
-  return all;
+double cohesion_surface_energy_bound(double radius, double density, double weights, double gravity) {
+  const double weight = density * sphere_volume(radius) * gravity;
+  // 1.5 pi gamma R* = weights * m g with R* = R/2 (two equal spheres).
+  return weights * weight / (1.5 * std::numbers::pi * 0.5 * radius);
 }
 
 std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides) {
   if (case_name != kPellet && case_name != kDrum)
     throw std::runtime_error("effects_for_case: case '" + case_name +
                              "' is unknown: use \"pellet_compression\" or \"rotary_drum\"");
-  nlohmann::json document =
-      nlohmann::json::parse(case_name == kPellet ? detail::kBuiltinPelletCompression : detail::kBuiltinRotaryDrum);
-  if (overrides.is_object()) document.merge_patch(overrides);
-  return effects_for_case_document(document);
+  return effects_for_case(resolve_case(case_name, overrides, {}));
 }
 
-std::vector<EffectInfo> effects_for_case_document(const nlohmann::json& case_document) {
-  const CaseSpec spec = parse_case(case_document);
-  const double bound = case_cohesion_bound(spec);
-  const bool drum = spec.kind == CaseKind::rotary_drum;
-  return build(drum ? 0.0 : bound, drum ? bound : 0.0, drum ? kDrum : kPellet);
+std::vector<EffectInfo> effects_for_case(const CaseSpec& spec) {
+  return build(case_cohesion_bound(spec), spec.kind == CaseKind::rotary_drum ? kDrum : kPellet);
 }
 
 }  // namespace demfit::cases

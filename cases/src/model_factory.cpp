@@ -50,6 +50,11 @@ std::unique_ptr<identify::Model> make_model(const std::string& reference, const 
     require_known_keys(o, "model.overrides", {"points"});
     return std::make_unique<identify::AnalyticCurveModel>(static_cast<int>(read_integer(o, "model.overrides", "points", 41, 2)));
   }
+  return std::make_unique<DemCaseModel>(resolve_case(reference, overrides, base_dir));
+}
+
+CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overrides,
+                      const std::filesystem::path& base_dir) {
   nlohmann::json document;
   if (reference == "pellet_compression" || reference == "rotary_drum") {
     document = builtin_document(reference);
@@ -60,7 +65,7 @@ std::unique_ptr<identify::Model> make_model(const std::string& reference, const 
   }
   // RFC 7386 merge patch: study overrides are partial case documents ({"pellet": {"unload": true}}).
   if (overrides.is_object()) document.merge_patch(overrides);
-  return std::make_unique<DemCaseModel>(parse_case(document));
+  return parse_case(document);
 }
 
 }  // namespace demfit::cases

@@ -47,7 +47,7 @@ nlohmann::json fill_key(const CaseSpec& spec) {
 // Adds the bottom plate (disk at z = 0) and the container wall (cylinder of `height`).
 void add_container(dem_core::Simulation& sim, const CaseSpec& spec, double height) {
   const double rc = container_radius(spec);
-  const auto wall = to_wall_contact(spec.wall);
+  const auto& wall = spec.wall;
   sim.add_wall({dem_core::DiskGeometry{{0, 0, 0}, {0, 0, 1}, rc}, dem_core::FixedMotion{}, wall, {}, "bottom"});
   sim.add_wall({dem_core::CylinderGeometry{{0, 0, 0}, {0, 0, 1}, rc, height}, dem_core::FixedMotion{}, wall,
                 {}, "container"});
@@ -58,7 +58,7 @@ void add_container(dem_core::Simulation& sim, const CaseSpec& spec, double heigh
 // the tiny gravity overlaps at the evaluated stiffness within a few steps).
 Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
-  settings.contact = to_contact(spec.contact);
+  settings.contact = spec.contact;
   settings.contact.normk = spec.pellet.fill_normk;
   settings.threads = options.threads;
   settings.time_step_factor = kFillTimeStepFactor;
@@ -191,7 +191,7 @@ namespace {
 
 CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
-  settings.contact = to_contact(spec.contact);
+  settings.contact = spec.contact;
   settings.threads = options.threads;
   settings.time_step = spec.time_step.value;
   settings.time_step_factor = spec.time_step.factor;
@@ -209,7 +209,7 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   const double speed = spec.pellet.piston_speed;
   const std::size_t piston = sim.add_wall({dem_core::DiskGeometry{{0, 0, top}, {0, 0, -1}, rc},
                                            dem_core::TranslatingMotion{{0, 0, -speed}},
-                                           to_wall_contact(spec.wall), {}, "piston"});
+                                           spec.wall, {}, "piston"});
   check_user_time_step(spec, sim);
   CompressionRun run;
   run.bed_top = top;

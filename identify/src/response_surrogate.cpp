@@ -64,20 +64,6 @@ double ResponseSurrogate::predicted_objective(const Eigen::VectorXd& unit_x, con
   return objective.objective(predict(unit_x));
 }
 
-Eigen::MatrixXd ResponseSurrogate::residual_jacobian(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const {
-  const Eigen::Index d = unit_x.size();
-  Eigen::MatrixXd jacobian(objective.residual_size(), d);
-  const Eigen::VectorXd width = fit_box_.width();
-  for (Eigen::Index j = 0; j < d; ++j) {
-    const double h = kLocalStep * width(j);
-    Eigen::VectorXd plus = unit_x, minus = unit_x;
-    plus(j) += h;
-    minus(j) -= h;
-    jacobian.col(j) = (objective.residuals(predict(plus)) - objective.residuals(predict(minus))) / (2.0 * h);
-  }
-  return jacobian;
-}
-
 Eigen::VectorXd ResponseSurrogate::objective_gradient(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const {
   const Eigen::Index d = unit_x.size();
   Eigen::VectorXd gradient(d);

@@ -21,8 +21,6 @@ class ResponseSurrogate {
                     const StudySpec& spec);
   Eigen::VectorXd predict(const Eigen::VectorXd& unit_x) const;   // response vector
   double predicted_objective(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const;
-  // Central-difference Jacobian of the predicted residual vector w.r.t. unit coordinates.
-  Eigen::MatrixXd residual_jacobian(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const;
   // Gradient of the predicted objective (central differences in local coordinates).
   Eigen::VectorXd objective_gradient(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const;
   int components() const { return static_cast<int>(basis_.cols()); }

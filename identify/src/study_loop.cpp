@@ -180,21 +180,12 @@ std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
   // Runs inside the fit box, topped up with the nearest others to at least 2P (and n + 2).
   const int minimum = std::max(2 * spec_.points_per_iteration, dims_ + 2);
   const int maximum = std::max(minimum, 300);
-  std::vector<std::pair<double, int>> order;
-  const VectorXd center = box.center(), width = box.width();
-  for (int i = 0; i < static_cast<int>(runs_.size()); ++i)
-    order.push_back({((runs_[i].unit - center).array() / width.array()).abs().maxCoeff(), i});
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<int> chosen;
-  for (const auto& [distance, i] : order) {
-    if (static_cast<int>(chosen.size()) >= maximum) break;
-    if (distance > 0.5 + 1e-12 && static_cast<int>(chosen.size()) >= minimum) break;
-    bool duplicate = false;  // a re-run of the same point adds nothing and breaks the fit
-    for (int c : chosen) duplicate = duplicate || (runs_[c].unit - runs_[i].unit).cwiseAbs().maxCoeff() < 1e-14;
-    if (!duplicate) chosen.push_back(i);
-  }
+  std::vector<VectorXd> units;
+  for (const Run& r : runs_) units.push_back(r.unit);
+  // Within the box = within half its width of its centre; a re-run of the same point adds
+  // nothing and would break the fit, so repeated points count once.
+  const std::vector<int> chosen = detail::nearest_distinct(units, box.center(), 0.5 * box.width(), minimum, maximum);
   if (static_cast<int>(chosen.size()) < dims_ + 2) return std::nullopt;
-  std::sort(chosen.begin(), chosen.end());  // fit in run order: deterministic
   MatrixXd x(chosen.size(), dims_), y(chosen.size(), objective_.response_size());
   for (std::size_t r = 0; r < chosen.size(); ++r) {
     x.row(r) = runs_[chosen[r]].unit.transpose();

@@ -38,7 +38,8 @@ rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surro
 
 // Indices (ascending) of the distinct points (repeated points count once) within one `width` of
 // `center` (distance max_j |x_j - c_j| / width_j <= 1), nearest first, topped up with the next
-// nearest to `minimum` and cut at `maximum`: the uncertainty regression's sample.
+// nearest to `minimum` and cut at `maximum`: the runs a surrogate is fitted to, and the
+// uncertainty regression's sample.
 std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, const Eigen::VectorXd& center,
                                   const Eigen::VectorXd& width, int minimum, int maximum);
 

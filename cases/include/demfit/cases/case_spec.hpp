@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/cases/coarse_graining.hpp"
+#include "demfit/dem_core/parameters.hpp"
 
 namespace demfit::cases {
 
@@ -26,29 +27,12 @@ struct MaterialSpec {
   double bulk_modulus() const;     // K [Pa]
 };
 
-// *CONTROL_DISCRETE_ELEMENT, LS-DYNA semantics (SPEC 1); names as in LS-DYNA, lowercase.
-struct ContactSpec {
-  double normk = 0.01;
-  double sheark = 2.0 / 7.0;
-  double ndamp = 0.0;
-  double tdamp = 0.0;
-  double frics = 0.0;
-  double fricd = 0.0;  // dynamic friction; defaults to frics when absent in the file
-  double dc = 0.0;     // exponential decay coefficient [s/m]
-  double fricr = 0.0;
-  // Effects library (issue #6, dem_core/contact_effects.hpp); each off at its default.
-  double unloading_stiffness_ratio = 1.0;  // Walton–Braun k2/k1 [-], >= 1 (1 = elastic)
-  double surface_energy = 0.0;             // cohesion gamma [J/m^2], F_c = 1.5 pi gamma R*
-  double stiffness_exponent = 1.0;         // n of F = k_n d_ref (delta/d_ref)^n, in [1, 2]
-};
-
-// *DEFINE_DE_TO_SURFACE_COUPLING card 2 (SPEC 1): fricd is the wall ROLLING friction.
-struct WallContactSpec {
-  double frics = 0.0;
-  double fricd = 0.0;
-  double damp = 0.0;
-  double sfp = 1.0;
-};
+// *CONTROL_DISCRETE_ELEMENT (particle pairs, with the effects library) and
+// *DEFINE_DE_TO_SURFACE_COUPLING card 2 (walls: fricd is the wall ROLLING friction), LS-DYNA
+// semantics (SPEC 1): the case holds dem_core's own parameter sets. Parsing resolves FRICD to
+// FRICS when the file omits it, so a parsed case never carries dem_core's "unset" (-1).
+using ContactSpec = dem_core::ContactParameters;
+using WallContactSpec = dem_core::WallContactParameters;
 
 struct TimeStepSpec {
   double value = 0.0;    // user time step [s]; 0 = automatic

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demfit/cases/case_spec.hpp"
+
 namespace demfit::cases {
 
 struct EffectParameterInfo {
@@ -27,23 +29,17 @@ struct EffectInfo {
   std::vector<std::string> curves;  // simulated curves it changes; empty = all
 };
 
-// Every effect once, in a fixed order. Where bounds differ per case (cohesion: they follow the
-// particle weight) the catalogue holds the widest; effects_for_case gives the case's own.
-const std::vector<EffectInfo>& effect_catalogue();
-
-// The effects that apply to a case ("pellet_compression" or "rotary_drum"), with that case's
-// bounds: cohesion's follows the particle the simulation carries (the built-in case with
-// `overrides` merged in, e.g. a drum's drum.scale_factor); throws std::runtime_error naming the
-// case otherwise.
+// The effects that apply to a case, in a fixed order, with that case's bounds: cohesion's
+// follows the particle the simulation carries (e.g. a drum's coarse particle at
+// drum.scale_factor). `effects_for_case(name, overrides)`: the built-in case ("pellet_compression"
+// or "rotary_drum") with `overrides` merged in; throws std::runtime_error naming an unknown case.
 std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides = {});
-
-// The same for a whole case document (a case file after the study's overrides); its "case"
-// field names the case. Throws std::runtime_error (one line) on a bad document.
-std::vector<EffectInfo> effects_for_case_document(const nlohmann::json& case_document);
+std::vector<EffectInfo> effects_for_case(const CaseSpec& spec);
 
 // Upper bound of surface_energy [J/m^2] for a particle of radius R [m] and density rho
 // [kg/m^3] under gravity g [m/s^2]: the pull-off force 1.5 pi gamma R* of two equal spheres
-// (R* = R/2) equals 5 particle weights, gamma = 5 m g / (0.75 pi R) = (80/9) rho g R^2.
-double cohesion_surface_energy_bound(double radius, double density, double gravity = 9.81);
+// (R* = R/2) equals `weights` particle weights, gamma = w m g / (0.75 pi R) = (16/9) w rho g R^2.
+// The catalogue uses 5 weights for the pellet and 1 for the drum (effects_for_case).
+double cohesion_surface_energy_bound(double radius, double density, double weights, double gravity = 9.81);
 
 }  // namespace demfit::cases

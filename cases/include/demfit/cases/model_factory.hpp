@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demfit/cases/case_spec.hpp"
 #include "demfit/identify/model.hpp"
 
 namespace demfit::cases {
@@ -18,5 +19,10 @@ namespace demfit::cases {
 std::unique_ptr<identify::Model> make_model(const std::string& reference,
                                             const nlohmann::json& overrides,
                                             const std::filesystem::path& base_dir);
+
+// The DEM case a reference names (a built-in name or a case file, as for make_model) with the
+// overrides merged in (RFC 7386), parsed. Throws std::runtime_error with a one-line message.
+CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overrides,
+                      const std::filesystem::path& base_dir);
 
 }  // namespace demfit::cases
