@@ -11,6 +11,11 @@
 
 namespace demfit::diagnose {
 
+bool at_bound(const FitVariable& variable, double value) {
+  const double margin = 1e-6 * (variable.upper - variable.lower);
+  return value <= variable.lower + margin || value >= variable.upper - margin;
+}
+
 std::vector<std::size_t> monotone_branches(const std::vector<double>& x) {
   std::vector<std::size_t> starts{0};
   int direction = 0;  // +1 increasing, -1 decreasing, 0 not yet known in this branch
@@ -127,7 +132,6 @@ struct Problem {
   const std::vector<FitTarget>& targets;
   const FitOptions& options;
   int evaluations = 0;
-  int jacobians = 0;
 
   identify::ParameterSet parameters(const Eigen::VectorXd& u) const {
     identify::ParameterSet p = fixed;
@@ -171,7 +175,6 @@ Eigen::MatrixXd jacobian(Problem& problem, const Eigen::VectorXd& u, const Eigen
     const Eigen::VectorXd& b = minus >= 0 ? rs[minus] : r;
     if (a.size() == r.size() && b.size() == r.size() && spans[j] > 0.0) J.col(j) = (a - b) / spans[j];
   }
-  ++problem.jacobians;
   return J;
 }
 
@@ -280,7 +283,6 @@ FitResult fit_least_squares(const identify::Model& model, const identify::Parame
   result.jacobian = J;
   result.evaluations = problem.evaluations;
   result.iterations = iteration;
-  result.jacobians = problem.jacobians;
   return result;
 }
 

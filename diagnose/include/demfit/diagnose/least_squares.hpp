@@ -21,6 +21,10 @@ struct FitVariable {
   double start = 0.5;
 };
 
+// True when `value` lies within 1e-6 of the range of one of the variable's bounds (a fitted value
+// held there by the bound).
+bool at_bound(const FitVariable& variable, double value);
+
 // Data to match: each target's data points, its simulated curve name and its noise level.
 // Residuals are (simulated y at the data x - data y) / sigma, so the cost is a chi-square.
 // A target whose x reverses (a loading-unloading cycle) is matched branch by branch: data branch
@@ -62,7 +66,6 @@ struct FitResult {
   Eigen::MatrixXd jacobian;
   int evaluations = 0;
   int iterations = 0;
-  int jacobians = 0;                  // finite-difference Jacobians computed
 };
 
 // Simulated minus data, in y units, per target (the data x are the abscissae; the simulated
