@@ -17,14 +17,13 @@ bool settle_phase(Simulation& s, double min_time, double max_time, double tolera
   if (scale == 0.0) {  // no gravity: compare with the elastic energy scale instead
     for (std::size_t i = 0; i < s.particle_count(); ++i) scale += s.masses()[i] * 1e-6;
   }
-  // The phase ends where run_until would stop stepping (within a hundredth of a step of the end):
-  // comparing elapsed times exactly could leave a round-off remainder that no step covers, and
-  // loop forever (found on a polydisperse drum fill whose refriction phase ended 1e-17 s short).
-  const double dt = s.time_step();
+  // The phase ends where run_until stops stepping (Simulation::reached): comparing elapsed times
+  // exactly could leave a round-off remainder that no step covers, and loop forever (found on a
+  // polydisperse drum fill whose refriction phase ended 1e-17 s short).
   const double end = s.time() + max_time;
-  const double check = std::max(interval, dt);
+  const double check = std::max(interval, s.time_step());
   const double start = s.time();
-  while (s.time() < end - 0.01 * dt) {
+  while (!s.reached(end)) {
     s.run_until(std::min(s.time() + check, end));
     if (s.time() - start >= min_time && s.kinetic_energy() < tolerance * scale) return true;
   }

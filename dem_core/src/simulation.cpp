@@ -302,14 +302,17 @@ void Simulation::run_steps(std::uint64_t steps) {
 void Simulation::run_until(double t_end, const StepCallback& callback, std::uint64_t every) {
   require_finite("run_until t_end [s]", t_end);
   if (every == 0) every = 1;
-  const double dt = resolved_step();
   std::uint64_t local = 0;
-  // Stop at the first step that reaches t_end (within a hundredth of a step, against round-off).
-  while (time_ < t_end - 0.01 * dt) {
+  while (!reached(t_end)) {
     step();
     ++local;
     if (callback && local % every == 0 && !callback(*this)) return;
   }
+}
+
+bool Simulation::reached(double t_end) const {
+  // The first step that reaches t_end within a hundredth of a step ends a run (round-off).
+  return time_ >= t_end - 0.01 * resolved_step();
 }
 
 double Simulation::kinetic_energy() const {

@@ -18,7 +18,7 @@ struct PairOutputs {
   Vec3* torque_second;
   double* energy;
   std::uint8_t* touching;
-  double* max_overlap;    // per pair, only for laws that track it (plasticity), else null
+  double* max_overlap;    // per pair, with plasticity on, else null
 };
 
 template <class Law>
@@ -37,7 +37,7 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
     if (dist2 >= r_sum * r_sum) {
       if (!out.touching[k]) continue;  // already cleared
       history[k] = {};
-      if constexpr (Law::tracks_max_overlap) out.max_overlap[k] = 0.0;
+      if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[k] = 0.0;
       out.force[k] = {}; out.torque_first[k] = {}; out.torque_second[k] = {};
       out.energy[k] = 0.0; out.touching[k] = 0;
       continue;
@@ -60,7 +60,7 @@ void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list,
     g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
     g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
     ContactForce f;
-    if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap + k);
+    if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap ? out.max_overlap + k : nullptr);
     else f = law.force(g, history[k], dt);
     out.force[k] = f.force;
     if (rotation) {
@@ -78,7 +78,7 @@ struct WallOutputs {
   Vec3* rolling_torque;  // on the particle
   double* energy;
   std::uint8_t* touching;
-  double* max_overlap;   // index i * walls + w, only for laws that track it, else null
+  double* max_overlap;   // index i * walls + w, with plasticity on, else null
 };
 
 /// Loads of all walls on particle i, accumulated into the particle's force/torque in wall order.
@@ -93,7 +93,7 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     const WallProximity prox = wall_proximity(walls[w].geometry, p.position[i], p.radius[i]);
     if (!prox.touching) {
       history[slot] = {};
-      if constexpr (Law::tracks_max_overlap) out.max_overlap[slot] = 0.0;
+      if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[slot] = 0.0;
       out.touching[slot] = 0;
       continue;
     }
@@ -113,7 +113,7 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     g.shear_compliance = p.shear_compliance[i];
     g.inverse_inertia_sum = p.inverse_inertia[i];
     ContactForce f;
-    if constexpr (Law::tracks_max_overlap) f = laws[w].force(g, history[slot], dt, out.max_overlap + slot);
+    if constexpr (Law::tracks_max_overlap) f = laws[w].force(g, history[slot], dt, out.max_overlap ? out.max_overlap + slot : nullptr);
     else f = laws[w].force(g, history[slot], dt);
     p.force[i] += f.force;
     if (rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
@@ -252,18 +252,21 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
   // One switch per evaluation picks the law type; the effects law only when an effect is on.
   const bool linear = settings_.law == ContactLawKind::lsdyna_linear;  // fixed for a simulation
   const bool effects = linear && c.effects_enabled();
-  if (effects) {  // largest-overlap memory: allocated (zero = new contacts) on first use
+  // Largest-overlap memory only for plasticity (the other effects do not read it): allocated
+  // (zero = new contacts) on first use, null pointers otherwise.
+  const bool plastic = effects && c.unloading_stiffness_ratio != 1.0;
+  if (plastic) {
     if (pair_max_overlap_.size() != neighbors_.pair_count()) pair_max_overlap_.assign(neighbors_.pair_count(), 0.0);
     if (wall_max_overlap_.size() != p.size() * walls) wall_max_overlap_.assign(p.size() * walls, 0.0);
-  } else if (!pair_max_overlap_.empty() || !wall_max_overlap_.empty()) {  // effects switched off
+  } else if (!pair_max_overlap_.empty() || !wall_max_overlap_.empty()) {  // plasticity switched off
     pair_max_overlap_.clear();
     wall_max_overlap_.clear();
   }
   const PairOutputs pair_out{pair_force_.data(), pair_torque_first_.data(), pair_torque_second_.data(),
-                             pair_energy_.data(), pair_touching_.data(), pair_max_overlap_.data()};
+                             pair_energy_.data(), pair_touching_.data(), plastic ? pair_max_overlap_.data() : nullptr};
   const WallOutputs wall_out{wall_force_on_particle_.data(), wall_contact_point_.data(),
                              wall_rolling_torque_.data(), wall_energy_.data(), wall_touching_.data(),
-                             wall_max_overlap_.data()};
+                             plastic ? wall_max_overlap_.data() : nullptr};
   const bool rotation = settings_.contact.rotation_enabled();
   if (!wall_laws_valid_) {
     linear_wall_laws_.clear();

@@ -20,12 +20,6 @@ namespace {
 constexpr std::array<double, 4> kWeightCycle{0.3, 0.5, 0.8, 0.95};
 constexpr double kMinSeparation = 1e-5;  // unit coordinates; closer points add nothing but ill-conditioning
 
-// Standard normal from two uniforms (Box-Muller), deterministic across platforms.
-double normal01(std::mt19937_64& rng) {
-    const double u1 = 1.0 - uniform01(rng), u2 = uniform01(rng);
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-}
-
 VectorXd best_point(const RbfNetwork& model, const MatrixXd& existing, const Box& region) {
     VectorXd best = region.center();
     double best_value = std::numeric_limits<double>::infinity();

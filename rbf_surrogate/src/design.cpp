@@ -17,6 +17,12 @@ double uniform01(std::mt19937_64& rng) {
     return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
+double normal01(std::mt19937_64& rng) {
+    // Box-Muller from two uniform01 draws: deterministic across platforms (std distributions are not).
+    const double u1 = 1.0 - uniform01(rng), u2 = uniform01(rng);
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+}
+
 std::uint64_t uniform_index(std::mt19937_64& rng, std::uint64_t n) {
     // Lemire's multiply-high mapping; the bias (< n / 2^64) is irrelevant for design sizes.
     return static_cast<std::uint64_t>((static_cast<unsigned __int128>(rng()) * n) >> 64);

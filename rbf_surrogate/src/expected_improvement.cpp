@@ -23,11 +23,6 @@ constexpr double kLogFloor = -1e300;
 double normal_pdf(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
-double normal01(std::mt19937_64& rng) {
-    const double u1 = 1.0 - uniform01(rng), u2 = uniform01(rng);
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-}
-
 struct Acquisition {
     const KrigingModel* model;
     double best;

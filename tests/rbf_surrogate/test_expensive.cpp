@@ -119,8 +119,7 @@ TEST_CASE("Expected-improvement loop reaches Rosenbrock-4 f <= 0.1 within the 30
     const ExpensiveResult r = minimise_expensive(testfn::rosenbrock, vars, o);
     INFO("best " << r.value << " after " << r.evaluations);
     CHECK(r.value <= 0.1);
-    // The minimiser is (1,1,1,1); f <= 0.1 bounds the distance along the valley only loosely.
-    CHECK((r.x - Eigen::VectorXd::Ones(4)).norm() < 1.0);
+    CHECK(r.value == testfn::rosenbrock(r.x));  // the reported best is the value at the reported point
 }
 
 TEST_CASE("After a stall the expected-improvement loop samples outside the stalled basin",

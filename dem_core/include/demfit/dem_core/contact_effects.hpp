@@ -60,7 +60,7 @@ inline double normal_stiffness_scale(const ContactParameters& p) {
 /// Normal part with the effects; same interface as LinearNormal (contact_law_linear.hpp).
 /// `max_overlap` points to the contact's largest overlap so far [m] (0 for a new contact); it
 /// is read and updated only with plasticity on (unloading_ratio != 1); null = no memory (every
-/// step is virgin loading), which the simulation never passes with plasticity on.
+/// step is virgin loading), which the simulation passes unless plasticity is on.
 struct EffectsNormal {
   static constexpr bool tracks_max_overlap = true;
   double damping_ratio = 0.0;        ///< NDAMP (pairs) or wall DAMP [-]

@@ -89,6 +89,9 @@ class Simulation {
   void run_steps(std::uint64_t steps);
   /// Step until time() >= t_end [s] (or the callback returns false); callback every `every` steps.
   void run_until(double t_end, const StepCallback& callback = {}, std::uint64_t every = 1);
+  /// True when run_until(t_end) would take no step: the time is within a hundredth of a step of
+  /// t_end or past it (the one stop rule of every loop that steps to a time).
+  [[nodiscard]] bool reached(double t_end) const;
 
   // ---- state ---------------------------------------------------------------------------------
   [[nodiscard]] double time() const { return time_; }
@@ -155,7 +158,8 @@ class Simulation {
   std::vector<double> wall_energy_{};
   std::vector<std::uint8_t> wall_touching_{};
   // Largest overlap per pair / per (particle, wall) contact, for the plasticity effect only:
-  // empty while no effect is on (the plain law pays no memory for it), zero for new contacts.
+  // empty unless plasticity is on (other effects and the plain law pay no memory for it), zero
+  // for new contacts.
   std::vector<double> pair_max_overlap_{};
   std::vector<double> wall_max_overlap_{};
   double time_ = 0.0;

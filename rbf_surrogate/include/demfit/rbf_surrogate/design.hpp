@@ -29,6 +29,7 @@ double minimum_distance(const MatrixXd& points);
 
 // Deterministic uniform numbers from std::mt19937_64 (the same on every platform).
 double uniform01(std::mt19937_64& rng);                  // [0, 1), 53 random bits
+double normal01(std::mt19937_64& rng);                   // standard normal (Box-Muller), reproducible
 std::uint64_t uniform_index(std::mt19937_64& rng, std::uint64_t n);  // [0, n)
 
 }  // namespace demfit::rbf_surrogate

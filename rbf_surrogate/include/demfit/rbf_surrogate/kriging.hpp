@@ -50,7 +50,6 @@ public:
     const VectorXd& length_scales() const { return length_; }
     double nugget() const { return nugget_; }                 // relative to the process variance
     double process_variance() const { return sigma2_ * y_scale_ * y_scale_; }
-    double negative_log_likelihood() const { return nll_; }   // of the normalised values
     // Concentrated −log L of the values as given (normalisation Jacobian n·log(scale) included,
     // constant n/2·(1 + log 2π) left out): comparable between fits of transformed values once the
     // transform's own Jacobian is added.
