@@ -10,7 +10,6 @@
 #include "demfit/cases/reproduce.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
-#include "demfit/identify/study_store.hpp"
 #include "builtin_cases.hpp"
 
 namespace demfit::cases {
@@ -57,16 +56,13 @@ std::string percent(double value, double truth) { return fmt("%+.2f", 100.0 * (v
 // runs near the optimum (identify/uncertainty.hpp): with run-to-run trajectory noise comparable
 // to the 1 % data noise, the single best run is partly the luckiest one, while the regression
 // averages the noise of all nearby runs. The best run is shown beside it.
-std::string identified_cell(const identify::StudyResult& r, const nlohmann::json& uncertainty,
-                            const identify::VariableSpec& v, double truth) {
+std::string identified_cell(const identify::StudyResult& r, const identify::VariableSpec& v, double truth) {
   const double best = r.best.at(v.name);
   bool flagged = false;
   for (const std::string& u : r.unidentifiable) flagged = flagged || u == v.name;
   const auto ci = r.ci_half_width.find(v.name);
   const double half = ci == r.ci_half_width.end() ? std::nan("") : ci->second;
-  const nlohmann::json centre = uncertainty.is_object() && uncertainty.contains("least_squares_estimate")
-                                    ? uncertainty["least_squares_estimate"].value(v.name, nlohmann::json())
-                                    : nlohmann::json();
+  const auto centre = r.least_squares_estimate.find(v.name);
   const std::string best_text = "best run " + fmt("%.6f", best) + " (" + percent(best, truth) + ")";
   if (flagged && !std::isfinite(half)) {
     return "**not identifiable** near the optimum: over the last runs' spread its effect on the curve is below "
@@ -74,7 +70,8 @@ std::string identified_cell(const identify::StudyResult& r, const nlohmann::json
            fmt("%g", v.upper) + "]; " + best_text;
   }
   // A flagged variable's local fit is not trusted for a centre either: the best run stands.
-  const double value = centre.is_number() && !flagged ? centre.get<double>() : best;
+  const double value =
+      centre != r.least_squares_estimate.end() && std::isfinite(centre->second) && !flagged ? centre->second : best;
   std::string cell = "**" + fmt("%.6f", value) + "**";
   if (std::isfinite(half)) cell += " ± " + fmt("%.3g", half);
   cell += " (" + percent(value, truth);
@@ -109,11 +106,9 @@ std::string reproduce_table1(const ReproduceOptions& o) {
   t += "| Poisson's ratio, nu | 0.4 | " + fmt("%.2f", pellet.material.poisson_ratio) + " (input) |\n";
   t += "| K_bulk = E / (3(1 - 2 nu)) (MPa) | 1,767 | " + fmt("%.1f", bulk / 1e6) + " |\n";
   t += "| RADIUS (mm) | 1.86 | " + fmt("%.2f", pellet.material.radius * 1e3) + " |\n";
-  const auto stored = identify::StudyStore::open_existing(run.output_dir / "study.db").result();
-  const nlohmann::json uncertainty = stored ? stored->value("uncertainty", nlohmann::json()) : nlohmann::json();
-  t += "| NORMK (default = 0.01) | 0.875046 | " + identified_cell(r, uncertainty, spec.variables[0], kPaperNormk) + " |\n";
+  t += "| NORMK (default = 0.01) | 0.875046 | " + identified_cell(r, spec.variables[0], kPaperNormk) + " |\n";
   t += "| SHEARK (default = 2/7 = 0.2857) | 0.299582 | " +
-       identified_cell(r, uncertainty, spec.variables[1], kPaperSheark) + " |\n\n";
+       identified_cell(r, spec.variables[1], kPaperSheark) + " |\n\n";
   t += "Identified from data/pellet_pressure_volume_synthetic.csv (SYNTHETIC: simulated by demfit at the\n"
        "paper's NORMK and SHEARK plus 1 % Gaussian noise, seed 2026; the experimental curve of Fig. 2 is not\n"
        "published). Start: LS-DYNA defaults NORMK = 0.01, SHEARK = 2/7. Bold: centre of the local least-squares\n"

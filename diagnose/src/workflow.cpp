@@ -238,7 +238,9 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
     } catch (const std::exception& e) {
       d.notes.push_back("effect '" + effect.name + "': a re-identification start failed (" + e.what() + ")");
     }
-    if (fitted && assess(c, d, k, f)) break;  // passes: further starts cannot change the verdict
+    // Passes: the ranking uses this first passing start. A later start could only raise its
+    // delta BIC, which matters only against another passing candidate within the threshold.
+    if (fitted && assess(c, d, k, f)) break;
   }
   return fitted;
 }

@@ -293,6 +293,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
       result.ci_half_width[name] = estimate.ci_half_width[j];
       result.standard_error[name] = estimate.standard_error[j];
       if (estimate.unidentifiable[j]) result.unidentifiable.push_back(name);
+      if (!estimate.least_squares_estimate.empty()) result.least_squares_estimate[name] = estimate.least_squares_estimate[j];
     }
     result.correlation.assign(dims_, std::vector<double>(dims_));
     for (int i = 0; i < dims_; ++i)

@@ -41,6 +41,9 @@ struct StudyResult {
   std::map<std::string, double> ci_half_width;  // ~95 % confidence half-width per variable
   std::map<std::string, double> standard_error;
   std::vector<std::string> unidentifiable;      // variables the data cannot pin down
+  // Centre of the local least-squares fit of the runs near the best one (uncertainty.hpp),
+  // per variable; empty when too few runs.
+  std::map<std::string, double> least_squares_estimate;
   std::vector<std::vector<double>> correlation; // variables x variables, study order
   double wall_seconds = 0.0;
   CurveSet best_curves;                 // the best run's curves as simulated
