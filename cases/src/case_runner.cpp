@@ -21,10 +21,15 @@ CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& paramete
   CaseRunOptions resolved = options;
   if (resolved.cache_dir.empty()) resolved.cache_dir = default_cache_dir();
   const CaseSpec evaluated = detail::with_parameters(spec, parameters);
+  // The fill is made with the case's contact values (they are not evaluated parameters of the
+  // fill), but radius_spread changes the particles themselves, so it is taken from the
+  // evaluated spec (one cached fill per distinct spread).
+  CaseSpec fill = spec;
+  fill.material.radius_spread = evaluated.material.radius_spread;
   if (spec.kind == CaseKind::pellet_compression) {
-    return detail::run_pellet_compression(spec, evaluated, resolved);
+    return detail::run_pellet_compression(fill, evaluated, resolved);
   }
-  return detail::run_rotary_drum(spec, evaluated, resolved);
+  return detail::run_rotary_drum(fill, evaluated, resolved);
 }
 
 }  // namespace demfit::cases

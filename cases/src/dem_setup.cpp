@@ -78,8 +78,10 @@ void precheck_user_time_step(const CaseSpec& spec, double radius, double density
   dem_core::Material material = to_material(spec.material);
   material.density = density;
   probe.add_material(material);
-  probe.add_particle({0, 0, 0}, radius);
-  probe.add_wall({dem_core::PlaneGeometry{{0, 0, -radius}, {0, 0, 1}}, dem_core::FixedMotion{},
+  // The smallest particle of the radius spread sets the stable step.
+  const double smallest = radius * (1.0 - spec.material.radius_spread);
+  probe.add_particle({0, 0, 0}, smallest);
+  probe.add_wall({dem_core::PlaneGeometry{{0, 0, -smallest}, {0, 0, 1}}, dem_core::FixedMotion{},
                   spec.wall, {}, "probe"});
   check_user_time_step(spec, probe);
 }

@@ -31,9 +31,10 @@ identify::ParameterSet parameters_of(const CaseSpec& spec);
 // for the simulation's current particles and walls.
 void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simulation);
 
-// The same check before any expensive work: a probe simulation with one particle of the given
-// radius [m] and density [kg/m^3] and one wall with the spec's wall parameters (the stable
-// step depends on particle size, material and contact parameters, not on positions).
+// The same check before any expensive work: a probe simulation with one particle of the
+// smallest radius of the spec's spread around the nominal `radius` [m], density [kg/m^3], and
+// one wall with the spec's wall parameters (the stable step depends on particle size, material
+// and contact parameters, not on positions).
 void precheck_user_time_step(const CaseSpec& spec, double radius, double density);
 
 // Writes VTK snapshots of `simulation` named <dir>/<stage>_<time>.vtk for every time in

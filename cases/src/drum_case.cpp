@@ -261,14 +261,9 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   const auto start = Clock::now();
   bool generated = false;
   const Powder powder = powder_of(spec);
-  // The smallest particle sets the stable step.
-  precheck_user_time_step(spec, powder.particle.radius * (1.0 - spec.material.radius_spread), powder.particle.density);
-  // radius_spread changes the particles themselves, so unlike the contact values it is taken
-  // from the evaluated spec for the fill too (one cached fill per distinct spread).
-  CaseSpec packed = fill_spec;
-  packed.material.radius_spread = spec.material.radius_spread;
-  const Fill fill = cached_fill(options.cache_dir, "drum", fill_key(packed),
-                                [&] { return pack_and_densify(packed, options); }, &generated);
+  precheck_user_time_step(spec, powder.particle.radius, powder.particle.density);
+  const Fill fill = cached_fill(options.cache_dir, "drum", fill_key(fill_spec),
+                                [&] { return pack_and_densify(fill_spec, options); }, &generated);
   const double fill_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const auto rotate_start = Clock::now();
   const RotationRun run = rotate(spec, powder, fill, options);

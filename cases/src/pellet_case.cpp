@@ -122,16 +122,11 @@ identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end
 
 CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec,
                                   const CaseRunOptions& options) {
-  // The smallest pellet sets the stable step.
-  precheck_user_time_step(spec, spec.material.radius * (1.0 - spec.material.radius_spread), spec.material.density);
+  precheck_user_time_step(spec, spec.material.radius, spec.material.density);
   const auto start = Clock::now();
   bool generated = false;
-  // radius_spread changes the particles themselves, so unlike the contact values it is taken
-  // from the evaluated spec for the fill too (one cached fill per distinct spread).
-  CaseSpec poured = fill_spec;
-  poured.material.radius_spread = spec.material.radius_spread;
-  const Fill fill = cached_fill(options.cache_dir, "pellet", fill_key(poured),
-                                [&] { return pour_and_settle(poured, options); }, &generated);
+  const Fill fill = cached_fill(options.cache_dir, "pellet", fill_key(fill_spec),
+                                [&] { return pour_and_settle(fill_spec, options); }, &generated);
   const double fill_seconds = seconds_since(start);
   const auto compress_start = Clock::now();
   const CompressionRun run = compress(spec, fill, options);
