@@ -64,8 +64,7 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const identify::StudySpec&
 // (same base curve as identify's analytic model); DEM cases get the cases catalogue's effects
 // and the options for expensive, chaotic models.
 std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
-                                                      std::vector<diagnose::EffectCandidate>& candidates, bool& dem) {
-  dem = false;
+                                                      std::vector<diagnose::EffectCandidate>& candidates) {
   if (spec.model_reference == "analytic") {
     int points = 41;
     for (const auto& [key, value] : spec.model_overrides.items()) {
@@ -77,7 +76,6 @@ std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec&
     candidates = diagnose::analytic_effect_candidates();
     return std::make_unique<diagnose::AnalyticEffectsModel>(points);
   }
-  dem = true;
   auto model = cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
   candidates = dem_candidates(spec, *model);
   return model;
@@ -90,8 +88,8 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
   const identify::StudySpec spec = identify::load_study_file(o.study_file);
   std::vector<diagnose::EffectCandidate> candidates;
-  bool dem = false;
-  const auto model = model_and_candidates(spec, candidates, dem);
+  const auto model = model_and_candidates(spec, candidates);
+  const bool dem = spec.model_reference != "analytic";
   if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
   diagnose::DiagnoseOptions options = dem ? diagnose::expensive_model_options() : diagnose::DiagnoseOptions{};
   options.noise_sigma = o.noise;
