@@ -60,10 +60,9 @@ struct WarpedModel {
 };
 
 VectorXd log_warp(const VectorXd& y, double& log_jacobian_sum) {
-    std::vector<double> v(y.data(), y.data() + y.size());
-    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
     const double lo = y.minCoeff();
-    const double delta = std::max(0.1 * (v[v.size() / 2] - lo), 1e-12 * std::max(1.0, std::abs(lo)));
+    const double median = upper_median(std::vector<double>(y.data(), y.data() + y.size()));
+    const double delta = std::max(0.1 * (median - lo), 1e-12 * std::max(1.0, std::abs(lo)));
     const Eigen::ArrayXd shifted = (y.array() - lo) + delta;
     log_jacobian_sum = -shifted.log().sum();  // Σ log w'(y_i), w'(y) = 1 / (y − lo + δ)
     return shifted.log().matrix();
@@ -148,8 +147,8 @@ public:
         double best = std::numeric_limits<double>::infinity();
         for (Eigen::Index i = 0; i < x.rows(); ++i)
             if (!excluded(x.row(i).transpose())) best = std::min(best, y[i]);
-        const bool improved = best < outside_best_ - 1e-3 * std::max(std::abs(outside_best_), 1e-12);
-        outside_since_ = improved || !std::isfinite(outside_best_) ? 0 : outside_since_ + added;
+        const bool gained = improved(best, outside_best_);
+        outside_since_ = gained || !std::isfinite(outside_best_) ? 0 : outside_since_ + added;
         outside_best_ = std::min(outside_best_, best);
         if (outside_since_ >= stall_ && outside_incumbent.size() > 0) exclude(outside_incumbent);
     }
@@ -188,7 +187,7 @@ void expected_improvement_loop(Run& run, const ExpensiveOptions& options, int di
         const KrigingModel& model = warped.model;
         double best = 0.0;
         VectorXd incumbent = x.row(incumbent_index(model, x, warped.values, schedule.noisy(), best)).transpose();
-        const std::uint64_t seed = options.seed + 7919ULL * static_cast<std::uint64_t>(iteration + 1);
+        const std::uint64_t seed = iteration_seed(options.seed, iteration);
         // An exclusion episode lasts 7·stall_evaluations points: a slow but steady descent (a long
         // curved valley) may have been taken for a stall, so plain EI then resumes with what the
         // episode learnt. Measured, 10 seeds: unbounded episodes fail Rosenbrock-4 twice, episodes
@@ -217,8 +216,8 @@ void expected_improvement_loop(Run& run, const ExpensiveOptions& options, int di
             run.evaluate(maximise_expected_improvement(model, best, incumbent, bounds, seed, acquisition).x);
         run.unstall(before, seed);
         if (stalled) basins.track(run.points(), run.values(), run.count() - before, outside_incumbent);
-        const bool improved = run.best() < last_best - 1e-3 * std::max(std::abs(last_best), 1e-12);
-        since_improvement = improved ? 0 : since_improvement + (run.count() - before);
+        const bool gained = improved(run.best(), last_best);
+        since_improvement = gained ? 0 : since_improvement + (run.count() - before);
         last_best = std::min(last_best, run.best());
     }
 }

@@ -38,6 +38,8 @@ ExpensiveResult Run::result() const {
 namespace {
 
 using detail::Run;
+using detail::improved;
+using detail::iteration_seed;
 
 MinimizeResult predicted_minimum(const RbfNetwork& model, const Box& region, const MinimizeOptions& options) {
     const Objective objective = [&model](const VectorXd& x, VectorXd* grad) {
@@ -65,7 +67,7 @@ void srsm_loop(Run& run, int batch, const ExpensiveOptions& options, int dims) {
         }
         const RbfNetwork model = run.fit();
         MinimizeOptions mo = options.minimize;
-        mo.seed = options.seed + 7919ULL * static_cast<std::uint64_t>(iteration + 1);
+        mo.seed = iteration_seed(options.seed, iteration);
         const VectorXd predicted = predicted_minimum(model, state.region.box(), mo).x;
         const bool fresh = run.is_new(predicted);
         run.evaluate(predicted);
@@ -77,9 +79,9 @@ void srsm_loop(Run& run, int batch, const ExpensiveOptions& options, int dims) {
         const int fill = batch - (fresh ? 1 : 0);
         run.evaluate_rows(space_filling_augment(run.points(), fill, state.region.box(), mo.seed));
         run.unstall(before, mo.seed);
-        const bool improved = run.best() < last_best - 1e-3 * std::max(std::abs(last_best), 1e-12);
-        stalled = improved ? 0 : stalled + 1;
-        if (improved) exploring = false;
+        const bool gained = improved(run.best(), last_best);
+        stalled = gained ? 0 : stalled + 1;
+        if (gained) exploring = false;
         last_best = std::min(last_best, run.best());
     }
 }
@@ -100,7 +102,7 @@ void adaptive_loop(Run& run, int batch, const ExpensiveOptions& options, int dim
             continue;
         }
         const RbfNetwork model = run.fit();
-        const std::uint64_t seed = options.seed + 7919ULL * static_cast<std::uint64_t>(iteration + 1);
+        const std::uint64_t seed = iteration_seed(options.seed, iteration);
         int fill = batch;
         if (iteration % 2 == 1) {
             MinimizeOptions mo = options.minimize;
@@ -114,8 +116,8 @@ void adaptive_loop(Run& run, int batch, const ExpensiveOptions& options, int dim
         if (fill > 0) run.evaluate_rows(adaptive_infill(model, run.points(), fill, bounds, seed, iteration));
         run.unstall(before, seed);
         const double best = run.best();
-        const bool improved = best < last_best - 1e-3 * std::max(std::abs(last_best), 1e-12);
-        since_improvement = improved ? 0 : since_improvement + (run.count() - before);
+        const bool gained = improved(best, last_best);
+        since_improvement = gained ? 0 : since_improvement + (run.count() - before);
         last_best = std::min(last_best, best);
     }
 }

@@ -6,12 +6,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace demfit::rbf_surrogate::detail {
 
 constexpr double kDuplicateTolerance = 1e-5;  // unit coordinates, as adaptive_infill
+
+// The stall rule of every loop: `now` improves on `before` by more than 0.1 % of |before|.
+inline bool improved(double now, double before) { return now < before - 1e-3 * std::max(std::abs(before), 1e-12); }
+
+// Seed of the candidate search of iteration `iteration` (0-based): distinct per iteration, fixed per run.
+inline std::uint64_t iteration_seed(std::uint64_t seed, int iteration) {
+    return seed + 7919ULL * static_cast<std::uint64_t>(iteration + 1);
+}
+
+// Upper median (element n/2 of the sorted values).
+inline double upper_median(std::vector<double> values) {
+    std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2), values.end());
+    return values[values.size() / 2];
+}
 
 class Run {
 public:
@@ -69,9 +85,7 @@ public:
         else if (width_ > 0.0) o.width_hint = width_;
         VectorXd y = values();
         if (options_.clip_above_median) {
-            std::vector<double> sorted(values_);
-            std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
-            y = y.cwiseMin(sorted[sorted.size() / 2]);
+            y = y.cwiseMin(upper_median(values_));
         }
         RbfNetwork net = RbfNetwork::fit(points(), y, o);
         if (!reuse && !options_.rbf.fixed_width) {
