@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "dem_setup.hpp"
+#include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
@@ -77,8 +78,7 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
     // Polydisperse: the same solid volume as particle_count pellets of the nominal radius
     // (same mass of pellets, same bed volume), so fewer, on average larger spheres.
     request.radius_spread = spread;
-    request.solid_volume = static_cast<double>(spec.pellet.particle_count) * 4.0 / 3.0 * std::numbers::pi *
-                           std::pow(spec.material.radius, 3);
+    request.solid_volume = static_cast<double>(spec.pellet.particle_count) * sphere_volume(spec.material.radius);
   } else {
     request.count = static_cast<std::size_t>(spec.pellet.particle_count);
   }

@@ -46,7 +46,7 @@ TEST_CASE("Residuals of a loading-unloading target compare each data branch with
   for (std::size_t i = 0; i < data.x.size(); ++i) CHECK(q.front()[i] == Approx(-data.x[i]).margin(1e-12));
 }
 
-TEST_CASE("Broyden updates and central differences reach the forward-difference optimum with fewer evaluations") {
+TEST_CASE("Broyden updates, with forward or central differences, reach the forward-difference optimum with fewer evaluations") {
   // Noise-free data of the analytic family at a known point inside the bounds: the optimum is
   // that point with chi-square 0 (up to the fit's tolerance).
   const AnalyticEffectsModel model(101);
@@ -64,8 +64,10 @@ TEST_CASE("Broyden updates and central differences reach the forward-difference 
   FitOptions central = broyden;
   central.central_differences = true;
   central.fd_step = 1e-4;
+  std::vector<int> evaluations;
   for (const FitOptions* o : {&plain, &broyden, &central}) {
     const FitResult f = fit_least_squares(model, fixed, variables, targets, *o);
+    evaluations.push_back(f.evaluations);
     INFO("broyden " << o->broyden << ", central " << o->central_differences << ": " << f.evaluations << " evaluations");
     CHECK(f.chi_square < 1e-4);  // RMS below 1e-4 sigma
     CHECK(f.values[0] == Approx(1.1).epsilon(1e-4));
@@ -73,8 +75,7 @@ TEST_CASE("Broyden updates and central differences reach the forward-difference 
     CHECK(f.values[2] == Approx(0.4).epsilon(1e-4));
     CHECK(f.jacobian.rows() == 101);
   }
-  const int plain_evaluations = fit_least_squares(model, fixed, variables, targets, plain).evaluations;
-  const int broyden_evaluations = fit_least_squares(model, fixed, variables, targets, broyden).evaluations;
-  INFO("plain " << plain_evaluations << ", broyden " << broyden_evaluations);
-  CHECK(broyden_evaluations < plain_evaluations);
+  INFO("plain " << evaluations[0] << ", broyden " << evaluations[1] << ", broyden + central " << evaluations[2]);
+  CHECK(evaluations[1] < evaluations[0]);  // measured 18 vs 29
+  CHECK(evaluations[2] < evaluations[0]);  // measured 24 vs 29
 }
