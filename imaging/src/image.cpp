@@ -82,11 +82,12 @@ void append_bytes(void* context, void* data, int size) {
 GreyImage read_grey_image(const std::filesystem::path& file) {
   const std::string bytes = read_bytes(file);
   if (bytes.empty()) throw std::runtime_error("image '" + file.string() + "' is empty; give a BMP, PNG or JPEG file");
-  if (looks_truncated(bytes))
-    throw std::runtime_error("image '" + file.string() + "' is truncated (fewer bytes than its header announces); copy the file again");
+  const std::string truncated = "image '" + file.string() + "' is truncated (its data ends before the picture does); copy the file again";
+  if (looks_truncated(bytes)) throw std::runtime_error(truncated);
   int width = 0, height = 0, channels = 0;
   unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
                                                 &width, &height, &channels, 1);
+  if (pixels == nullptr && std::string(stbi_failure_reason()) == "outofdata") throw std::runtime_error(truncated);
   if (pixels == nullptr)
     throw std::runtime_error("image '" + file.string() + "' cannot be decoded (" + stbi_failure_reason() +
                              "); give a BMP, PNG or JPEG file");
