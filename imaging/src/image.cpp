@@ -101,13 +101,23 @@ GreyImage read_grey_image(const std::filesystem::path& file) {
   return image;
 }
 
-void write_png(const std::filesystem::path& file, const RgbImage& image) {
+std::string encode_png(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-    throw std::runtime_error("cannot write '" + file.string() + "': the RGB image is empty or its buffer size is not 3 x width x height");
+    throw std::runtime_error("cannot encode a PNG: the RGB image is empty or its buffer size is not 3 x width x height");
   std::string encoded;
   if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), 3 * image.width) == 0)
-    throw std::runtime_error("cannot encode '" + file.string() + "' as PNG");
+    throw std::runtime_error("cannot encode a PNG of " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+  return encoded;
+}
+
+void write_png(const std::filesystem::path& file, const RgbImage& image) {
+  std::string encoded;
+  try {
+    encoded = encode_png(image);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("'" + file.string() + "': " + e.what());
+  }
   detail::write_file_atomically(file, encoded);
 }
 

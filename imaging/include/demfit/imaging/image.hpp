@@ -33,6 +33,9 @@ GreyImage read_grey_image(const std::filesystem::path& file);
 // so a reader never sees a half-written picture. Throws std::runtime_error (one line) on failure.
 void write_png(const std::filesystem::path& file, const RgbImage& image);
 
+// The PNG file content of `image` (for callers that stage several files before committing them).
+std::string encode_png(const RgbImage& image);
+
 // The grey image as RGB (each channel = round(255 * value)).
 RgbImage to_rgb(const GreyImage& image);
 
