@@ -25,7 +25,9 @@ TEST_CASE("a straight surface at a known angle is extracted with the angle withi
     REQUIRE(profile.x.size() == 41u);
     const SurfaceLine line = fit_surface_line(profile);
     CHECK(std::abs(-line.angle_deg - angle) < 0.5);
-    CHECK(test::rms_against(profile, surface) < 0.25 * drum.pixel_size());
+    // Half a pixel: on a level surface every edge pixel has the same grey level, so Otsu's
+    // threshold may fall on either side of it (then the edge row counts as material or empty).
+    CHECK(test::rms_against(profile, surface) < 0.5 * drum.pixel_size());
   }
 }
 
