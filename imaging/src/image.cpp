@@ -111,6 +111,17 @@ std::string encode_png(const RgbImage& image) {
   return encoded;
 }
 
+std::string encode_jpeg(const RgbImage& image, int quality) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
+    throw std::runtime_error("cannot encode a JPEG: the RGB image is empty or its buffer size is not 3 x width x height");
+  if (quality < 1 || quality > 100) throw std::runtime_error("JPEG quality " + std::to_string(quality) + ": give 1..100");
+  std::string encoded;
+  if (stbi_write_jpg_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), quality) == 0)
+    throw std::runtime_error("cannot encode a JPEG of " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+  return encoded;
+}
+
 void write_png(const std::filesystem::path& file, const RgbImage& image) {
   std::string encoded;
   try {

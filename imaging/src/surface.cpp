@@ -3,6 +3,7 @@
 // `points` equally spaced abscissae across the usable chord.
 #include "demfit/imaging/surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -107,6 +108,22 @@ std::vector<unsigned char> bed_mask(const GreyImage& image, const Grid& grid, do
   return bed;
 }
 
+// Median grey levels of the material and of the empty pixels inside the circle.
+void class_levels(const GreyImage& image, const Grid& grid, double threshold, bool dark, SurfaceProfile& profile) {
+  std::vector<float> material, empty;
+  for (int column = 0; column < grid.n; ++column)
+    for (int row = grid.top[column]; row >= 0 && row <= grid.bottom[column]; ++row) {
+      const float v = image.value[static_cast<std::size_t>(row) * grid.n + column];
+      ((dark ? v < threshold : v > threshold) ? material : empty).push_back(v);
+    }
+  for (auto [values, level] : {std::pair{&material, &profile.material_level}, std::pair{&empty, &profile.empty_level}}) {
+    if (values->empty()) continue;
+    const auto middle = values->begin() + static_cast<std::ptrdiff_t>(values->size() / 2);
+    std::nth_element(values->begin(), middle, values->end());
+    *level = *middle;
+  }
+}
+
 // Per column: height [m] of the top of the bed, or NaN when the column has no bed pixel or the bed
 // reaches the top of the circle. Sub-pixel: the grey level is interpolated linearly between the
 // topmost bed pixel and the empty pixel above it, and the surface put where it crosses the threshold.
@@ -163,6 +180,12 @@ ProfileOptions occupancy_profile_options(const ProfileOptions& photo_options) {
   return options;
 }
 
+double equivalent_occupancy(const SurfaceProfile& profile) {
+  if (profile.material_level == profile.empty_level)
+    throw std::runtime_error("equivalent occupancy: the profile's material and empty grey levels are equal; extract a surface first");
+  return (profile.threshold_used - profile.empty_level) / (profile.material_level - profile.empty_level);
+}
+
 SurfaceProfile extract_surface(const GreyImage& image, const DrumFrame& frame, const ProfileOptions& options) {
   check_inputs(image, frame, options);
   const Grid grid = make_grid(image.width, frame, options.margin);
@@ -172,6 +195,7 @@ SurfaceProfile extract_surface(const GreyImage& image, const DrumFrame& frame, c
   profile.pixel_size = grid.h;
   int material_count = 0;
   const std::vector<unsigned char> bed = bed_mask(image, grid, profile.threshold_used, options.material_is_dark, material_count);
+  class_levels(image, grid, profile.threshold_used, options.material_is_dark, profile);
   sample_profile(grid, column_heights(image, grid, bed, profile.threshold_used), options.points, profile);
   if (profile.x.size() < 2) {
     const std::string what = material_count == 0 ? "no pixel is material" : "the material fills the circle or does not reach its bottom";

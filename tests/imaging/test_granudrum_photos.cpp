@@ -3,6 +3,7 @@
 // the left (the drum turns clockwise as seen in the photos).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 
 #include "demfit/imaging/image.hpp"
@@ -32,8 +33,14 @@ TEST_CASE("the GranuDrum photos give bed surfaces lifted on the left, straight a
                         << rolling.threshold_used << ", x " << rolling.x.front() * 1e3 << ".." << rolling.x.back() * 1e3 << " mm");
   WARN("45 rpm: angle " << cascading_line.angle_deg << " deg, residual " << cascading_line.residual_rms * 1e3 << " mm, threshold "
                         << cascading.threshold_used << ", x " << cascading.x.front() * 1e3 << ".." << cascading.x.back() * 1e3 << " mm");
+  WARN("material / empty grey levels: 15 rpm " << rolling.material_level << " / " << rolling.empty_level << ", 45 rpm "
+        << cascading.material_level << " / " << cascading.empty_level << "; equivalent occupancy " << equivalent_occupancy(rolling)
+        << ", " << equivalent_occupancy(cascading));
   for (const SurfaceProfile* p : {&rolling, &cascading}) {
     CHECK(p->z.front() > p->z.back() + 0.03);  // lifted on the left by more than 30 mm
+    // Otsu's threshold on the averaged photo is where a pixel is powder about half the time, the
+    // same rule as the simulated side's occupancy > 0.5 (within 0.1).
+    CHECK(std::abs(equivalent_occupancy(*p) - 0.5) < 0.1);
   }
   CHECK(rolling_line.angle_deg < -20.0);
   CHECK(cascading_line.angle_deg < rolling_line.angle_deg);  // faster drum, steeper mean surface

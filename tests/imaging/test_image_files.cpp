@@ -99,6 +99,23 @@ TEST_CASE("a BMP drawn with a known surface reads back with row 0 at the top and
   CHECK(test::rms_against(profile, surface) < 0.25 * drum.pixel_size());
 }
 
+TEST_CASE("a JPEG of a drawn drum reads back close to the drawing and gives its surface") {
+  const fs::path dir = scratch("jpeg");
+  const test::DrawnDrum drum;
+  const auto surface = [](double x) { return -0.001 - std::tan(28.0 * M_PI / 180.0) * x; };
+  const GreyImage drawn = test::draw_surface(drum, surface);
+  write_bytes(dir / "drum.jpg", encode_jpeg(to_rgb(drawn), 95));
+  const GreyImage read = read_grey_image(dir / "drum.jpg");
+  REQUIRE(read.width == drum.pixels);
+  // Lossy: compression ringing stays near the edge; the surface is still within a pixel.
+  const SurfaceProfile profile = extract_surface(read, DrumFrame{drum.diameter}, ProfileOptions{});
+  CHECK(std::abs(-fit_surface_line(profile).angle_deg - 28.0) < 0.5);
+  CHECK(test::rms_against(profile, surface) < drum.pixel_size());
+  const std::string jpeg = read_bytes(dir / "drum.jpg");
+  write_bytes(dir / "cut.jpg", jpeg.substr(0, jpeg.size() * 3 / 4));
+  CHECK_THROWS_WITH(read_grey_image(dir / "cut.jpg"), Catch::Contains("cut.jpg") && Catch::Contains("truncated"));
+}
+
 TEST_CASE("truncated BMP and PNG files are refused as truncated, naming the file") {
   const fs::path dir = scratch("truncated");
   const GreyImage drawn = test::draw_surface(test::DrawnDrum{}, [](double x) { return -0.6 * x; });

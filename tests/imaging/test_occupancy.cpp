@@ -57,6 +57,8 @@ TEST_CASE("discs whose union has a flat top give that height within a pixel") {
     CHECK(std::abs(profile.z[i] - z_top) < h);
   }
   CHECK(std::abs(fit_surface_line(profile).angle_deg) < 0.5);
+  // Covered pixels are 1, empty ones 0: threshold 0.5 is occupancy 0.5.
+  CHECK(equivalent_occupancy(profile) == Approx(0.5));
 }
 
 TEST_CASE("occupancy is the fraction of snapshots covering a pixel and the surface follows the majority") {

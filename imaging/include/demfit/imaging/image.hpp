@@ -36,6 +36,10 @@ void write_png(const std::filesystem::path& file, const RgbImage& image);
 // The PNG file content of `image` (for callers that stage several files before committing them).
 std::string encode_png(const RgbImage& image);
 
+// The JPEG file content of `image` at quality 1..100 (lossy; for previews and for tests of the
+// JPEG reader).
+std::string encode_jpeg(const RgbImage& image, int quality);
+
 // The grey image as RGB (each channel = round(255 * value)).
 RgbImage to_rgb(const GreyImage& image);
 

@@ -46,7 +46,15 @@ struct SurfaceProfile {
   double threshold_used = 0.0;    // grey level actually used (Otsu's or the given one)
   double compared_radius = 0.0;   // [m] (1 - margin) R
   double pixel_size = 0.0;        // [m] h = D / (N - 1)
+  double material_level = 0.0;    // median grey level of the material pixels inside the compared circle
+  double empty_level = 0.0;       // median grey level of the empty pixels inside the compared circle
 };
+
+// The occupancy (fraction of time covered) at which a time-averaged picture with these material and
+// empty levels crosses the threshold: (threshold - empty) / (material - empty). For an averaged photo
+// it says which occupancy threshold of the simulated side means the same surface (0.5 = the
+// occupancy_profile_options rule).
+double equivalent_occupancy(const SurfaceProfile& profile);
 
 // Throws std::runtime_error (one line naming the image source or option and the fix) for a
 // non-square or too small (< 32 px) image, diameter <= 0, options out of range, or when no
