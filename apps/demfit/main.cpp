@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   demfit::apps::register_identify(app);
   demfit::apps::register_reproduce(app);
   demfit::apps::register_diagnose(app);
+  demfit::apps::register_target(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

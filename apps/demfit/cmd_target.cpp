@@ -1,0 +1,138 @@
+// demfit target from-image PHOTO --diameter 84mm --out DIR: the free-surface profile of a drum
+// photo in the drum frame (free_surface.csv, mm) and an overlay picture (overlay.png). Issue 14;
+// extraction rule in imaging/include/demfit/imaging/surface.hpp.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "demfit/imaging/imaging.hpp"
+
+namespace demfit::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TargetFromImageOptions {
+  std::string photo;
+  std::string diameter;
+  double threshold = -1.0;
+  bool inverted = false;
+  double margin = 0.1;
+  int points = 41;
+  std::string out;
+};
+
+// "84mm", "84 mm", "0.084m" or a bare number (metres) -> metres.
+double parse_diameter(const std::string& text) {
+  static const std::regex pattern(R"(\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(mm|m)?\s*)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+    throw std::runtime_error("--diameter '" + text + "': give a number with unit mm or m, e.g. 84mm or 0.084m (a bare number is metres)");
+  const double value = std::stod(match[1].str()) * (match[2].str() == "mm" ? 1e-3 : 1.0);
+  if (!(value > 0.0)) throw std::runtime_error("--diameter '" + text + "': the drum diameter must be > 0, e.g. 84mm");
+  if (value > 10.0)
+    throw std::runtime_error("--diameter '" + text + "' is " + std::to_string(value) +
+                             " m, larger than any lab drum; a bare number is metres: add the unit, e.g. 84mm");
+  return value;
+}
+
+std::string format_csv(const imaging::SurfaceProfile& profile, const imaging::DrumFrame& frame,
+                       const TargetFromImageOptions& o) {
+  std::ostringstream csv;
+  csv.precision(6);
+  csv << "# free surface of the bed in the drum frame: x right as seen in the picture, z up, origin on the drum axis, mm; "
+      << "the square image spans the inner diameter " << frame.diameter * 1e3 << " mm\n"
+      << "# source: " << o.photo << "; threshold " << profile.threshold_used << (o.threshold < 0.0 ? " (Otsu)" : " (given)")
+      << "; material " << (o.inverted ? "light" : "dark") << "; margin " << o.margin << " (compared circle radius "
+      << profile.compared_radius * 1e3 << " mm); pixel " << profile.pixel_size * 1e3 << " mm\n"
+      << "x_mm,z_mm\n";
+  for (std::size_t i = 0; i < profile.x.size(); ++i) csv << profile.x[i] * 1e3 << ',' << profile.z[i] * 1e3 << '\n';
+  return csv.str();
+}
+
+// Writes the files into `dir` all-or-nothing: every file first to a temporary name inside `dir`,
+// then each renamed into place; on failure the temporaries (and a folder this call created) go.
+void commit_files(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& files) {
+  std::error_code error;
+  if (fs::exists(dir, error) && !fs::is_directory(dir, error))
+    throw std::runtime_error("--out '" + dir.string() + "' exists and is not a folder; give a folder path");
+  const bool created = fs::create_directories(dir, error);
+  if (error) throw std::runtime_error("--out '" + dir.string() + "': cannot create the folder (" + error.message() + ")");
+  std::vector<fs::path> temporaries;
+  try {
+    for (const auto& [name, content] : files) {
+      temporaries.push_back(dir / (name + ".tmp" + std::to_string(::getpid())));
+      std::ofstream out(temporaries.back(), std::ios::binary | std::ios::trunc);
+      out.write(content.data(), static_cast<std::streamsize>(content.size()));
+      out.flush();
+      if (!out) throw std::runtime_error("cannot write '" + temporaries.back().string() + "'; check permissions and free disk space");
+    }
+    for (std::size_t k = 0; k < files.size(); ++k) fs::rename(temporaries[k], dir / files[k].first);
+  } catch (const std::exception&) {
+    for (const fs::path& t : temporaries) fs::remove(t, error);
+    if (created) fs::remove_all(dir, error);
+    throw;
+  }
+}
+
+void run_target_from_image(const TargetFromImageOptions& o) {
+  // Everything is computed before anything is written (bad input leaves nothing behind).
+  const imaging::DrumFrame frame{parse_diameter(o.diameter)};
+  if (o.threshold > 1.0) throw std::runtime_error("--threshold " + std::to_string(o.threshold) + ": give a grey level in [0, 1] (0 black, 1 white)");
+  if (!(o.margin >= 0.0 && o.margin < 1.0)) throw std::runtime_error("--margin " + std::to_string(o.margin) + ": give a fraction of the radius in [0, 1), e.g. 0.1");
+  if (o.points < 2) throw std::runtime_error("--points " + std::to_string(o.points) + ": give at least 2");
+  imaging::ProfileOptions options;
+  options.threshold = o.threshold;
+  options.material_is_dark = !o.inverted;
+  options.margin = o.margin;
+  options.points = o.points;
+  const imaging::GreyImage photo = imaging::read_grey_image(o.photo);
+  const imaging::SurfaceProfile profile = imaging::extract_surface(photo, frame, options);
+  const imaging::SurfaceLine line = imaging::fit_surface_line(profile);
+  commit_files(o.out, {{"free_surface.csv", format_csv(profile, frame, o)},
+                       {"overlay.png", imaging::encode_png(imaging::draw_overlay(photo, frame, profile))}});
+  std::printf("demfit target from-image: %s -> %s\n  %zu points, x %.2f .. %.2f mm, threshold %.3f%s\n"
+              "  straight-line fit: angle %.2f deg (negative = bed lifted on the left), residual %.3f mm RMS\n",
+              o.photo.c_str(), o.out.c_str(), profile.x.size(), profile.x.front() * 1e3, profile.x.back() * 1e3,
+              profile.threshold_used, o.threshold < 0.0 ? " (Otsu)" : "", line.angle_deg, line.residual_rms * 1e3);
+}
+
+}  // namespace
+
+void register_target(CLI::App& app) {
+  auto* target = app.add_subcommand("target", "Make study targets from measurements (e.g. a drum photo)");
+  target->require_subcommand(1);
+  auto options = std::make_shared<TargetFromImageOptions>();
+  auto* cmd = target->add_subcommand(
+      "from-image",
+      "Extract the free-surface profile of a rotating-drum photo (BMP, PNG or JPEG).\n"
+      "The square image must span the drum's inner diameter in both directions, centred on the axis.\n"
+      "Writes into --out: free_surface.csv (x_mm,z_mm: drum frame, x right as seen in the picture,\n"
+      "z up, origin on the drum axis, millimetres; '#' lines state the threshold and source) and\n"
+      "overlay.png (the photo, the profile in red, the compared circle in blue). Other files in the\n"
+      "folder are kept; nothing is written when the input is bad.");
+  cmd->add_option("photo", options->photo, "drum photo (BMP, PNG or JPEG)")->required();
+  cmd->add_option("--diameter", options->diameter,
+                  "inner drum diameter spanned by the image, with unit mm or m (e.g. 84mm or 0.084m; a bare number is metres)")
+      ->required();
+  cmd->add_option("--threshold", options->threshold,
+                  "grey level in [0,1] separating material from empty (0 black, 1 white); default: automatic (Otsu)");
+  cmd->add_flag("--inverted", options->inverted, "material is light on a dark background (default: powder dark)");
+  cmd->add_option("--margin", options->margin,
+                  "ignore pixels beyond (1 - margin) x radius from the axis (the drawn outline), fraction of the radius (default 0.1)");
+  cmd->add_option("--points", options->points, "profile abscissae, equally spaced across the surface's chord (default 41)");
+  cmd->add_option("--out", options->out, "output folder (created if missing)")->required();
+  cmd->callback([options] { run_target_from_image(*options); });
+}
+
+}  // namespace demfit::apps
