@@ -1,0 +1,27 @@
+#pragma once
+// Distances between two free-surface profiles (drum frame, metres). Both are read as piecewise
+// linear functions z(x) and compared on their common x-range [max(a.x0, b.x0), min(a.xn, b.xn)];
+// the integrals are exact for piecewise linear functions (breakpoints of both profiles merged).
+#include "demfit/imaging/surface.hpp"
+
+namespace demfit::imaging {
+
+// sqrt( (1/L) * integral (z_a - z_b)^2 dx ) over the common range of length L [m].
+// Throws std::runtime_error when the profiles have fewer than 2 points or no common range.
+double profile_rms_distance(const SurfaceProfile& a, const SurfaceProfile& b);
+
+// integral |z_a - z_b| dx over the common range [m^2]: the area between the two surfaces, i.e. the
+// source's differing-pixel-area metric for single-valued surfaces inside the compared circle
+// (pixels beyond the common x-range are not counted). Same errors as profile_rms_distance.
+double profile_differing_area(const SurfaceProfile& a, const SurfaceProfile& b);
+
+// Least-squares line z = intercept + slope x through the profile points.
+struct SurfaceLine {
+  double slope = 0.0;         // dz/dx [-]
+  double intercept = 0.0;     // [m] height at the axis
+  double angle_deg = 0.0;     // atan(slope) in degrees: negative when the bed is lifted on the left
+  double residual_rms = 0.0;  // [m] RMS of z - line
+};
+SurfaceLine fit_surface_line(const SurfaceProfile& profile);
+
+}  // namespace demfit::imaging
