@@ -35,7 +35,7 @@ struct IdentifyOptions {
 
 // Built-in cases, case files and the "analytic" test model all come from the one case factory.
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  return cases::make_study_model(spec);
 }
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {

@@ -16,6 +16,15 @@ identify::ParameterSet decode_parameters(const std::string& text) {
   return json::parse(text).get<identify::ParameterSet>();
 }
 
+std::string encode_job(const identify::EvaluationJob& job) {
+  return json{{"experiment", job.experiment}, {"parameters", job.parameters}}.dump();
+}
+
+identify::EvaluationJob decode_job(const std::string& text) {
+  const json message = json::parse(text);
+  return {message.at("experiment").get<std::size_t>(), message.at("parameters").get<identify::ParameterSet>()};
+}
+
 std::string encode_outcome(const identify::EvaluationOutcome& outcome) {
   return json{{"ok", outcome.ok}, {"error", outcome.error}, {"wall_seconds", outcome.wall_seconds},
               {"curves", identify::curves_to_json(outcome.curves)}}
