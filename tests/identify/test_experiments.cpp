@@ -98,13 +98,16 @@ TEST_CASE("Two experiments together recover shared parameters that neither pins 
     const StudySpec alone = parse_study(study(product, ratio), ".");
     const auto result = run_study(alone, *models_for(alone, nullptr), quiet(test::fresh_dir("experiments_alone")));
     INFO("alone: " << alone.experiments[0].name << " a " << result.best.at("a") << " b " << result.best.at("b"));
-    CHECK((flagged(result, "a") || flagged(result, "b")));  // one combination only: a direction stays free
+    // The experiment's own combination is matched, but a direction stays free and is flagged.
+    const double combination = product ? result.best.at("a") * result.best.at("b") : result.best.at("a") / result.best.at("b");
+    CHECK(combination == Approx(product ? kTrueA * kTrueB : kTrueA / kTrueB).epsilon(0.01));
+    CHECK((flagged(result, "a") || flagged(result, "b")));
   }
   const StudySpec both = parse_study(study(true, true), ".");
   const auto result = run_study(both, *models_for(both, nullptr), quiet(test::fresh_dir("experiments_both")));
   INFO("together: a " << result.best.at("a") << " b " << result.best.at("b"));
-  CHECK(result.best.at("a") == Approx(kTrueA).epsilon(0.02));  // stated tolerance: 2 %
-  CHECK(result.best.at("b") == Approx(kTrueB).epsilon(0.02));
+  CHECK(result.best.at("a") == Approx(kTrueA).epsilon(0.001));  // stated tolerance: 0.1 %
+  CHECK(result.best.at("b") == Approx(kTrueB).epsilon(0.001));
   CHECK_FALSE(flagged(result, "a"));
   CHECK_FALSE(flagged(result, "b"));
 }
@@ -244,4 +247,14 @@ TEST_CASE("A study with experiments resolves to JSON that parses back to the sam
   auto other = study(true, true);
   other["experiments"][1]["model"]["overrides"]["mode"] = "ratio2";
   CHECK(study_hash(parse_study(other, ".")) != study_hash(spec));
+}
+
+TEST_CASE("A study with a profile_area target recovers the analytic model's parameters", "[identify][profile_area]") {
+  auto json = test::analytic_study();
+  json["targets"][0]["metric"] = "profile_area";
+  const StudySpec spec = parse_study(json, ".");
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet(test::fresh_dir("profile_area_study")));
+  INFO("amplitude " << result.best.at("amplitude") << " rate " << result.best.at("rate"));
+  CHECK(result.best.at("amplitude") == Approx(1.3).epsilon(0.02));  // truth of test::analytic_study, 2 %
+  CHECK(result.best.at("rate") == Approx(4.2).epsilon(0.02));
 }
