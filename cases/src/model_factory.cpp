@@ -71,6 +71,10 @@ std::unique_ptr<identify::Model> make_study_model(const identify::StudySpec& spe
 
 CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overrides,
                       const std::filesystem::path& base_dir) {
+  // A study with "experiments" has no single model: say so instead of reading base_dir as a file.
+  if (reference.empty())
+    throw std::runtime_error("no case reference: a study with \"experiments\" has one model per experiment; this "
+                             "command needs a single-model study (\"model\" + \"targets\")");
   nlohmann::json document;
   if (reference == "pellet_compression" || reference == "rotary_drum") {
     document = builtin_document(reference);
