@@ -165,6 +165,11 @@ void register_identify(CLI::App& app) {
   exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
   exporter->callback([export_db, export_k] {
     const auto store = identify::StudyStore::open_existing(*export_db);
+    // Runs of a study with experiments store only the variables (each experiment has its own
+    // case values): there is no single full parameter set to write.
+    if (store.study_json().contains("experiments"))
+      throw std::runtime_error("study store '" + *export_db + "' is a study with several experiments; export "
+                               "needs a single-model study (one case, one full parameter set)");
     const identify::EvaluationRecord* best = nullptr;
     const auto runs = store.evaluations();
     for (const auto& r : runs)

@@ -141,7 +141,8 @@ std::string model_lines(const StudySpec& spec) {
   if (spec.experiments.empty()) return "- model: `" + spec.model_reference + "`\n";
   std::string out = "- experiments (each design point runs all of them; resolved study: `study_resolved.json`):\n";
   for (const auto& e : spec.experiments)
-    out += "  - `" + e.name + "`: case `" + e.model_reference + "`, overrides `" + e.model_overrides.dump() + "`\n";
+    out += "  - `" + e.name + "`: case `" + e.model_reference + "`, overrides `" + e.model_overrides.dump() +
+           "`, fixed parameters `" + nlohmann::json(e.fixed_parameters).dump() + "`\n";
   return out;
 }
 
