@@ -258,3 +258,26 @@ TEST_CASE("A study with a profile_area target recovers the analytic model's para
   CHECK(result.best.at("amplitude") == Approx(1.3).epsilon(0.02));  // truth of test::analytic_study, 2 %
   CHECK(result.best.at("rate") == Approx(4.2).epsilon(0.02));
 }
+
+TEST_CASE("A study with experiments stopped after some points resumes to the same answer without repeating them",
+          "[identify][experiments]") {
+  const StudySpec spec = parse_study(study(true, true), ".");
+  std::atomic<int> reference_calls{0}, calls{0};
+  const auto reference = run_study(spec, *models_for(spec, &reference_calls), quiet(test::fresh_dir("experiments_ref")));
+  const auto dir = test::fresh_dir("experiments_resume");
+  struct Stop {};
+  auto killed = quiet(dir, 2);
+  killed.after_evaluation = [](int done) {
+    if (done == 7) throw Stop{};
+  };
+  const auto models = models_for(spec, &calls);
+  CHECK_THROWS_AS(run_study(spec, *models, killed), Stop);
+  const int before = calls.load();
+  auto resumed = quiet(dir, 2);
+  resumed.resume = true;
+  const auto result = run_study(spec, *models, resumed);
+  CHECK(result.best == reference.best);
+  CHECK(result.best_objective == reference.best_objective);
+  // the 7 stored points are not run again: at most the points in flight when stopped are repeated
+  CHECK(calls.load() - before <= reference_calls.load() - 2 * 7 + 2);
+}
