@@ -111,6 +111,17 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
   study["targets"][0]["x_column"] = "x_mm";
   CHECK_THROWS_WITH(parse_study(study, dir), Catch::Contains("targets[0].image: an image target takes its points"));
   study["targets"][0].erase("x_column");
+  demfit::imaging::write_png(dir / "dark.png", demfit::imaging::RgbImage{n, n, std::vector<std::uint8_t>(3 * n * n, 10)});
+  study["targets"][0]["image"] = "dark.png";  // no surface to find: one line naming the field
+  try {
+    parse_study(study, dir);
+    FAIL("an all-dark picture was accepted");
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    CHECK(message.find("targets[0].image:") != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  study["targets"][0]["image"] = "drum.png";
   study["targets"][0]["image_diameter"] = 0.0;
   CHECK_THROWS_WITH(parse_study(study, dir), Catch::Contains("targets[0].image_diameter: must be > 0"));
 }
