@@ -53,9 +53,12 @@ CurveSet ExperimentSetModel::evaluate(const ParameterSet& parameters, const Eval
   return combine_experiment_outcomes(names, std::move(outcomes)).curves;
 }
 
+const ExperimentSetModel* as_experiment_set(const Model& model) {
+  return dynamic_cast<const ExperimentSetModel*>(&model);
+}
+
 std::vector<const Model*> experiment_models(const Model& model) {
-  // The one place that looks behind the Model interface: a set's experiments are separate jobs.
-  if (const auto* set = dynamic_cast<const ExperimentSetModel*>(&model)) {
+  if (const auto* set = as_experiment_set(model)) {
     std::vector<const Model*> out;
     for (std::size_t e = 0; e < set->size(); ++e) out.push_back(&set->model(e));
     return out;
@@ -84,6 +87,28 @@ EvaluationOutcome combine_experiment_outcomes(const std::vector<std::string>& na
   }
   if (!point.ok) point.curves.clear();
   return point;
+}
+
+PointJobs::PointJobs(const Model& model, const std::vector<ParameterSet>& points) {
+  const ExperimentSetModel* set = as_experiment_set(model);
+  if (set)
+    for (std::size_t e = 0; e < set->size(); ++e) names_.push_back(set->name(e));
+  else
+    names_.push_back("");
+  for (const ParameterSet& parameters : points)
+    for (std::size_t e = 0; e < names_.size(); ++e)
+      jobs_.push_back({e, set ? set->experiment_parameters(e, parameters) : parameters});
+  parts_.assign(points.size(), std::vector<EvaluationOutcome>(names_.size()));
+  missing_.assign(points.size(), names_.size());
+}
+
+bool PointJobs::finish(std::size_t job, const EvaluationOutcome& part, std::size_t& point, EvaluationOutcome& outcome) {
+  const std::size_t p = job / names_.size();
+  parts_.at(p)[job % names_.size()] = part;
+  if (--missing_[p] > 0) return false;
+  point = p;
+  outcome = combine_experiment_outcomes(names_, std::move(parts_[p]));
+  return true;
 }
 
 }  // namespace demfit::identify

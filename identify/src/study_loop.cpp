@@ -48,8 +48,6 @@ class StudyLoop {
   StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
       : spec_(spec), model_(model), options_(options), objective_(spec.targets),
         variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
-        experiment_set_(dynamic_cast<const ExperimentSetModel*>(&model)),
-        experiment_names_(detail::experiment_names(spec)),
         pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
         evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
         store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume)) {}
@@ -79,8 +77,6 @@ class StudyLoop {
   CompositeObjective objective_;
   std::vector<rbf_surrogate::Variable> variables_;
   int dims_;
-  const ExperimentSetModel* experiment_set_;   // null: the model is the one experiment
-  std::vector<std::string> experiment_names_;  // {""} in the single-model form
   ThreadPoolEvaluator pool_;
   Evaluator& evaluator_;
   StudyStore store_;
@@ -136,18 +132,11 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
   if (pending.empty()) return collect(iteration, points);
   // One job per (point, experiment): the experiments of a point run in parallel too. A point is
   // recorded when its last experiment finishes.
-  const std::size_t experiments = experiment_names_.size();
-  std::vector<EvaluationJob> jobs;
-  for (const ParameterSet& parameters : pending)
-    for (std::size_t e = 0; e < experiments; ++e)
-      jobs.push_back({e, experiment_set_ ? experiment_set_->experiment_parameters(e, parameters) : parameters});
-  std::vector<std::vector<EvaluationOutcome>> parts(pending.size(), std::vector<EvaluationOutcome>(experiments));
-  std::vector<std::size_t> missing(pending.size(), experiments);
-  evaluator_.evaluate_jobs(jobs, [&](std::size_t index, const EvaluationOutcome& part) {
-    const std::size_t p = index / experiments;
-    parts[p][index % experiments] = part;
-    if (--missing[p] > 0) return;
-    const EvaluationOutcome outcome = combine_experiment_outcomes(experiment_names_, std::move(parts[p]));
+  PointJobs jobs(model_, pending);
+  evaluator_.evaluate_jobs(jobs.jobs(), [&](std::size_t index, const EvaluationOutcome& part) {
+    std::size_t p = 0;
+    EvaluationOutcome outcome;
+    if (!jobs.finish(index, part, p, outcome)) return;
     const int i = pending_point[p];
     const EvaluationRecord record = make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome);
     store_.add_evaluation(record);

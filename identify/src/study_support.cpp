@@ -85,7 +85,7 @@ std::vector<std::string> experiment_names(const StudySpec& spec) {
 }
 
 void check_experiments(const StudySpec& spec, const Model& model) {
-  const auto* set = dynamic_cast<const ExperimentSetModel*>(&model);
+  const auto* set = as_experiment_set(model);
   if (spec.experiments.empty()) {
     if (set) throw std::runtime_error("study: a single-model study was given a model of several experiments");
     return;

@@ -53,9 +53,30 @@ class ExperimentSetModel final : public Model {
   std::vector<Experiment> experiments_;
 };
 
+// The model as a set of experiments, or null for a plain model (the one place that looks behind
+// the Model interface: a set's experiments are evaluated as separate jobs).
+const ExperimentSetModel* as_experiment_set(const Model& model);
+
 // The models a job's experiment index selects: the experiments of an ExperimentSetModel, or the
 // model itself as experiment 0.
 std::vector<const Model*> experiment_models(const Model& model);
+
+// Splits design points (complete parameter sets of the model) into one job per (point,
+// experiment), job k = point k / E, experiment k % E, and joins the outcomes back per point.
+class PointJobs {
+ public:
+  PointJobs(const Model& model, const std::vector<ParameterSet>& points);
+  const std::vector<EvaluationJob>& jobs() const { return jobs_; }
+  // Records job `job`'s outcome. When it was its point's last experiment, returns true and sets
+  // `point` and `outcome` to the point's combined outcome (combine_experiment_outcomes).
+  bool finish(std::size_t job, const EvaluationOutcome& part, std::size_t& point, EvaluationOutcome& outcome);
+
+ private:
+  std::vector<std::string> names_;  // {""} for a plain model
+  std::vector<EvaluationJob> jobs_;
+  std::vector<std::vector<EvaluationOutcome>> parts_;
+  std::vector<std::size_t> missing_;
+};
 
 // Joins the outcomes of one point's experiments (in experiment order) into the point's outcome:
 // ok when all are ok, curves keyed "<name>/<curve>", error of the first failed experiment
