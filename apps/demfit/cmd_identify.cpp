@@ -35,7 +35,7 @@ struct IdentifyOptions {
 
 // Built-in cases, case files and the "analytic" test model all come from the one case factory.
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  return cases::make_study_model(spec);
 }
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
@@ -165,6 +165,11 @@ void register_identify(CLI::App& app) {
   exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
   exporter->callback([export_db, export_k] {
     const auto store = identify::StudyStore::open_existing(*export_db);
+    // Runs of a study with experiments store only the variables (each experiment has its own
+    // case values): there is no single full parameter set to write.
+    if (store.study_json().contains("experiments"))
+      throw std::runtime_error("study store '" + *export_db + "' is a study with several experiments; export "
+                               "needs a single-model study (one case, one full parameter set)");
     const identify::EvaluationRecord* best = nullptr;
     const auto runs = store.evaluations();
     for (const auto& r : runs)

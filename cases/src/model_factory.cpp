@@ -11,6 +11,7 @@
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/json_fields.hpp"
 #include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/experiments.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -53,8 +54,27 @@ std::unique_ptr<identify::Model> make_model(const std::string& reference, const 
   return std::make_unique<DemCaseModel>(resolve_case(reference, overrides, base_dir));
 }
 
+std::unique_ptr<identify::Model> make_study_model(const identify::StudySpec& spec) {
+  if (spec.experiments.empty()) return make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  std::vector<std::unique_ptr<identify::Model>> models;
+  for (std::size_t e = 0; e < spec.experiments.size(); ++e) {
+    const auto& experiment = spec.experiments[e];
+    try {
+      models.push_back(make_model(experiment.model_reference, experiment.model_overrides, spec.base_dir));
+    } catch (const std::exception& error) {
+      throw std::runtime_error("study: experiments[" + std::to_string(e) + "] ('" + experiment.name +
+                               "').model: " + error.what());
+    }
+  }
+  return std::make_unique<identify::ExperimentSetModel>(spec, std::move(models));
+}
+
 CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overrides,
                       const std::filesystem::path& base_dir) {
+  // A study with "experiments" has no single model: say so instead of reading base_dir as a file.
+  if (reference.empty())
+    throw std::runtime_error("no case reference: a study with \"experiments\" has one model per experiment; this "
+                             "command needs a single-model study (\"model\" + \"targets\")");
   nlohmann::json document;
   if (reference == "pellet_compression" || reference == "rotary_drum") {
     document = builtin_document(reference);

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "demfit/cases/fill_cache.hpp"
+#include "demfit/identify/curve_json.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -11,18 +12,14 @@ namespace {
 using nlohmann::json;
 
 json to_json(const CaseResult& r) {
-  json curves = json::object();
-  for (const auto& [name, c] : r.curves) curves[name] = {{"x_label", c.x_label}, {"y_label", c.y_label}, {"x", c.x}, {"y", c.y}};
   json tables = json::object();
   for (const auto& [name, t] : r.tables) tables[name] = {{"comments", t.comments}, {"columns", t.columns}, {"values", t.values}};
-  return {{"curves", curves}, {"tables", tables}, {"summary", r.summary}};
+  return {{"curves", identify::curves_to_json(r.curves)}, {"tables", tables}, {"summary", r.summary}};
 }
 
 CaseResult from_json(const json& j) {
   CaseResult r;
-  for (const auto& [name, c] : j.at("curves").items()) {
-    r.curves[name] = identify::Curve{c.at("x_label"), c.at("y_label"), c.at("x"), c.at("y")};
-  }
+  r.curves = identify::curves_from_json(j.at("curves"));
   for (const auto& [name, t] : j.at("tables").items()) {
     r.tables[name] = CurveTable{t.at("comments"), t.at("columns"), t.at("values")};
   }

@@ -1,9 +1,12 @@
 #include "demfit/identify/evaluator.hpp"
 
+#include "demfit/identify/experiments.hpp"
+
 #include <atomic>
 #include <chrono>
 #include <exception>
 #include <mutex>
+#include <string>
 #include <thread>
 
 namespace demfit::identify {
@@ -26,11 +29,18 @@ EvaluationOutcome evaluate_safely(const Model& model, const ParameterSet& parame
   return outcome;
 }
 
-ThreadPoolEvaluator::ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed)
-    : model_(model), jobs_(jobs < 1 ? 1 : jobs), threads_per_job_(threads_per_job < 1 ? 1 : threads_per_job), seed_(seed) {}
+std::vector<EvaluationOutcome> Evaluator::evaluate_batch(const std::vector<ParameterSet>& batch,
+                                                         const DoneCallback& on_done) {
+  std::vector<EvaluationJob> jobs;
+  for (const auto& parameters : batch) jobs.push_back({0, parameters});
+  return evaluate_jobs(jobs, on_done);
+}
 
-std::vector<EvaluationOutcome> ThreadPoolEvaluator::evaluate_batch(const std::vector<ParameterSet>& batch,
-                                                                   const DoneCallback& on_done) {
+ThreadPoolEvaluator::ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed)
+    : models_(experiment_models(model)), jobs_(jobs < 1 ? 1 : jobs), threads_per_job_(threads_per_job < 1 ? 1 : threads_per_job), seed_(seed) {}
+
+std::vector<EvaluationOutcome> ThreadPoolEvaluator::evaluate_jobs(const std::vector<EvaluationJob>& batch,
+                                                                  const DoneCallback& on_done) {
   std::vector<EvaluationOutcome> outcomes(batch.size());
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
@@ -41,7 +51,13 @@ std::vector<EvaluationOutcome> ThreadPoolEvaluator::evaluate_batch(const std::ve
     while (!stop.load()) {
       const std::size_t index = next.fetch_add(1);
       if (index >= batch.size()) return;
-      outcomes[index] = evaluate_safely(model_, batch[index], context);
+      const EvaluationJob& job = batch[index];
+      if (job.experiment < models_.size()) {
+        outcomes[index] = evaluate_safely(*models_[job.experiment], job.parameters, context);
+      } else {
+        outcomes[index].error = "job names experiment " + std::to_string(job.experiment) + " of a model with " +
+                                std::to_string(models_.size());
+      }
       std::lock_guard<std::mutex> lock(callback_mutex);
       if (stop.load()) return;
       try {

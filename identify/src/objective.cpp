@@ -43,7 +43,30 @@ double max_abs(const std::vector<double>& values) {
   return m;
 }
 
+// Integral of |d(x)| over [a, b] for d linear from d(a) = da to d(b) = db (exact, also when d
+// changes sign inside).
+double absolute_linear_integral(double da, double db, double length) {
+  if ((da >= 0.0) == (db >= 0.0)) return 0.5 * std::abs(da + db) * length;
+  return 0.5 * (da * da + db * db) / (std::abs(da) + std::abs(db)) * length;
+}
+
 }  // namespace
+
+double profile_area_between(const std::vector<double>& x, const double* f, const std::vector<double>& g, double lower,
+                            double upper) {
+  double area = 0.0;
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    const double a = std::max(x[i - 1], lower), b = std::min(x[i], upper);
+    if (!(b > a)) continue;
+    const double span = x[i] - x[i - 1];
+    auto difference = [&](double at) {
+      const double t = span > 0.0 ? (at - x[i - 1]) / span : 0.0;
+      return (f[i - 1] - g[i - 1]) + t * ((f[i] - g[i]) - (f[i - 1] - g[i - 1]));
+    };
+    area += absolute_linear_integral(difference(a), difference(b), b - a);
+  }
+  return area;
+}
 
 std::vector<double> resample_monotone(const Curve& curve, const std::vector<double>& at_x) {
   const std::size_t n = curve.x.size();
@@ -98,6 +121,13 @@ CompositeObjective::CompositeObjective(std::vector<TargetSpec> targets) : target
     if (t.metric == CurveMetric::mse) {
       offsets_.push_back(offsets_.back() + static_cast<int>(t.data.x.size()));
       residual_offsets_.push_back(residual_offsets_.back() + static_cast<int>(t.data.x.size()));
+    } else if (t.metric == CurveMetric::profile_area) {
+      for (std::size_t i = 1; i < t.data.x.size(); ++i)
+        if (!(t.data.x[i] > t.data.x[i - 1]))
+          throw std::runtime_error("target '" + t.name + "': metric profile_area needs increasing x");
+      // Responses: the simulated profile at the target abscissae, then its x-range (2 values).
+      offsets_.push_back(offsets_.back() + static_cast<int>(t.data.x.size()) + 2);
+      residual_offsets_.push_back(residual_offsets_.back() + 1);
     } else {
       const auto [xmin, xmax] = std::minmax_element(t.data.x.begin(), t.data.x.end());
       p.x_scale = (*xmax - *xmin) > 0.0 ? (*xmax - *xmin) : 1.0;
@@ -132,6 +162,14 @@ Eigen::VectorXd CompositeObjective::responses(const CurveSet& curves) const {
     std::vector<double> values;
     if (targets_[t].metric == CurveMetric::mse) {
       values = resample_monotone(curve, targets_[t].data.x);
+    } else if (targets_[t].metric == CurveMetric::profile_area) {
+      values = resample_monotone(curve, targets_[t].data.x);
+      const auto [xmin, xmax] = std::minmax_element(curve.x.begin(), curve.x.end());
+      if (!(*xmax > targets_[t].data.x.front() && *xmin < targets_[t].data.x.back()))
+        throw std::runtime_error("curve '" + targets_[t].curve + "' does not overlap the x-range of target '" +
+                                 targets_[t].name + "'");
+      values.push_back(*xmin);
+      values.push_back(*xmax);
     } else {
       const Prepared& p = prepared_[t];
       values = equal_arc_length_points(curve, computed_stations(p.stations), p.x_scale, p.y_scale);
@@ -186,6 +224,19 @@ Eigen::VectorXd CompositeObjective::mapping_residuals(const Prepared& p, const d
   return r;
 }
 
+double CompositeObjective::profile_area_residual(const TargetSpec& target, const Prepared& p, const double* values) const {
+  // Mean gap over the common x-range: area / (length of the common range), scaled by s. A
+  // (predicted) range that misses the target's gets the whole target range (ends held flat).
+  const std::vector<double>& x = target.data.x;
+  const int n = static_cast<int>(x.size());
+  double lower = std::max(values[n], x.front()), upper = std::min(values[n + 1], x.back());
+  if (!(upper > lower)) {
+    lower = x.front();
+    upper = x.back();
+  }
+  return profile_area_between(x, values, target.data.y, lower, upper) / ((upper - lower) * p.y_scale);
+}
+
 Eigen::VectorXd CompositeObjective::residuals(const Eigen::VectorXd& responses) const {
   Eigen::VectorXd r(residual_size());
   for (std::size_t t = 0; t < targets_.size(); ++t) {
@@ -195,6 +246,8 @@ Eigen::VectorXd CompositeObjective::residuals(const Eigen::VectorXd& responses) 
       const int n = static_cast<int>(target.data.y.size());
       const double factor = std::sqrt(target.weight / n) / p.y_scale;
       for (int i = 0; i < n; ++i) r(residual_offsets_[t] + i) = factor * (responses(offsets_[t] + i) - target.data.y[i]);
+    } else if (target.metric == CurveMetric::profile_area) {
+      r(residual_offsets_[t]) = std::sqrt(target.weight) * profile_area_residual(target, p, responses.data() + offsets_[t]);
     } else {
       const Eigen::VectorXd part =
           mapping_residuals(p, responses.data() + offsets_[t], computed_stations(p.stations));
@@ -215,7 +268,7 @@ std::vector<double> CompositeObjective::target_objectives(const Eigen::VectorXd&
 Curve CompositeObjective::response_curve(const Eigen::VectorXd& responses, int target) const {
   const TargetSpec& t = targets_[target];
   Curve curve{t.data.x_label, t.data.y_label, {}, {}};
-  if (t.metric == CurveMetric::mse) {
+  if (t.metric != CurveMetric::curve_mapping) {
     curve.x = t.data.x;
     for (std::size_t i = 0; i < t.data.x.size(); ++i) curve.y.push_back(responses(offsets_[target] + static_cast<int>(i)));
   } else {

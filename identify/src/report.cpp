@@ -82,6 +82,7 @@ nlohmann::json best_parameters_json(const StudySpec& spec, const EvaluationRecor
                          {"finished", result.has_value()},
                          {"converged", result ? result->value("converged", false) : false},
                          {"parameters", best.parameters}};
+  for (const auto& e : spec.experiments) json["experiments"][e.name] = {{"case", e.model_reference}, {"overrides", e.model_overrides}};
   json["variables"] = nlohmann::json::object();
   for (const auto& v : spec.variables) {
     nlohmann::json entry = {{"value", best.parameters.at(v.name)}, {"initial", v.initial}, {"lower", v.lower},
@@ -114,7 +115,8 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
   std::filesystem::create_directories(output_dir);
   detail::write_file_atomically(output_dir / "evaluations.csv", evaluations_csv(spec, runs));
   detail::write_file_atomically(output_dir / "iterations.csv", iterations_csv(spec, iterations));
-  summary.files_written += 2;
+  detail::write_file_atomically(output_dir / "study_resolved.json", store.study_json().dump(2) + "\n");
+  summary.files_written += 3;
   if (best) {
     detail::write_file_atomically(output_dir / "best_parameters.json", best_parameters_json(spec, *best, result).dump(2) + "\n");
     ++summary.files_written;

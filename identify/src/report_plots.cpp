@@ -4,7 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "demfit/identify/objective.hpp"
 #include "gnuplot.hpp"
+#include "target_misfit.hpp"
 #include "study_support.hpp"
 
 namespace demfit::identify::detail {
@@ -125,6 +127,57 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
   }
 }
 
+const char* metric_label(CurveMetric metric) {
+  switch (metric) {
+    case CurveMetric::mse: return "MSE";
+    case CurveMetric::curve_mapping: return "curve mapping";
+    case CurveMetric::profile_area: return "profile area";
+  }
+  return "?";
+}
+
+// "- model: `case`" or, with several experiments, one line per experiment with its settings.
+std::string model_lines(const StudySpec& spec) {
+  if (spec.experiments.empty()) return "- model: `" + spec.model_reference + "`\n";
+  std::string out = "- experiments (each design point runs all of them; resolved study: `study_resolved.json`):\n";
+  for (const auto& e : spec.experiments)
+    out += "  - `" + e.name + "`: case `" + e.model_reference + "`, overrides `" + e.model_overrides.dump() +
+           "`, fixed parameters `" + nlohmann::json(e.fixed_parameters).dump() + "`\n";
+  return out;
+}
+
+// Per target (grouped by experiment): its term of the objective and the best run's misfit in the
+// curve's units (RMS; differing area for profile targets), so results compare with other sources.
+void targets_section(std::ostringstream& md, const StudySpec& spec, const EvaluationRecord& best) {
+  const CompositeObjective objective(spec.targets);
+  std::vector<double> terms(spec.targets.size(), std::nan(""));
+  try {
+    terms = objective.target_objectives(objective.responses(best.curves));
+  } catch (const std::exception&) {
+  }
+  const auto misfits = target_misfits(spec.targets, best.curves);
+  md << "\n## Targets (best run)\n\n| experiment | target | simulated curve | points | metric | weight | objective term "
+        "| RMS misfit | differing area |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& experiment : experiment_names(spec)) {
+    for (std::size_t t = 0; t < spec.targets.size(); ++t) {
+      const TargetSpec& target = spec.targets[t];
+      if (target.experiment != experiment) continue;
+      const auto& m = misfits[t];
+      const std::string y_unit = " (" + target.data.y_label + ")";
+      md << "| " << (experiment.empty() ? "-" : experiment) << " | `" << target.name << "` | `" << target.curve << "` | "
+         << target.data.x.size() << " | " << metric_label(target.metric) << " | " << format_number(target.weight) << " | "
+         << format_number(terms[t]) << " | " << (m.available ? format_number(m.rms) + y_unit : "-") << " | "
+         << (m.available && m.area >= 0.0 ? format_number(m.area) + " (" + target.data.x_label + " × " +
+                                                 target.data.y_label + ")"
+                                           : "-")
+         << " |\n";
+    }
+  }
+  md << "\nRMS misfit: mse targets at the target's points; curve mapping: y-distance of the matched stations; "
+        "profile targets: over the common x-range of the two profiles (exact for piecewise linear profiles), "
+        "with the area between them (the source's differing-area metric).\n";
+}
+
 void failures_and_files_section(std::ostringstream& md, const std::vector<EvaluationRecord>& runs, int failed) {
   if (failed) {
     md << "## Failed runs\n\n| iteration/point | error |\n|---|---|\n";
@@ -133,7 +186,8 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
       if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << r.error << " |\n";
     md << "\n";
   }
-  md << "## Files\n\n- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
+  md << "## Files\n\n- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"
+        "- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
         "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
         "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
         "- `study.db`: the study store (`demfit report study.db` rebuilds these files, "
@@ -149,7 +203,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   int failed = 0;
   for (const auto& r : runs) failed += r.ok ? 0 : 1;
   md << "# demfit identification report: " << spec.name << "\n\n"
-     << "- model: `" << spec.model_reference << "`\n"
+     << model_lines(spec)
      << "- status: "
      << (result ? (result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
                                                      : "finished, iteration limit reached")
@@ -167,10 +221,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
      << ", " << best->kind << ")\n\n";
   variables_section(md, spec, *best, result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json());
-  md << "\n## Targets\n\n";
-  for (const auto& t : spec.targets)
-    md << "- `" << t.name << "`: simulated curve `" << t.curve << "`, " << t.data.x.size() << " points, metric "
-       << (t.metric == CurveMetric::mse ? "MSE" : "curve mapping") << ", weight " << format_number(t.weight) << "\n";
+  targets_section(md, spec, *best);
   if (!images.empty()) {
     md << "\n## Plots\n\n";
     for (const auto& image : images) md << "![" << image << "](" << image << ")\n\n";

@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/evaluator.hpp"
+#include "demfit/identify/experiments.hpp"
 #include "demfit/identify/objective.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -55,6 +56,7 @@ class StudyLoop {
 
  private:
   void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
+  void collect(int iteration, const MatrixXd& points);
   EvaluationRecord make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
                                const ParameterSet& parameters, const EvaluationOutcome& outcome) const;
   std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
@@ -127,22 +129,30 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
     pending.push_back(detail::model_parameters(spec_, model_, variables_, unit));
     pending_point.push_back(i);
   }
-  if (!pending.empty()) {
-    evaluator_.evaluate_batch(pending, [&](std::size_t index, const EvaluationOutcome& outcome) {
-      const int i = pending_point[index];
-      const EvaluationRecord record =
-          make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[index], outcome);
-      store_.add_evaluation(record);
-      ++evaluated_here_;
-      evaluated_wall_ += outcome.wall_seconds;
-      if (options_.progress)
-        std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s; %d runs in this session)\n", iteration,
-                     i + 1, static_cast<int>(points.rows()), record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
-                     record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
-                     record.wall_seconds, evaluated_here_);
-      if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
-    });
-  }
+  if (pending.empty()) return collect(iteration, points);
+  // One job per (point, experiment): the experiments of a point run in parallel too. A point is
+  // recorded when its last experiment finishes.
+  PointJobs jobs(model_, pending);
+  evaluator_.evaluate_jobs(jobs.jobs(), [&](std::size_t index, const EvaluationOutcome& part) {
+    std::size_t p = 0;
+    EvaluationOutcome outcome;
+    if (!jobs.finish(index, part, p, outcome)) return;
+    const int i = pending_point[p];
+    const EvaluationRecord record = make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome);
+    store_.add_evaluation(record);
+    ++evaluated_here_;
+    evaluated_wall_ += outcome.wall_seconds;
+    if (options_.progress)
+      std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s; %d runs in this session)\n", iteration,
+                   i + 1, static_cast<int>(points.rows()), record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
+                   record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
+                   record.wall_seconds, evaluated_here_);
+    if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
+  });
+  collect(iteration, points);
+}
+
+void StudyLoop::collect(int iteration, const MatrixXd& points) {
   // Collect this batch in point order (independent of the order runs finished in).
   for (int i = 0; i < points.rows(); ++i) {
     const EvaluationRecord* r = store_.find_evaluation(iteration, i);
@@ -399,6 +409,7 @@ StudyResult StudyLoop::run() {
 
 StudyResult run_study(const StudySpec& spec, const Model& model, const RunOptions& options) {
   detail::check_parameter_names(spec, model);
+  detail::check_experiments(spec, model);
   StudyLoop loop(spec, model, options);
   // The resolved input beside the results (targets inline, defaults filled in).
   detail::write_file_atomically(options.output_dir / "study_resolved.json", to_json(spec).dump(2) + "\n");

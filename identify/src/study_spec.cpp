@@ -2,12 +2,14 @@
 // StudySpec, every problem reported as one line naming the field and the fix.
 #include "demfit/identify/study_spec.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <stdexcept>
 
 #include "demfit/identify/curve_io.hpp"
+#include "image_target.hpp"
 #include "json_reader.hpp"
 
 namespace demfit::identify {
@@ -38,7 +40,8 @@ CurveMetric parse_metric(JsonReader& in) {
   const std::string name = in.text_or("metric", "mse");
   if (name == "mse") return CurveMetric::mse;
   if (name == "curve_mapping") return CurveMetric::curve_mapping;
-  in.fail("metric", "'" + name + "' is not a metric; use \"mse\" or \"curve_mapping\"");
+  if (name == "profile_area") return CurveMetric::profile_area;
+  in.fail("metric", "'" + name + "' is not a metric; use \"mse\", \"curve_mapping\" or \"profile_area\"");
 }
 
 std::vector<double> number_array(JsonReader& in, const std::string& key) {
@@ -52,26 +55,57 @@ std::vector<double> number_array(JsonReader& in, const std::string& key) {
   return out;
 }
 
+ImageTargetSpec parse_image_target(JsonReader& in) {
+  ImageTargetSpec image;
+  image.file = in.text("image");
+  image.diameter = in.number("image_diameter");
+  image.threshold = in.number_or("image_threshold", image.threshold);
+  const std::string material = in.text_or("image_material", "dark");
+  image.margin = in.number_or("image_margin", image.margin);
+  image.points = in.integer_or("image_points", image.points);
+  if (!(image.diameter > 0.0)) in.fail("image_diameter", "must be > 0 (inner drum diameter in metres, e.g. 0.084)");
+  if (image.threshold > 1.0) in.fail("image_threshold", "must be a grey level in [0, 1], or -1 for automatic (Otsu)");
+  if (material != "dark" && material != "light")
+    in.fail("image_material", "'" + material + "' is unknown; use \"dark\" (powder darker than the background) or \"light\"");
+  image.material_is_dark = material == "dark";
+  if (!(image.margin >= 0.0 && image.margin < 1.0)) in.fail("image_margin", "must be in [0, 1) (fraction of the drum radius)");
+  if (image.points < 2) in.fail("image_points", "must be >= 2");
+  return image;
+}
+
 TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std::size_t index,
                         const std::filesystem::path& base_dir) {
   JsonReader in(json, path);
   TargetSpec t;
   t.curve = in.text("curve");
   t.name = in.text_or("name", t.curve.empty() ? "target" + std::to_string(index) : t.curve);
-  const std::string x_column = in.text("x_column");
-  const std::string y_column = in.text("y_column");
+  const bool has_image = in.has("image");
   const bool has_csv = in.has("csv");
-  const bool has_inline = in.has("x") || in.has("y");
-  if (has_csv == has_inline)
-    in.fail("csv", "give either \"csv\" (file path) or inline \"x\" and \"y\" arrays, not both/neither");
-  if (has_csv) {
-    t.csv = in.text("csv");
-    const auto resolved = t.csv.is_absolute() ? t.csv : base_dir / t.csv;
-    t.data = read_curve_csv(resolved, x_column, y_column);
+  if (has_image) {
+    if (has_csv || in.has("x") || in.has("y") || in.has("x_column") || in.has("y_column"))
+      in.fail("image", "an image target takes its points from the photo (columns x_mm, z_mm); leave out csv, x, y, "
+                       "x_column and y_column");
+    t.image = parse_image_target(in);
+    try {
+      t.data = detail::read_image_target(*t.image, base_dir);
+    } catch (const std::exception& e) {
+      in.fail("image", e.what());
+    }
   } else {
-    t.data = Curve{x_column, y_column, number_array(in, "x"), number_array(in, "y")};
-    if (t.data.x.size() != t.data.y.size()) in.fail("y", "must have as many values as x");
-    if (t.data.x.size() < 2) in.fail("x", "a target needs at least 2 points");
+    const std::string x_column = in.text("x_column");
+    const std::string y_column = in.text("y_column");
+    const bool has_inline = in.has("x") || in.has("y");
+    if (has_csv == has_inline)
+      in.fail("csv", "give either \"csv\" (file path), inline \"x\" and \"y\" arrays, or \"image\" (drum photo)");
+    if (has_csv) {
+      t.csv = in.text("csv");
+      const auto resolved = t.csv.is_absolute() ? t.csv : base_dir / t.csv;
+      t.data = read_curve_csv(resolved, x_column, y_column);
+    } else {
+      t.data = Curve{x_column, y_column, number_array(in, "x"), number_array(in, "y")};
+      if (t.data.x.size() != t.data.y.size()) in.fail("y", "must have as many values as x");
+      if (t.data.x.size() < 2) in.fail("x", "a target needs at least 2 points");
+    }
   }
   in.text_or("source", "");  // informational (where inline data came from)
   t.metric = parse_metric(in);
@@ -81,28 +115,84 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
   in.finish();
   for (std::size_t i = 0; i < t.data.x.size(); ++i)
     if (!std::isfinite(t.data.x[i]) || !std::isfinite(t.data.y[i]))
-      in.fail(has_csv ? "csv" : "x", "point " + std::to_string(i) + " is not finite");
+      in.fail(has_csv ? "csv" : has_image ? "image" : "x", "point " + std::to_string(i) + " is not finite");
+  if (t.metric == CurveMetric::profile_area)
+    for (std::size_t i = 1; i < t.data.x.size(); ++i)
+      if (!(t.data.x[i] > t.data.x[i - 1]))
+        in.fail("metric", "profile_area compares profiles z(x) and needs the target's x increasing (point " +
+                              std::to_string(i) + " is not)");
   if (!(t.weight > 0.0)) in.fail("weight", "must be > 0");
   if (t.scale < 0.0) in.fail("scale", "must be >= 0 (0 = max|y| of the target)");
   if (t.mapping_points < 0 || t.mapping_points == 1) in.fail("mapping_points", "must be 0 (auto) or >= 2");
   return t;
 }
 
-void parse_model(JsonReader in, StudySpec& spec) {
-  spec.model_reference = in.text("case");
+// The "model" object: case reference, fixed case settings, fixed model parameters.
+void parse_model(JsonReader in, std::string& reference, nlohmann::json& overrides, ParameterSet& fixed_parameters) {
+  reference = in.text("case");
   if (in.has("overrides")) {
-    const auto& overrides = in.raw("overrides");
-    if (!overrides.is_object()) in.fail("overrides", "expected a JSON object of case settings");
-    spec.model_overrides = overrides;
+    const auto& given = in.raw("overrides");
+    if (!given.is_object()) in.fail("overrides", "expected a JSON object of case settings");
+    overrides = given;
   }
   if (in.has("fixed_parameters")) {
     JsonReader fixed = in.object("fixed_parameters");
-    for (const auto& item : in.raw("fixed_parameters").items())
-      spec.fixed_parameters[item.key()] = fixed.number(item.key());
+    for (const auto& item : in.raw("fixed_parameters").items()) fixed_parameters[item.key()] = fixed.number(item.key());
     fixed.finish();
   }
   in.finish();
-  if (spec.model_reference.empty()) in.fail("case", "must not be empty");
+  if (reference.empty()) in.fail("case", "must not be empty");
+}
+
+// "targets" of the study or of one experiment (names unique within that list).
+void parse_targets(JsonReader& in, const std::string& path, const std::filesystem::path& base_dir,
+                   std::vector<TargetSpec>& out) {
+  const auto& targets = in.raw("targets");
+  if (!targets.is_array() || targets.empty()) in.fail("targets", "expected a non-empty array of targets");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    out.push_back(parse_target(targets[i], path + "targets[" + std::to_string(i) + "]", i, base_dir));
+    if (!names.insert(out.back().name).second)
+      in.fail("targets", "two targets are named '" + out.back().name + "'; give each a unique \"name\"");
+  }
+}
+
+bool valid_experiment_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
+  return true;
+}
+
+// "experiments": [{"name", "model", "targets"}]. Targets are qualified by their experiment
+// (study_spec.hpp: name "<experiment>.<target>", curve "<experiment>/<curve>").
+void parse_experiments(JsonReader& study, StudySpec& spec) {
+  const auto& experiments = study.raw("experiments");
+  if (!experiments.is_array() || experiments.empty())
+    study.fail("experiments", "expected a non-empty array of experiments ({\"name\", \"model\", \"targets\"})");
+  std::set<std::string> names;
+  for (std::size_t e = 0; e < experiments.size(); ++e) {
+    const std::string path = "experiments[" + std::to_string(e) + "]";
+    JsonReader in(experiments[e], path);
+    ExperimentSpec experiment;
+    experiment.name = in.text("name");
+    if (!valid_experiment_name(experiment.name))
+      in.fail("name", "'" + experiment.name + "' must be non-empty letters, digits, '_' or '-' (it names files)");
+    if (!names.insert(experiment.name).second)
+      in.fail("name", "two experiments are named '" + experiment.name + "'; give each a unique name");
+    parse_model(in.object("model"), experiment.model_reference, experiment.model_overrides,
+                experiment.fixed_parameters);
+    std::vector<TargetSpec> targets;
+    parse_targets(in, path + ".", spec.base_dir, targets);
+    in.finish();
+    for (TargetSpec& t : targets) {
+      t.experiment = experiment.name;
+      t.name = experiment.name + "." + t.name;
+      t.curve = experiment.name + "/" + t.curve;
+      spec.targets.push_back(std::move(t));
+    }
+    spec.experiments.push_back(std::move(experiment));
+  }
 }
 
 void parse_sampling(JsonReader in, StudySpec& spec) {
@@ -150,7 +240,29 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
 }
 
 std::string metric_name(CurveMetric metric) {
-  return metric == CurveMetric::mse ? "mse" : "curve_mapping";
+  switch (metric) {
+    case CurveMetric::mse: return "mse";
+    case CurveMetric::curve_mapping: return "curve_mapping";
+    case CurveMetric::profile_area: return "profile_area";
+  }
+  return "mse";
+}
+
+nlohmann::json model_json(const std::string& reference, const nlohmann::json& overrides, const ParameterSet& fixed) {
+  nlohmann::json json = {{"case", reference}, {"overrides", overrides}, {"fixed_parameters", nlohmann::json::object()}};
+  for (const auto& [name, value] : fixed) json["fixed_parameters"][name] = value;
+  return json;
+}
+
+// A resolved target: data inline, "source" = where it came from (informational, not hashed).
+nlohmann::json target_json(const TargetSpec& t, const std::string& name, const std::string& curve) {
+  nlohmann::json target = {{"name", name}, {"curve", curve}, {"x_column", t.data.x_label},
+                           {"y_column", t.data.y_label}, {"x", t.data.x}, {"y", t.data.y},
+                           {"metric", metric_name(t.metric)}, {"weight", t.weight}, {"scale", t.scale},
+                           {"mapping_points", t.mapping_points}};
+  if (!t.csv.empty()) target["source"] = t.csv.generic_string();
+  else if (t.image) target["source"] = t.image->file.generic_string();
+  return target;
 }
 
 }  // namespace
@@ -169,25 +281,26 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
     in.fail("demfit_study_version", "version " + std::to_string(spec.version) + " is not supported; this demfit reads version " +
                                         std::to_string(kStudyFormatVersion));
   spec.name = in.text_or("name", "study");
-  parse_model(in.object("model"), spec);
+  const bool experiments = in.has("experiments");
+  if (experiments && (in.has("model") || in.has("targets")))
+    in.fail("experiments", "give either \"experiments\" or a top-level \"model\" and \"targets\", not both");
+  if (experiments) parse_experiments(in, spec);
+  else parse_model(in.object("model"), spec.model_reference, spec.model_overrides, spec.fixed_parameters);
   const auto& variables = in.raw("variables");
   if (!variables.is_array() || variables.empty()) in.fail("variables", "expected a non-empty array of variables");
   std::set<std::string> names;
   for (std::size_t i = 0; i < variables.size(); ++i) {
     spec.variables.push_back(parse_variable(variables[i], "variables[" + std::to_string(i) + "]"));
-    if (!names.insert(spec.variables.back().name).second)
-      in.fail("variables", "'" + spec.variables.back().name + "' appears twice; names must be unique");
-    if (spec.fixed_parameters.count(spec.variables.back().name))
-      in.fail("variables", "'" + spec.variables.back().name + "' is also in model.fixed_parameters; keep one");
+    const std::string& name = spec.variables.back().name;
+    if (!names.insert(name).second) in.fail("variables", "'" + name + "' appears twice; names must be unique");
+    if (spec.fixed_parameters.count(name))
+      in.fail("variables", "'" + name + "' is also in model.fixed_parameters; keep one");
+    for (const auto& experiment : spec.experiments)
+      if (experiment.fixed_parameters.count(name))
+        in.fail("variables", "'" + name + "' is also in the fixed_parameters of experiment '" + experiment.name +
+                                 "'; keep one");
   }
-  const auto& targets = in.raw("targets");
-  if (!targets.is_array() || targets.empty()) in.fail("targets", "expected a non-empty array of targets");
-  std::set<std::string> target_names;
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    spec.targets.push_back(parse_target(targets[i], "targets[" + std::to_string(i) + "]", i, base_dir));
-    if (!target_names.insert(spec.targets.back().name).second)
-      in.fail("targets", "two targets are named '" + spec.targets.back().name + "'; give each a unique \"name\"");
-  }
+  if (!experiments) parse_targets(in, "", base_dir, spec.targets);
   if (in.has("sampling")) parse_sampling(in.object("sampling"), spec);
   if (in.has("domain_reduction")) parse_domain_reduction(in.object("domain_reduction"), spec);
   if (in.has("surrogate")) parse_surrogate(in.object("surrogate"), spec);
@@ -221,21 +334,25 @@ nlohmann::json to_json(const StudySpec& spec) {
   nlohmann::json json;
   json["demfit_study_version"] = spec.version;
   json["name"] = spec.name;
-  json["model"] = {{"case", spec.model_reference}, {"overrides", spec.model_overrides},
-                   {"fixed_parameters", nlohmann::json::object()}};
-  for (const auto& [name, value] : spec.fixed_parameters) json["model"]["fixed_parameters"][name] = value;
   json["variables"] = nlohmann::json::array();
   for (const auto& v : spec.variables)
     json["variables"].push_back({{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial},
                                  {"log_scale", v.log_scale}, {"initial_range", v.initial_range}});
-  json["targets"] = nlohmann::json::array();
-  for (const auto& t : spec.targets) {
-    nlohmann::json target = {{"name", t.name}, {"curve", t.curve}, {"x_column", t.data.x_label},
-                             {"y_column", t.data.y_label}, {"x", t.data.x}, {"y", t.data.y},
-                             {"metric", metric_name(t.metric)}, {"weight", t.weight}, {"scale", t.scale},
-                             {"mapping_points", t.mapping_points}};
-    if (!t.csv.empty()) target["source"] = t.csv.generic_string();
-    json["targets"].push_back(target);
+  if (spec.experiments.empty()) {
+    json["model"] = model_json(spec.model_reference, spec.model_overrides, spec.fixed_parameters);
+    json["targets"] = nlohmann::json::array();
+    for (const auto& t : spec.targets) json["targets"].push_back(target_json(t, t.name, t.curve));
+  } else {
+    json["experiments"] = nlohmann::json::array();
+    for (const auto& e : spec.experiments) {
+      nlohmann::json targets = nlohmann::json::array();
+      for (const auto& t : spec.targets)
+        if (t.experiment == e.name)
+          targets.push_back(target_json(t, t.name.substr(e.name.size() + 1), t.curve.substr(e.name.size() + 1)));
+      json["experiments"].push_back({{"name", e.name},
+                                     {"model", model_json(e.model_reference, e.model_overrides, e.fixed_parameters)},
+                                     {"targets", targets}});
+    }
   }
   json["sampling"] = {{"points_per_iteration", spec.points_per_iteration},
                       {"strategy", spec.strategy == SamplingStrategy::srsm ? "srsm" : "adaptive_infill"}};
@@ -255,7 +372,11 @@ std::uint64_t study_hash(const StudySpec& spec) {
   // iteration limit; informational "source" paths are left out (the data itself is hashed).
   nlohmann::json json = to_json(spec);
   json.erase("stopping");
-  for (auto& target : json["targets"]) target.erase("source");
+  if (json.contains("targets"))
+    for (auto& target : json["targets"]) target.erase("source");
+  if (json.contains("experiments"))
+    for (auto& experiment : json["experiments"])
+      for (auto& target : experiment["targets"]) target.erase("source");
   const std::string text = json.dump();
   std::uint64_t hash = 14695981039346656037ull;
   for (unsigned char c : text) {

@@ -8,25 +8,10 @@
 
 #include <sqlite3.h>
 
+#include "demfit/identify/curve_json.hpp"
+
 namespace demfit::identify {
 namespace {
-
-nlohmann::json curves_to_json(const CurveSet& curves) {
-  nlohmann::json json = nlohmann::json::object();
-  for (const auto& [name, c] : curves)
-    json[name] = {{"x_label", c.x_label}, {"y_label", c.y_label}, {"x", c.x}, {"y", c.y}};
-  return json;
-}
-
-CurveSet curves_from_json(const nlohmann::json& json) {
-  CurveSet curves;
-  for (const auto& item : json.items()) {
-    const auto& c = item.value();
-    curves[item.key()] = Curve{c.at("x_label").get<std::string>(), c.at("y_label").get<std::string>(),
-                               c.at("x").get<std::vector<double>>(), c.at("y").get<std::vector<double>>()};
-  }
-  return curves;
-}
 
 // JSON has no NaN: a failed run's objective is stored as null.
 nlohmann::json number_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "demfit/identify/experiments.hpp"
+
 namespace demfit::identify::detail {
 
 std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec) {
@@ -63,14 +65,45 @@ void check_parameter_names(const StudySpec& spec, const Model& model) {
   std::string known;
   for (const auto& n : names) known += (known.empty() ? "" : " ") + n;
   auto known_name = [&](const std::string& name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+  const std::string model_name = spec.experiments.empty() ? "model '" + spec.model_reference + "'"
+                                                          : std::string("any experiment's model");
   for (std::size_t j = 0; j < spec.variables.size(); ++j)
     if (!known_name(spec.variables[j].name))
       throw std::runtime_error("study: variables[" + std::to_string(j) + "].name: '" + spec.variables[j].name +
-                               "' is not a parameter of model '" + spec.model_reference + "'; known: " + known);
+                               "' is not a parameter of " + model_name + "; known: " + known);
   for (const auto& [name, value] : spec.fixed_parameters)
     if (!known_name(name))
       throw std::runtime_error("study: model.fixed_parameters." + name + ": not a parameter of model '" +
                                spec.model_reference + "'; known: " + known);
+}
+
+std::vector<std::string> experiment_names(const StudySpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& e : spec.experiments) names.push_back(e.name);
+  if (names.empty()) names.push_back("");
+  return names;
+}
+
+void check_experiments(const StudySpec& spec, const Model& model) {
+  const auto* set = as_experiment_set(model);
+  if (spec.experiments.empty()) {
+    if (set) throw std::runtime_error("study: a single-model study was given a model of several experiments");
+    return;
+  }
+  if (!set || set->size() != spec.experiments.size())
+    throw std::runtime_error("study: experiments: the study lists " + std::to_string(spec.experiments.size()) +
+                             " experiments; build its model with one model per experiment (ExperimentSetModel)");
+  for (std::size_t e = 0; e < spec.experiments.size(); ++e) {
+    const auto& experiment = spec.experiments[e];
+    if (set->name(e) != experiment.name)
+      throw std::runtime_error("study: experiments[" + std::to_string(e) + "]: model built for experiment '" +
+                               set->name(e) + "', the study names '" + experiment.name + "'");
+    const auto names = set->model(e).parameter_names();
+    for (const auto& [name, value] : experiment.fixed_parameters)
+      if (std::find(names.begin(), names.end(), name) == names.end())
+        throw std::runtime_error("study: experiments[" + std::to_string(e) + "].model.fixed_parameters." + name +
+                                 ": not a parameter of case '" + experiment.model_reference + "'");
+  }
 }
 
 std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration) {

@@ -30,8 +30,15 @@ ParameterSet variable_values(const StudySpec& spec, const std::vector<rbf_surrog
 // d(unit coordinate)/d(physical value) of each variable at `unit`.
 Eigen::VectorXd unit_per_physical(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables,
                                   const Eigen::VectorXd& unit);
-// Throws "study: variables[i].name: 'x' is not a parameter of model ..." for unknown names.
+// Throws "study: variables[i].name: 'x' is not a parameter of model ..." for unknown names
+// (with several experiments: of no experiment's model).
 void check_parameter_names(const StudySpec& spec, const Model& model);
+// A study with experiments needs an ExperimentSetModel built for it (same experiment names) and
+// each experiment's fixed_parameters must be parameters of its model; a single-model study needs
+// a plain model. Throws one line naming the field.
+void check_experiments(const StudySpec& spec, const Model& model);
+// {""} in the single-model form, else the experiment names in order.
+std::vector<std::string> experiment_names(const StudySpec& spec);
 std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration);
 rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
                                                   const rbf_surrogate::Box& region, std::uint64_t seed);

@@ -74,8 +74,8 @@ void MpiEvaluator::retire(int worker, const std::string& why) {
             << live_workers() << " worker(s) left\n";
 }
 
-std::vector<identify::EvaluationOutcome> MpiEvaluator::evaluate_batch(
-    const std::vector<identify::ParameterSet>& batch, const DoneCallback& on_done) {
+std::vector<identify::EvaluationOutcome> MpiEvaluator::evaluate_jobs(
+    const std::vector<identify::EvaluationJob>& batch, const DoneCallback& on_done) {
   std::vector<identify::EvaluationOutcome> outcomes(batch.size());
   std::vector<int> attempts(batch.size(), 0);
   std::deque<std::size_t> pending;
@@ -103,7 +103,7 @@ std::vector<identify::EvaluationOutcome> MpiEvaluator::evaluate_batch(
       const std::size_t index = pending.front();
       pending.pop_front();
       ++attempts[index];
-      const std::string message = index_prefix(index) + encode_parameters(batch[index]);
+      const std::string message = index_prefix(index) + encode_job(batch[index]);
       MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, worker, tag_job, MPI_COMM_WORLD);
       running[worker] = Running{index, Clock::now()};
     }

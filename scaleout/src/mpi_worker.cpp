@@ -5,9 +5,11 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
+#include "demfit/identify/experiments.hpp"
 #include "demfit/scaleout/mpi_evaluator.hpp"
 #include "demfit/scaleout/wire_format.hpp"
 
@@ -43,6 +45,7 @@ void run_worker(const identify::Model& model, int threads_per_job, unsigned long
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const identify::EvaluationContext context{threads_per_job, seed};
+  const std::vector<const identify::Model*> experiments = identify::experiment_models(model);
   int runs_received = 0;
   for (;;) {
     MPI_Status status;
@@ -65,7 +68,10 @@ void run_worker(const identify::Model& model, int threads_per_job, unsigned long
     std::thread evaluation([&] {
       maybe_inject_fault(rank, runs_received, true);
       try {
-        outcome = identify::evaluate_safely(model, decode_parameters(text.substr(8)), context);
+        const identify::EvaluationJob job = decode_job(text.substr(8));
+        if (job.experiment >= experiments.size())
+          throw std::runtime_error("experiment " + std::to_string(job.experiment) + " does not exist here");
+        outcome = identify::evaluate_safely(*experiments[job.experiment], job.parameters, context);
       } catch (const std::exception& e) {
         outcome.ok = false;
         outcome.error = std::string("malformed run message on worker: ") + e.what();

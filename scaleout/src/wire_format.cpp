@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demfit/identify/curve_json.hpp"
+
 namespace demfit::scaleout {
 
 using nlohmann::json;
@@ -14,13 +16,18 @@ identify::ParameterSet decode_parameters(const std::string& text) {
   return json::parse(text).get<identify::ParameterSet>();
 }
 
+std::string encode_job(const identify::EvaluationJob& job) {
+  return json{{"experiment", job.experiment}, {"parameters", job.parameters}}.dump();
+}
+
+identify::EvaluationJob decode_job(const std::string& text) {
+  const json message = json::parse(text);
+  return {message.at("experiment").get<std::size_t>(), message.at("parameters").get<identify::ParameterSet>()};
+}
+
 std::string encode_outcome(const identify::EvaluationOutcome& outcome) {
-  json curves = json::object();
-  for (const auto& [name, curve] : outcome.curves) {
-    curves[name] = {{"x_label", curve.x_label}, {"y_label", curve.y_label}, {"x", curve.x}, {"y", curve.y}};
-  }
   return json{{"ok", outcome.ok}, {"error", outcome.error}, {"wall_seconds", outcome.wall_seconds},
-              {"curves", curves}}
+              {"curves", identify::curves_to_json(outcome.curves)}}
       .dump();
 }
 
@@ -30,13 +37,7 @@ identify::EvaluationOutcome decode_outcome(const std::string& text) {
   outcome.ok = message.at("ok").get<bool>();
   outcome.error = message.at("error").get<std::string>();
   outcome.wall_seconds = message.at("wall_seconds").get<double>();
-  for (const auto& [name, curve] : message.at("curves").items()) {
-    identify::Curve& decoded = outcome.curves[name];
-    decoded.x_label = curve.at("x_label").get<std::string>();
-    decoded.y_label = curve.at("y_label").get<std::string>();
-    decoded.x = curve.at("x").get<std::vector<double>>();
-    decoded.y = curve.at("y").get<std::vector<double>>();
-  }
+  outcome.curves = identify::curves_from_json(message.at("curves"));
   return outcome;
 }
 

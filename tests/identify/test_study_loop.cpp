@@ -246,11 +246,11 @@ namespace {
 class BackwardsEvaluator final : public Evaluator {
  public:
   explicit BackwardsEvaluator(const Model& model) : model_(model) {}
-  std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch,
-                                                const DoneCallback& on_done) override {
+  std::vector<EvaluationOutcome> evaluate_jobs(const std::vector<EvaluationJob>& batch,
+                                               const DoneCallback& on_done) override {
     std::vector<EvaluationOutcome> outcomes(batch.size());
     for (std::size_t k = batch.size(); k-- > 0;) {
-      outcomes[k] = evaluate_safely(model_, batch[k], {});
+      outcomes[k] = evaluate_safely(model_, batch[k].parameters, {});
       if (on_done) on_done(k, outcomes[k]);
       ++runs;
     }

@@ -48,3 +48,11 @@ TEST_CASE("Outcomes keep their curves exactly and their error text", "[scaleout]
   CHECK_FALSE(failed_back.ok);
   CHECK(failed_back.error == failed.error);
 }
+
+TEST_CASE("A job keeps its experiment index and its parameters bit for bit", "[scaleout]") {
+  const identify::EvaluationJob sent{3, {{"frics", 0.561}, {"fricr", 1.0 / 3.0}}};
+  const identify::EvaluationJob received = scaleout::decode_job(scaleout::encode_job(sent));
+  CHECK(received.experiment == 3);
+  REQUIRE(received.parameters.size() == 2);
+  for (const auto& [name, value] : sent.parameters) CHECK(same_bits(received.parameters.at(name), value));
+}

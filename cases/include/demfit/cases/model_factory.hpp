@@ -9,6 +9,7 @@
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/study_spec.hpp"
 
 namespace demfit::cases {
 
@@ -19,6 +20,11 @@ namespace demfit::cases {
 std::unique_ptr<identify::Model> make_model(const std::string& reference,
                                             const nlohmann::json& overrides,
                                             const std::filesystem::path& base_dir);
+
+// The model of a whole study: make_model of its "model" in the single-model form, or an
+// identify::ExperimentSetModel with one model per experiment (each experiment's case and
+// overrides; errors name the experiment). Throws std::runtime_error with a one-line message.
+std::unique_ptr<identify::Model> make_study_model(const identify::StudySpec& spec);
 
 // The DEM case a reference names (a built-in name or a case file, as for make_model) with the
 // overrides merged in (RFC 7386), parsed. Throws std::runtime_error with a one-line message.

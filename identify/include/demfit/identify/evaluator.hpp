@@ -19,30 +19,39 @@ struct EvaluationOutcome {
   double wall_seconds = 0.0;
 };
 
+// One unit of work: a parameter set for one experiment's model (experiments.hpp; 0 = the model
+// itself when it is not an ExperimentSetModel). The parameters are complete for that model.
+struct EvaluationJob {
+  std::size_t experiment = 0;
+  ParameterSet parameters;
+};
+
 class Evaluator {
  public:
   virtual ~Evaluator() = default;
   // Called once per finished evaluation, serialised (never concurrently), with the batch index.
-  // If it throws, no further evaluation of the batch is started and evaluate_batch rethrows
+  // If it throws, no further evaluation of the batch is started and evaluate_jobs rethrows
   // after the running ones finish.
   using DoneCallback = std::function<void(std::size_t index, const EvaluationOutcome&)>;
-  virtual std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch,
-                                                        const DoneCallback& on_done) = 0;
+  virtual std::vector<EvaluationOutcome> evaluate_jobs(const std::vector<EvaluationJob>& jobs,
+                                                       const DoneCallback& on_done) = 0;
+  // Every parameter set evaluated as experiment 0.
+  std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch, const DoneCallback& on_done);
   virtual int concurrency() const = 0;
 };
 
-// Threads of this process. Each job calls Model::evaluate with EvaluationContext{threads_per_job,
+// Threads of this process. A job runs experiment_models(model)[job.experiment]; each calls Model::evaluate with EvaluationContext{threads_per_job,
 // seed}; the caller chooses threads_per_job (the CLI default is 1, so `--jobs` uses `jobs` cores;
 // set jobs x threads_per_job <= cores). A model exception becomes a failed outcome with its message.
 class ThreadPoolEvaluator final : public Evaluator {
  public:
   ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed);
-  std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch,
-                                                const DoneCallback& on_done) override;
+  std::vector<EvaluationOutcome> evaluate_jobs(const std::vector<EvaluationJob>& jobs,
+                                               const DoneCallback& on_done) override;
   int concurrency() const override { return jobs_; }
 
  private:
-  const Model& model_;
+  std::vector<const Model*> models_;  // by experiment index
   int jobs_;
   int threads_per_job_;
   unsigned long seed_;

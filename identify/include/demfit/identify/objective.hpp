@@ -15,6 +15,13 @@
 //   curve of equal arc length, starting at the offset that minimises the distance (searched);
 //   a computed curve shorter than the target is stretched onto it. r = sqrt(w/K)(dx_k, dy_k),
 //   i.e. w times the mean squared distance between matched stations (an area-per-length).
+// profile_area target (P points, x increasing; free-surface profiles z(x)): responses = the
+//   simulated z at the target abscissae (as mse) plus the simulated x-range [a, b]. On the common
+//   x-range [lo, hi] = [max(a, x_1), min(b, x_P)] the simulated profile is taken as linear between
+//   the target abscissae and A = integral |f - G| dx (exact for piecewise linear gaps, also
+//   where they cross): the area between the profiles (mm^2 for x_mm, z_mm curves).
+//   r = sqrt(w) A / ((hi - lo) s): the mean gap over the common range in units of s, so the term
+//   w (A / ((hi - lo) s))^2 is comparable to an mse term ((RMS gap / s)^2).
 // Several targets: objective = sum of the weighted target terms.
 #include <string>
 #include <vector>
@@ -33,6 +40,11 @@ std::vector<double> resample_monotone(const Curve& curve, const std::vector<doub
 // `count` points at equal arc length along the polyline (x_i/x_scale, y_i/y_scale); returns
 // them in normalised coordinates, interleaved x0,y0,x1,y1,...
 std::vector<double> equal_arc_length_points(const Curve& curve, int count, double x_scale, double y_scale);
+
+// Integral of |f - g| dx over [lower, upper] for f, g given at the abscissae x (increasing) and
+// linear in between (exact also where f - g changes sign); segments outside are skipped.
+double profile_area_between(const std::vector<double>& x, const double* f, const std::vector<double>& g, double lower,
+                            double upper);
 
 class CompositeObjective {
  public:
@@ -62,6 +74,7 @@ class CompositeObjective {
     std::vector<double> station_arc;       // arc length of each target station
   };
   Eigen::VectorXd mapping_residuals(const Prepared& p, const double* computed, int computed_points) const;
+  double profile_area_residual(const TargetSpec& target, const Prepared& p, const double* values) const;
 
   std::vector<TargetSpec> targets_;
   std::vector<Prepared> prepared_;

@@ -6,6 +6,7 @@
 // wrong types and inconsistent values are errors naming the field (one line).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,18 +32,45 @@ struct VariableSpec {
 enum class CurveMetric {
   mse,            // SPEC 3 MSE composite at the target abscissae (needs monotone x)
   curve_mapping,  // area-like distance to the best-aligned equal-arc-length segment
+  profile_area,   // area between two profiles z(x) over their common x-range (objective.hpp)
 };
 
-// One measured curve to match.
+// A target read from a drum photo (issue 14): the free-surface profile extracted by
+// demfit::imaging, in the drum frame (origin on the axis, x right, z up), as a curve x_mm, z_mm.
+struct ImageTargetSpec {
+  std::filesystem::path file;     // as written in the study (relative to the study file)
+  double diameter = 0.0;          // [m] inner drum diameter the square picture spans
+  double threshold = -1.0;        // grey level in [0, 1]; < 0 = automatic (Otsu)
+  bool material_is_dark = true;   // "image_material": "dark" (photos) or "light" (inverted)
+  double margin = 0.1;            // fraction of the radius ignored near the drum outline
+  int points = 41;                // abscissae of the profile across the usable chord
+};
+
+// One measured curve to match. In a study with several experiments, `name` and `curve` are
+// qualified by the experiment: name "<experiment>.<target>" (unique in the study, used in file
+// names), curve "<experiment>/<curve>" (the key in the CurveSet of a design point, which is the
+// union of its experiments' curves; experiments.hpp). to_json writes them unqualified again.
 struct TargetSpec {
   std::string name;              // unique; used in file names and reports
-  std::string curve;             // simulated curve name in the model's CurveSet
+  std::string curve;             // simulated curve name in the (design point's) CurveSet
   Curve data;                    // measured points (loaded from CSV or given inline)
   std::filesystem::path csv;     // where data came from (empty when inline)
   CurveMetric metric = CurveMetric::mse;
   double weight = 1.0;           // weight of this target in the composite objective
   double scale = 0.0;            // s_p of SPEC 3; 0 = max|G| of the target
   int mapping_points = 0;        // curve mapping: stations along the curve; 0 = target size
+  std::string experiment;        // experiment the target belongs to; "" in the single-model form
+  std::optional<ImageTargetSpec> image;  // where data came from when read from a photo
+};
+
+// One experiment of a study with several (issue 14 item 3): a model (case reference + its own
+// fixed settings and parameters) whose targets share the study's variables. A variable is
+// passed to every experiment whose model accepts it; one that no model accepts is an error.
+struct ExperimentSpec {
+  std::string name;              // letters, digits, '_' and '-'; unique in the study
+  std::string model_reference;
+  nlohmann::json model_overrides = nlohmann::json::object();
+  ParameterSet fixed_parameters;
 };
 
 enum class SamplingStrategy {
@@ -63,6 +91,10 @@ struct StudySpec {
   std::string model_reference;
   nlohmann::json model_overrides = nlohmann::json::object();
   ParameterSet fixed_parameters;          // parameters held at given values (not varied)
+  // Several experiments ("experiments" in the file): then model_reference is empty, the model
+  // settings live in each experiment and every target names its experiment. Empty in the
+  // single-model form ("model" + "targets"), which is one unnamed experiment.
+  std::vector<ExperimentSpec> experiments;
   std::vector<VariableSpec> variables;
   std::vector<TargetSpec> targets;
   // Sampling.

@@ -28,8 +28,8 @@ class MpiEvaluator final : public identify::Evaluator {
  public:
   MpiEvaluator(MpiSession& session, MpiEvaluatorOptions options);
   ~MpiEvaluator() override;  // tells the live workers to stop
-  std::vector<identify::EvaluationOutcome> evaluate_batch(const std::vector<identify::ParameterSet>& batch,
-                                                          const DoneCallback& on_done) override;
+  std::vector<identify::EvaluationOutcome> evaluate_jobs(const std::vector<identify::EvaluationJob>& batch,
+                                                         const DoneCallback& on_done) override;
   int concurrency() const override;
   int live_workers() const;
 
@@ -44,8 +44,9 @@ class MpiEvaluator final : public identify::Evaluator {
   double longest_run_seconds_ = 0.0;
 };
 
-// The other ranks: receive runs, evaluate them with the model, send the outcomes back, until
-// rank 0 says stop. `threads_per_job` OpenMP threads per run.
+// The other ranks: receive jobs, evaluate them with the job's experiment of the model
+// (identify::experiment_models), send the outcomes back, until rank 0 says stop.
+// `threads_per_job` OpenMP threads per run.
 void run_worker(const identify::Model& model, int threads_per_job, unsigned long seed);
 
 // Message tags shared by both sides.
