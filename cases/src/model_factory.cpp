@@ -56,16 +56,18 @@ std::unique_ptr<identify::Model> make_model(const std::string& reference, const 
 CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overrides,
                       const std::filesystem::path& base_dir) {
   nlohmann::json document;
+  std::filesystem::path case_dir = base_dir;  // relative files in the case (size CSV) start here
   if (reference == "pellet_compression" || reference == "rotary_drum") {
     document = builtin_document(reference);
   } else {
     std::filesystem::path path(reference);
     if (path.is_relative()) path = base_dir / path;
     document = read_case_json(path.string());
+    case_dir = path.parent_path();
   }
   // RFC 7386 merge patch: study overrides are partial case documents ({"pellet": {"unload": true}}).
   if (overrides.is_object()) document.merge_patch(overrides);
-  return parse_case(document);
+  return parse_case(document, case_dir);
 }
 
 }  // namespace demfit::cases
