@@ -44,7 +44,7 @@ void run_simulate(const SimulateOptions& o) {
     }
   }
   if (!o.snapshots.empty()) document["output"]["snapshot_times"] = o.snapshots;
-  const cases::CaseSpec spec = cases::parse_case(document);
+  const cases::CaseSpec spec = cases::parse_case(document, std::filesystem::path(o.case_file).parent_path());
   if (o.threads < 1) throw std::runtime_error("--threads must be >= 1");
   if (o.noise < 0.0) throw std::runtime_error("--noise must be >= 0 (relative to max|y| of each curve)");
   const std::filesystem::path out =
@@ -69,7 +69,10 @@ void run_simulate(const SimulateOptions& o) {
       if (evaluated.count(name)) continue;
       const std::string path = cases::parameter_path(name);
       const auto dot = path.find('.');
-      evaluated[name] = base[path.substr(0, dot)][path.substr(dot + 1)].get<double>();
+      // Parameters of the other contact law or fill form are absent from the resolved case.
+      const std::string section = path.substr(0, dot), key = path.substr(dot + 1);
+      if (!base.contains(section) || !base[section].contains(key) || !base[section][key].is_number()) continue;
+      evaluated[name] = base[section][key].get<double>();
     }
   }
   nlohmann::json resolved = cases::to_json(spec);
@@ -103,7 +106,9 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--set", options->settings,
                   "override: name=value. Identified parameters (normk sheark ndamp tdamp frics fricd dc fricr "
                   "wall_frics wall_fricd wall_damp wall_sfp; dimensionless, dc in s/m) act on the measured stage; "
-                  "any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
+                  "Hertz-Mindlin drums: frics fricr restitution wall_frics wall_fricd (wall rolling); drum fill "
+                  "amount particle_count [original particles] or fill_volume_ml [mL bulk] (changes the fill, cached "
+                  "per value); any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
       ->take_all();
   cmd->add_option("--out", options->out, "output folder (default: results/<case file stem>); replaced if it exists");
   cmd->add_option("--threads", options->threads, "OpenMP threads of the simulation (default 1)");

@@ -26,6 +26,10 @@ CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& paramete
   // evaluated spec (one cached fill per distinct spread).
   CaseSpec fill = spec;
   fill.material.radius_spread = evaluated.material.radius_spread;
+  // Likewise the drum fill amount (particle_count, fill_volume_ml): one cached fill per value.
+  fill.drum.fill_by = evaluated.drum.fill_by;
+  fill.drum.particle_count = evaluated.drum.particle_count;
+  fill.drum.fill_volume_ml = evaluated.drum.fill_volume_ml;
   if (spec.kind == CaseKind::pellet_compression) {
     return detail::run_pellet_compression(fill, evaluated, resolved);
   }

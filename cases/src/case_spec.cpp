@@ -2,6 +2,7 @@
 #include "demfit/cases/case_spec.hpp"
 
 #include <fstream>
+#include <numbers>
 #include <stdexcept>
 
 #include "demfit/cases/json_fields.hpp"
@@ -53,6 +54,37 @@ WallContactSpec parse_wall(const json& j, WallContactSpec w) {
   return w;
 }
 
+// Hertz–Mindlin contact (issue 12 item 3): restitution, sliding and rolling friction; the
+// LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
+ContactSpec parse_hertz_contact(const json& j, ContactSpec c) {
+  const char* p = "contact";
+  require_known_keys(j, p, {"law", "restitution", "frics", "fricr"});
+  if (!j.contains("restitution")) throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in (0, 1]");
+  c.restitution = read_bounded(j, p, "restitution", c.restitution, 1e-3, 1.0);
+  c.frics = read_number(j, p, "frics", c.frics, Sign::non_negative);
+  c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
+  c.fricd = c.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
+  c.dc = 0.0;
+  return c;
+}
+
+// Hertz wall: its elastic material (default: the particle's) and friction; "fricr" is the
+// wall rolling friction (stored in WallContactParameters::fricd, its LS-DYNA place).
+WallContactSpec parse_hertz_wall(const json& j, WallContactSpec w, const MaterialSpec& particle, bool& as_particles) {
+  const char* p = "wall_contact";
+  require_known_keys(j, p, {"youngs_modulus", "poisson_ratio", "frics", "fricr", "friction_as_particles"});
+  w.youngs_modulus = read_number(j, p, "youngs_modulus", particle.youngs_modulus, Sign::positive);
+  w.poisson_ratio = read_bounded(j, p, "poisson_ratio", particle.poisson_ratio, -0.99, 0.499);
+  as_particles = read_bool(j, p, "friction_as_particles", false);
+  if (as_particles && (j.contains("frics") || j.contains("fricr")))
+    throw std::runtime_error("'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: remove one");
+  w.frics = read_number(j, p, "frics", w.frics, Sign::non_negative);
+  w.fricd = read_number(j, p, "fricr", w.fricd, Sign::non_negative);
+  w.damp = 0.0;
+  w.sfp = 1.0;
+  return w;
+}
+
 TimeStepSpec parse_time_step(const json& j, TimeStepSpec t) {
   const char* p = "time_step";
   require_known_keys(j, p, {"value", "factor"});
@@ -98,17 +130,50 @@ PelletSpec parse_pellet(const json& j, PelletSpec s) {
   return s;
 }
 
-DrumSpec parse_drum(const json& j, DrumSpec s) {
+DrumImageSpec parse_drum_image(const json& j) {
+  const char* p = "drum.image";
+  require_known_keys(j, p, {"pixels", "margin", "points"});
+  DrumImageSpec image;
+  image.enabled = true;
+  image.pixels = read_integer(j, p, "pixels", image.pixels, 32);
+  image.margin = read_bounded(j, p, "margin", image.margin, 0.0, 0.95);
+  image.points = read_integer(j, p, "points", image.points, 2);
+  return image;
+}
+
+// Exactly one fill amount (fill_fraction when none is given; see FillBy).
+void parse_fill_amount(const json& j, DrumSpec& s) {
+  const char* p = "drum";
+  int given = 0;
+  for (const char* k : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"}) given += j.contains(k) ? 1 : 0;
+  if (given > 1) throw std::runtime_error("'drum': give exactly one of fill_fraction, fill_volume_ml, particle_count or fill_mass");
+  s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
+  if (j.contains("fill_volume_ml")) {
+    s.fill_by = FillBy::fill_volume;
+    s.fill_volume_ml = read_number(j, p, "fill_volume_ml", 0.0, Sign::positive);
+  } else if (j.contains("particle_count")) {
+    s.fill_by = FillBy::particle_count;
+    s.particle_count = read_integer(j, p, "particle_count", 0, 1);
+  } else if (j.contains("fill_mass")) {
+    s.fill_by = FillBy::fill_mass;
+    s.fill_mass = read_number(j, p, "fill_mass", 0.0, Sign::positive);
+  } else if (j.contains("fill_fraction")) {
+    s.fill_by = FillBy::fill_fraction;
+  }
+}
+
+DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base_dir) {
   const char* p = "drum";
   require_known_keys(j, p, {"diameter", "length", "rpm", "duration", "fill_fraction",
                             "volume_fraction", "coarse_graining", "scale_factor", "fill_seed",
                             "densify_time", "torque_interval", "surface_window",
-                            "surface_snapshots", "surface_points"});
+                            "surface_snapshots", "surface_points", "fill_volume_ml",
+                            "particle_count", "fill_mass", "size_distribution", "image"});
   s.diameter = read_number(j, p, "diameter", s.diameter, Sign::positive);
   s.length = read_number(j, p, "length", s.length, Sign::positive);
   s.rpm = read_number(j, p, "rpm", s.rpm);
   s.duration = read_number(j, p, "duration", s.duration, Sign::positive);
-  s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
+  parse_fill_amount(j, s);
   s.volume_fraction = read_bounded(j, p, "volume_fraction", s.volume_fraction, 0.05, 1.0);
   const std::string cg = read_string(j, p, "coarse_graining", to_string(s.coarse_graining));
   try {
@@ -126,6 +191,15 @@ DrumSpec parse_drum(const json& j, DrumSpec s) {
   if (s.surface_window > s.duration) {
     throw std::runtime_error("'drum.surface_window' must not exceed 'drum.duration'");
   }
+  if (j.contains("size_distribution"))
+    s.size_distribution = parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);
+  if (j.contains("image")) s.image = parse_drum_image(child_object(j, p, "image"));
+  if (s.fill_by == FillBy::fill_volume) {
+    const double drum_ml = std::numbers::pi * 0.25 * s.diameter * s.diameter * s.length * 1e6;
+    if (s.fill_volume_ml > 0.9 * drum_ml)
+      throw std::runtime_error("'drum.fill_volume_ml' = " + std::to_string(s.fill_volume_ml) + " exceeds 90 % of the drum volume (" +
+                               std::to_string(drum_ml) + " mL): lower it");
+  }
   return s;
 }
 
@@ -135,7 +209,11 @@ double MaterialSpec::bulk_modulus() const {
   return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio));
 }
 
-CaseSpec parse_case(const json& document) {
+std::string to_string(dem_core::ContactLawKind law) {
+  return law == dem_core::ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "lsdyna_linear";
+}
+
+CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir) {
   require_known_keys(document, "", {"case", "description", "particle", "contact", "wall_contact",
                                     "time_step", "output", "pellet", "drum"});
   CaseSpec spec;
@@ -154,14 +232,42 @@ CaseSpec parse_case(const json& document) {
   }
   spec.description = read_string(document, "", "description", "");
   spec.material = parse_material(child_object(document, "", "particle"), spec.material);
-  spec.contact = parse_contact(child_object(document, "", "contact"), spec.contact);
-  spec.wall = parse_wall(child_object(document, "", "wall_contact"), spec.wall);
+  const json& contact = child_object(document, "", "contact");
+  const std::string law = read_string(contact, "contact", "law", "lsdyna_linear");
+  if (law == "hertz_mindlin") {
+    if (spec.kind != CaseKind::rotary_drum)
+      throw std::runtime_error("'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
+    spec.law = dem_core::ContactLawKind::hertz_mindlin;
+    spec.contact = parse_hertz_contact(contact, spec.contact);
+    spec.wall = parse_hertz_wall(child_object(document, "", "wall_contact"), spec.wall, spec.material,
+                                 spec.wall_friction_as_particles);
+    if (spec.wall_friction_as_particles) {
+      spec.wall.frics = spec.contact.frics;
+      spec.wall.fricd = spec.contact.fricr;
+    }
+    if (spec.material.radius_spread != 0.0)
+      throw std::runtime_error("'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
+  } else if (law == "lsdyna_linear") {
+    json plain = contact;
+    plain.erase("law");
+    spec.contact = parse_contact(plain, spec.contact);
+    spec.wall = parse_wall(child_object(document, "", "wall_contact"), spec.wall);
+  } else {
+    throw std::runtime_error("'contact.law' must be \"lsdyna_linear\" or \"hertz_mindlin\" (got \"" + law + "\")");
+  }
   spec.time_step = parse_time_step(child_object(document, "", "time_step"), spec.time_step);
   spec.output = parse_output(child_object(document, "", "output"), spec.output);
   if (spec.kind == CaseKind::pellet_compression) {
     spec.pellet = parse_pellet(child_object(document, "", "pellet"), spec.pellet);
   } else {
-    spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum);
+    spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum, base_dir);
+    if (spec.drum.size_distribution.enabled()) {
+      if (child_object(document, "", "particle").contains("radius"))
+        throw std::runtime_error("'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
+      if (spec.material.radius_spread != 0.0)
+        throw std::runtime_error("'particle.radius_spread' cannot be combined with 'drum.size_distribution'");
+      spec.material.radius = 0.5 * spec.drum.size_distribution.min_diameter();  // smallest size (time-step checks)
+    }
   }
   return spec;
 }
@@ -174,13 +280,28 @@ json to_json(const CaseSpec& s) {
                    {"youngs_modulus", s.material.youngs_modulus},
                    {"poisson_ratio", s.material.poisson_ratio},
                    {"radius_spread", s.material.radius_spread}};
+  const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
+  if (distribution) j["particle"].erase("radius");
   const ContactSpec& c = s.contact;
-  j["contact"] = {{"normk", c.normk}, {"sheark", c.sheark}, {"ndamp", c.ndamp}, {"tdamp", c.tdamp},
-                  {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr},
-                  {"unloading_stiffness_ratio", c.unloading_stiffness_ratio},
-                  {"surface_energy", c.surface_energy}, {"stiffness_exponent", c.stiffness_exponent}};
-  j["wall_contact"] = {{"frics", s.wall.frics}, {"fricd", s.wall.fricd}, {"damp", s.wall.damp},
-                       {"sfp", s.wall.sfp}};
+  if (s.law == dem_core::ContactLawKind::hertz_mindlin) {
+    j["particle"].erase("radius_spread");
+    j["contact"] = {{"law", to_string(s.law)}, {"restitution", c.restitution}, {"frics", c.frics}, {"fricr", c.fricr}};
+    j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
+    if (s.wall_friction_as_particles) {
+      j["wall_contact"]["friction_as_particles"] = true;
+    } else {
+      j["wall_contact"]["frics"] = s.wall.frics;
+      j["wall_contact"]["fricr"] = s.wall.fricd;
+    }
+  } else {
+    // lsdyna_linear: the text of a case file from before the law could be chosen.
+    j["contact"] = {{"normk", c.normk}, {"sheark", c.sheark}, {"ndamp", c.ndamp}, {"tdamp", c.tdamp},
+                    {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr},
+                    {"unloading_stiffness_ratio", c.unloading_stiffness_ratio},
+                    {"surface_energy", c.surface_energy}, {"stiffness_exponent", c.stiffness_exponent}};
+    j["wall_contact"] = {{"frics", s.wall.frics}, {"fricd", s.wall.fricd}, {"damp", s.wall.damp},
+                         {"sfp", s.wall.sfp}};
+  }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times},
                  {"progress_interval", s.output.progress_interval}};
@@ -200,6 +321,15 @@ json to_json(const CaseSpec& s) {
                  {"fill_seed", d.fill_seed}, {"densify_time", d.densify_time},
                  {"torque_interval", d.torque_interval}, {"surface_window", d.surface_window},
                  {"surface_snapshots", d.surface_snapshots}, {"surface_points", d.surface_points}};
+    // General-drum options appear only when used, so a paper drum keeps its old text.
+    if (d.fill_by != FillBy::fill_fraction) j["drum"].erase("fill_fraction");
+    if (d.fill_by == FillBy::fill_volume) j["drum"]["fill_volume_ml"] = d.fill_volume_ml;
+    if (d.fill_by == FillBy::particle_count) j["drum"]["particle_count"] = d.particle_count;
+    if (d.fill_by == FillBy::fill_mass) j["drum"]["fill_mass"] = d.fill_mass;
+    if (d.size_distribution.enabled()) j["drum"]["size_distribution"] = to_json(d.size_distribution);
+    if (d.image.enabled) {
+      j["drum"]["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
+    }
   }
   return j;
 }
@@ -207,6 +337,9 @@ json to_json(const CaseSpec& s) {
 json to_key_json(const CaseSpec& s) {
   json j = to_json(s);
   if (s.material.radius_spread == 0.0) j["particle"].erase("radius_spread");
+  // The CSV's content (not only its name) decides the fill.
+  if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
+    j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());
   if (s.contact.unloading_stiffness_ratio == 1.0) j["contact"].erase("unloading_stiffness_ratio");
   if (s.contact.surface_energy == 0.0) j["contact"].erase("surface_energy");
   if (s.contact.stiffness_exponent == 1.0) j["contact"].erase("stiffness_exponent");
@@ -230,7 +363,9 @@ const std::vector<std::string>& parameter_names() {
                                               "wall_damp", "wall_sfp",
                                               // effects library (issue #6), off by default
                                               "unloading_stiffness_ratio", "surface_energy",
-                                              "stiffness_exponent", "radius_spread"};
+                                              "stiffness_exponent", "radius_spread",
+                                              // Hertz–Mindlin and the general drum (issues 12, 14)
+                                              "restitution", "particle_count", "fill_volume_ml"};
   return names;
 }
 
@@ -239,6 +374,7 @@ std::string parameter_path(const std::string& name) {
     if (n != name) continue;
     if (name.rfind("wall_", 0) == 0) return "wall_contact." + name.substr(5);
     if (name == "radius_spread") return "particle.radius_spread";
+    if (name == "particle_count" || name == "fill_volume_ml") return "drum." + name;
     return "contact." + name;
   }
   return "";
@@ -259,6 +395,15 @@ void apply_setting(json& document, const std::string& assignment) {
   }
   std::string path = parameter_path(name);
   if (path.empty()) path = name;
+  // Hertz files name the wall rolling friction "fricr" (its LS-DYNA card calls it FRICD).
+  if (path == "wall_contact.fricd" && document.contains("contact") && document["contact"].is_object() &&
+      document["contact"].value("law", "") == "hertz_mindlin")
+    path = "wall_contact.fricr";
+  // A fill amount replaces the file's fill amount (exactly one may be given).
+  for (const char* fill : {"drum.fill_fraction", "drum.fill_volume_ml", "drum.particle_count", "drum.fill_mass"}) {
+    if (path != fill || !document.contains("drum") || !document["drum"].is_object()) continue;
+    for (const char* other : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"}) document["drum"].erase(other);
+  }
   json* node = &document;
   std::size_t start = 0;
   while (true) {

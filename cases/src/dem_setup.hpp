@@ -17,6 +17,9 @@ inline constexpr double kFillTimeStepFactor = 0.15;
 
 dem_core::Material to_material(const MaterialSpec& spec);
 
+// Law and particle contact parameters of the spec; callers set gravity, threads and steps.
+dem_core::SimulationSettings simulation_settings(const CaseSpec& spec);
+
 // The particles of a settled simulation as a cacheable fill (positions [m], radii [m]).
 Fill fill_of(const dem_core::Simulation& simulation);
 
@@ -24,7 +27,8 @@ Fill fill_of(const dem_core::Simulation& simulation);
 // parameter_names()); unknown names are errors naming the parameter.
 CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters);
 
-// The identified-parameter values of a spec, by name.
+// The identified-parameter values of a spec, by name: the parameters of its contact law, and the
+// drum fill amount when the case gives it as particle_count or fill_volume_ml.
 identify::ParameterSet parameters_of(const CaseSpec& spec);
 
 // Throws "'time_step.value' = ... exceeds the stable limit ..." when the user step is too large

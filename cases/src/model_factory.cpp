@@ -76,16 +76,18 @@ CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overri
     throw std::runtime_error("no case reference: a study with \"experiments\" has one model per experiment; this "
                              "command needs a single-model study (\"model\" + \"targets\")");
   nlohmann::json document;
+  std::filesystem::path case_dir = base_dir;  // relative files in the case (size CSV) start here
   if (reference == "pellet_compression" || reference == "rotary_drum") {
     document = builtin_document(reference);
   } else {
     std::filesystem::path path(reference);
     if (path.is_relative()) path = base_dir / path;
     document = read_case_json(path.string());
+    case_dir = path.parent_path();
   }
   // RFC 7386 merge patch: study overrides are partial case documents ({"pellet": {"unload": true}}).
   if (overrides.is_object()) document.merge_patch(overrides);
-  return parse_case(document);
+  return parse_case(document, case_dir);
 }
 
 }  // namespace demfit::cases

@@ -121,8 +121,15 @@ double drum_fill_height(double radius, double fraction) {
   return 0.5 * (lo + hi);
 }
 
-Packing generate_packing(const PackingRequest& q) {
+namespace {
+
+void validate_request(const PackingRequest& q) {
   validate_region(q.region);
+  require_non_negative("packing.gap", q.gap);
+  if (!q.radii.empty()) {
+    for (double r : q.radii) require_positive("packing.radii [m]", r);
+    return;
+  }
   require_positive("packing.radius_min [m]", q.radius_min);
   require_positive("packing.radius_max [m]", q.radius_max);
   if (q.radius_min > q.radius_max) fail("packing.radius_min [m]", q.radius_min, "must be <= radius_max");
@@ -130,16 +137,34 @@ Packing generate_packing(const PackingRequest& q) {
   if (q.radius_spread > 0.9) fail("packing.radius_spread", q.radius_spread, "must lie in [0, 0.9]");
   if (q.radius_spread > 0.0 && q.radius_min != q.radius_max)
     fail("packing.radius_spread", q.radius_spread, "needs radius_min == radius_max (the nominal radius)");
-  require_non_negative("packing.gap", q.gap);
   require_non_negative("packing.solid_volume [m^3]", q.solid_volume);
   if (q.count == 0 && q.solid_volume <= 0.0)
     throw std::runtime_error("packing: set count > 0 or solid_volume > 0 (m^3)");
+}
+
+/// Sub-lattice offsets (in units of the cubic cell) of the lattice's basis.
+std::vector<Vec3> lattice_basis(PackingRequest::Lattice lattice) {
+  if (lattice == PackingRequest::Lattice::cubic) return {{0, 0, 0}};
+  return {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+}
+
+}  // namespace
+
+Packing generate_packing(const PackingRequest& q) {
+  validate_request(q);
   const Frame f = frame_for(require_direction("packing.up", q.up));
-  // Radius bounds: [radius_min, radius_max], or R(1 -+ s) with a spread (identical when s = 0).
-  const double r_lo = q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
-  const double r_hi = q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
-  const double spacing = 2.0 * r_hi * (1.0 + q.gap);
-  const double jitter = 0.4999 * (spacing - 2.0 * r_hi);
+  const bool explicit_radii = !q.radii.empty();
+  // Radius bounds: [radius_min, radius_max], or R(1 -+ s) with a spread (identical when s = 0);
+  // explicit radii: every site sized for the largest one.
+  const double r_largest = explicit_radii ? *std::max_element(q.radii.begin(), q.radii.end()) : 0.0;
+  const double r_lo = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
+  const double r_hi = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
+  const std::size_t count = explicit_radii ? q.radii.size() : q.count;
+  const double neighbour_distance = 2.0 * r_hi * (1.0 + q.gap);
+  const std::vector<Vec3> basis = lattice_basis(q.lattice);
+  // Cubic cell edge: the nearest-neighbour distance (cubic) or sqrt(2) times it (fcc).
+  const double spacing = basis.size() == 1 ? neighbour_distance : std::sqrt(2.0) * neighbour_distance;
+  const double jitter = 0.4999 * (neighbour_distance - 2.0 * r_hi);
   const auto [center, extent] = bounding_sphere(q.region);
   const auto cells = static_cast<std::int64_t>(std::ceil(extent / spacing));
   std::mt19937_64 rng(q.seed);
@@ -147,17 +172,21 @@ Packing generate_packing(const PackingRequest& q) {
   std::vector<Site> sites;
   for (std::int64_t k = -cells; k <= cells; ++k)
     for (std::int64_t j = -cells; j <= cells; ++j)
-      for (std::int64_t i = -cells; i <= cells; ++i) {
-        // Always draw the same numbers per site so the sequence does not depend on acceptance.
-        const double r = r_lo + (r_hi - r_lo) * uniform01(rng);
-        const double a = (2.0 * uniform01(rng) - 1.0) * jitter;
-        const double b = (2.0 * uniform01(rng) - 1.0) * jitter;
-        const double c = (2.0 * uniform01(rng) - 1.0) * jitter;
-        const double key = uniform01(rng);
-        const Vec3 x = center + (static_cast<double>(i) * spacing + a) * f.e1 +
-                       (static_cast<double>(j) * spacing + b) * f.e2 + (static_cast<double>(k) * spacing + c) * f.up;
-        if (region_contains(q.region, x, r)) sites.push_back({k, key, x, r});
-      }
+      for (std::int64_t i = -cells; i <= cells; ++i)
+        for (std::size_t b = 0; b < basis.size(); ++b) {
+          // Always draw the same numbers per site so the sequence does not depend on acceptance.
+          const double r = r_lo + (r_hi - r_lo) * uniform01(rng);
+          const double a = (2.0 * uniform01(rng) - 1.0) * jitter;
+          const double bb = (2.0 * uniform01(rng) - 1.0) * jitter;
+          const double c = (2.0 * uniform01(rng) - 1.0) * jitter;
+          const double key = uniform01(rng);
+          const Vec3 cell{static_cast<double>(i) + basis[b].x, static_cast<double>(j) + basis[b].y,
+                          static_cast<double>(k) + basis[b].z};
+          const Vec3 x = center + (cell.x * spacing + a) * f.e1 + (cell.y * spacing + bb) * f.e2 + (cell.z * spacing + c) * f.up;
+          // Layers along up: a cubic cell holds two fcc layers (basis z = 0 and 1/2).
+          const std::int64_t layer = basis.size() == 1 ? k : 2 * k + (basis[b].z > 0.0 ? 1 : 0);
+          if (region_contains(q.region, x, r)) sites.push_back({layer, key, x, r});
+        }
   // Lowest layers first; random order inside a layer so a partly filled top layer is random.
   std::stable_sort(sites.begin(), sites.end(), [](const Site& s, const Site& t) {
     return s.layer != t.layer ? s.layer < t.layer : s.key < t.key;
@@ -165,13 +194,14 @@ Packing generate_packing(const PackingRequest& q) {
   Packing out;
   out.capacity = sites.size();
   for (const Site& s : sites) {
-    if (q.count > 0 ? out.centers.size() >= q.count : out.solid_volume >= q.solid_volume) break;
+    if (count > 0 ? out.centers.size() >= count : out.solid_volume >= q.solid_volume) break;
+    const double r = explicit_radii ? q.radii[out.centers.size()] : s.r;
     out.centers.push_back(s.x);
-    out.radii.push_back(s.r);
-    out.solid_volume += 4.0 / 3.0 * std::numbers::pi * s.r * s.r * s.r;
+    out.radii.push_back(r);
+    out.solid_volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   }
-  const bool short_count = q.count > 0 && out.centers.size() < q.count;
-  const bool short_volume = q.count == 0 && out.solid_volume < q.solid_volume;
+  const bool short_count = count > 0 && out.centers.size() < count;
+  const bool short_volume = count == 0 && out.solid_volume < q.solid_volume;
   if (short_count || short_volume) {
     std::ostringstream msg;
     msg << "packing: " << (short_count ? "count" : "solid_volume") << " cannot be reached, only " << out.capacity

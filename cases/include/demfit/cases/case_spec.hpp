@@ -3,12 +3,14 @@
 // impossible values are errors naming the dotted field. Every quantity is SI (m, kg, s, Pa)
 // unless the key names its unit (e.g. "rpm"). to_json() gives the resolved case with every
 // default filled in; parse_case(to_json(spec)) == spec.
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "demfit/cases/coarse_graining.hpp"
+#include "demfit/cases/size_distribution.hpp"
 #include "demfit/dem_core/parameters.hpp"
 
 namespace demfit::cases {
@@ -54,6 +56,24 @@ struct PelletSpec {
   long long curve_points = 60;        // resampled points of pressure_volume (loading part)
 };
 
+// How the drum fill amount is given (exactly one per case file; fill_fraction when none is).
+//   fill_fraction f: bulk volume f * drum volume;  fill_volume_ml V: bulk volume V [mL];
+//   the original (s = 1) particles' solid volume is volume_fraction * bulk volume, so their count
+//   is N0 = phi V_bulk / E[v] (E[v] = mean sphere volume of the size distribution);
+//   particle_count N0: original particles directly;  fill_mass M: N0 = M / (rho E[v]).
+// The coarse model carries Table 2's total mass: SCG count = N0 / s^3, CVF count = phi N0 / s^3.
+enum class FillBy { fill_fraction, fill_volume, particle_count, fill_mass };
+
+// The simulated side of a photo comparison (issue 14): occupancy image of the particles
+// projected along the drum axis, averaged over the surface window, then the photo's surface
+// extraction (demfit::imaging). Off unless "image" is given in the drum object.
+struct DrumImageSpec {
+  bool enabled = false;
+  long long pixels = 406;  // image width = height, spanning the inner diameter (GranuDrum: 406)
+  double margin = 0.1;     // compared circle (1 - margin) R, as for the photo
+  long long points = 41;   // abscissae of free_surface_image
+};
+
 // SPEC 2.2. Drum axis z through the origin, gravity -y.
 struct DrumSpec {
   double diameter = 0.1;               // inner diameter [m]
@@ -70,6 +90,13 @@ struct DrumSpec {
   double surface_window = 0.1;         // free surface averaged over [duration - window, duration] [s]
   long long surface_snapshots = 5;     // snapshots averaged in that window
   long long surface_points = 41;       // abscissae of the free_surface curve
+  // General drum (issue 14); at their defaults the case is the paper's drum, unchanged.
+  FillBy fill_by = FillBy::fill_fraction;
+  double fill_volume_ml = 0.0;         // bulk fill volume [mL] (fill_by == fill_volume)
+  long long particle_count = 0;        // original-particle count N0 (fill_by == particle_count)
+  double fill_mass = 0.0;              // [kg] (fill_by == fill_mass)
+  SizeDistributionSpec size_distribution;  // none = monodisperse particle.radius
+  DrumImageSpec image;
 };
 
 struct OutputSpec {
@@ -83,6 +110,13 @@ struct CaseSpec {
   CaseKind kind = CaseKind::pellet_compression;
   std::string description;
   MaterialSpec material;
+  // "contact.law": lsdyna_linear (default; SPEC 1) or hertz_mindlin (rotary_drum only). Under
+  // hertz_mindlin the case gives contact.restitution/frics/fricr and the wall's material
+  // (wall.youngs_modulus, wall.poisson_ratio) with wall.frics and wall.fricd (= wall rolling
+  // friction, key "fricr" in the file); restitution is shared by pairs and walls.
+  dem_core::ContactLawKind law = dem_core::ContactLawKind::lsdyna_linear;
+  // Hertz: wall sliding and rolling friction follow the particle values (also under overrides).
+  bool wall_friction_as_particles = false;
   ContactSpec contact;
   WallContactSpec wall;
   TimeStepSpec time_step;
@@ -91,7 +125,8 @@ struct CaseSpec {
   DrumSpec drum;      // used when kind == rotary_drum
 };
 
-CaseSpec parse_case(const nlohmann::json& document);
+// `base_dir`: folder against which relative file references (size CSV) resolve; empty = cwd.
+CaseSpec parse_case(const nlohmann::json& document, const std::filesystem::path& base_dir = {});
 nlohmann::json to_json(const CaseSpec& spec);
 
 // to_json without the effects-library fields that are at their off values
@@ -115,7 +150,12 @@ void apply_setting(nlohmann::json& document, const std::string& assignment);
 // empty when the name is not a parameter.
 std::string parameter_path(const std::string& name);
 
-// The identified-parameter names, in a fixed order.
+// The identified-parameter names, in a fixed order. Besides the contact values above:
+// restitution (Hertz), particle_count and fill_volume_ml (drum fill amount; they change the fill,
+// which is then made and cached per distinct value, as for radius_spread).
 const std::vector<std::string>& parameter_names();
+
+// "lsdyna_linear" / "hertz_mindlin".
+std::string to_string(dem_core::ContactLawKind law);
 
 }  // namespace demfit::cases

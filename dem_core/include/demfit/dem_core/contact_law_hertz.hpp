@@ -43,8 +43,16 @@ struct HertzMindlinLaw {
   HertzNormal normal{};
   CoulombTangentialSpring tangential{};
   ConstantTorqueRolling rolling{};
+  /// Compliances of an elastic wall (WallContactParameters::hertz_*_compliance), added to the
+  /// particle's; 0 for pairs (both particles are already in the geometry) and rigid walls, and
+  /// adding 0 is exact, so those contacts compute bit-identically to before.
+  double body_normal_compliance = 0.0;  ///< [1/Pa]
+  double body_shear_compliance = 0.0;   ///< [1/Pa]
 
-  ContactForce force(const ContactGeometry& g, ContactHistory& history, double dt) const {
+  ContactForce force(const ContactGeometry& contact, ContactHistory& history, double dt) const {
+    ContactGeometry g = contact;
+    g.normal_compliance += body_normal_compliance;
+    g.shear_compliance += body_shear_compliance;
     const HertzNormal::Result n = normal.evaluate(g);
     ContactForce out;
     out.elastic_energy = n.energy;
@@ -65,13 +73,16 @@ inline HertzMindlinLaw make_hertz_pair_law(const ContactParameters& p) {
   return law;
 }
 
-/// Wall: rigid body (adds no compliance); same restitution as the pairs, wall FRICS sliding,
-/// wall FRICD rolling. SFP scales E* as it scales the linear wall spring.
+/// Wall: rigid body unless the wall has a Young's modulus (then its compliances are added, a
+/// second elastic body); same restitution as the pairs, wall FRICS sliding, wall FRICD rolling.
+/// SFP scales the particle's normal compliance as it scales the linear wall spring.
 inline HertzMindlinLaw make_hertz_wall_law(const ContactParameters& p, const WallContactParameters& w) {
   HertzMindlinLaw law;
   law.normal.beta = hertz_damping_beta(p.restitution);
   law.tangential = {w.frics, w.frics, 0.0};
   law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
+  law.body_normal_compliance = w.hertz_normal_compliance();
+  law.body_shear_compliance = w.hertz_shear_compliance();
   return law;
 }
 

@@ -63,6 +63,16 @@ struct PackingRequest {
   std::uint64_t seed = 1;
   Vec3 up{0, 0, 1};    ///< sites are filled from the lowest (along up) upwards
   double gap = 0.2;    ///< lattice spacing = 2 radius_max (1 + gap); jitter uses the free gap
+  /// Explicit radii [m] (a sampled size distribution), placed in this order on the lowest sites;
+  /// when not empty it replaces radius_min/max/spread and count/solid_volume (count = size).
+  /// The sites are those of a monodisperse packing of the largest radius (same random draws per
+  /// site), so no two spheres can overlap whatever the order.
+  std::vector<double> radii{};
+  /// Lattice of the sites: simple cubic (the historic default) or face-centred cubic, whose
+  /// nearest-neighbour distance is the same 2 radius_max (1 + gap) but which holds sqrt(2) times
+  /// more sites per volume (a broad size distribution needs them: the site is sized by the
+  /// largest sphere).
+  enum class Lattice { cubic, fcc } lattice = Lattice::cubic;
 };
 
 struct Packing {

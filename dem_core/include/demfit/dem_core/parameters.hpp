@@ -63,6 +63,18 @@ struct WallContactParameters {
   double fricd = 0.0;  ///< FRICD [-]: ROLLING friction particle–wall (its meaning on this card)
   double damp = 0.0;   ///< DAMP [-]: damping fraction of critical, normal AND tangential, c = 2 DAMP sqrt(m k)
   double sfp = 1.0;    ///< SFP [-]: scale factor on the wall normal spring
+  // ---- Hertz–Mindlin only (ignored by the linear law). The wall's elastic material: the wall
+  // adds its compliances (1 - nu_w^2)/E_w and (2 - nu_w)/G_w to the particle's, as a second
+  // body of a Hertz pair (E* = 1/sum((1-nu^2)/E), G* = 1/sum((2-nu)/G)). 0 = rigid wall.
+  double youngs_modulus = 0.0;  ///< E_w [Pa]; 0 = rigid (adds no compliance)
+  double poisson_ratio = 0.3;   ///< nu_w [-], in (-1, 0.5)
+  /// Normal and shear compliances the wall adds to a Hertz contact [1/Pa] (0 for a rigid wall).
+  [[nodiscard]] double hertz_normal_compliance() const {
+    return youngs_modulus > 0.0 ? (1.0 - poisson_ratio * poisson_ratio) / youngs_modulus : 0.0;
+  }
+  [[nodiscard]] double hertz_shear_compliance() const {
+    return youngs_modulus > 0.0 ? (2.0 - poisson_ratio) * 2.0 * (1.0 + poisson_ratio) / youngs_modulus : 0.0;
+  }
 };
 
 /// Throw std::runtime_error (one line naming the field) if a parameter is out of range or NaN.
