@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -138,19 +139,20 @@ nlohmann::json fill_key(const CaseSpec& spec) {
 // than the drum length): random sequential addition in the whole drum, seeded, no overlaps.
 // With a radius spread s the radii are uniform in [R(1-s), R(1+s)] (a second seeded stream, so
 // the monodisperse sequence is unchanged) and the target is the solid volume of `count` spheres.
-// Size distribution: the sampled radii in their order, each placed at the first free random
-// position (at most 100000 tries each), seeded by the fill seed.
-std::optional<dem_core::Packing> random_packing_of_radii(const CaseSpec& spec, const std::vector<double>& radii) {
-  const double r_max = *std::max_element(radii.begin(), radii.end());
-  const double reach = 0.5 * spec.drum.diameter - r_max;
-  if (reach <= 0.0 || spec.drum.length < 2.0 * r_max) return std::nullopt;
+// Size distribution: the sampled radii, largest first (small ones fill the gaps left), each at
+// the first free random position inside the drum for its own radius (at most 200000 tries
+// each), seeded by the fill seed.
+std::optional<dem_core::Packing> random_packing_of_radii(const CaseSpec& spec, std::vector<double> radii) {
+  std::stable_sort(radii.begin(), radii.end(), std::greater<>());
   std::mt19937_64 engine(static_cast<std::uint64_t>(spec.drum.fill_seed));
   auto uniform = [&engine] { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
   dem_core::Packing packing;
   for (const double r : radii) {
+    const double reach = 0.5 * spec.drum.diameter - r;
+    if (reach <= 0.0 || spec.drum.length < 2.0 * r) return std::nullopt;
     bool placed = false;
-    for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
-      const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r_max + uniform() * (spec.drum.length - 2.0 * r_max)};
+    for (int attempt = 0; attempt < 200000 && !placed; ++attempt) {
+      const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r + uniform() * (spec.drum.length - 2.0 * r)};
       if (c.x * c.x + c.y * c.y > reach * reach) continue;
       bool free = true;
       for (std::size_t k = 0; k < packing.centers.size() && free; ++k) {

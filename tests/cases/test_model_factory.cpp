@@ -22,9 +22,10 @@ TEST_CASE("Built-in cases are the shipped case files") {
         cases::read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json"));
 }
 
-TEST_CASE("A case model exposes the twelve contact parameters and four effect parameters with the case's values as defaults") {
+TEST_CASE("A case model exposes the twelve contact parameters, four effect parameters, restitution and two fill amounts with the case's values as defaults") {
   const auto model = cases::make_model("pellet_compression", json::object(), DEMFIT_SOURCE_DIR);
-  CHECK(model->parameter_names().size() == 16);
+  CHECK(model->parameter_names().size() == 19);
+  CHECK(model->default_parameters().size() == 16);  // LS-DYNA pellet: no restitution, no drum fill
   CHECK(model->default_parameters().at("unloading_stiffness_ratio") == 1.0);  // effects off by default
   CHECK(model->default_parameters().at("surface_energy") == 0.0);
   CHECK(model->default_parameters().at("normk") == 0.875046);
@@ -74,4 +75,27 @@ TEST_CASE("A short Table 1 identification on a coarse pellet variant recovers NO
                 << result.best_objective << " runs " << result.runs);
   CHECK(result.best.at("normk") == Approx(true_normk).epsilon(0.03));
   CHECK(result.runs <= 31);
+}
+
+TEST_CASE("The GranuDrum case model exposes the Hertz parameters and its particle count, and reads its size classes") {
+  const auto model = cases::make_model("cases/granudrum_mcc.json", json::object(), DEMFIT_SOURCE_DIR);
+  const auto defaults = model->default_parameters();
+  CHECK(defaults.at("particle_count") == 29185.0);
+  CHECK(defaults.at("frics") == 0.5);
+  CHECK(defaults.at("fricr") == 0.2);
+  CHECK(defaults.at("restitution") == 0.3);
+  CHECK(defaults.count("normk") == 0);
+  const cases::CaseSpec spec = cases::resolve_case("cases/granudrum_mcc.json", json::object(), DEMFIT_SOURCE_DIR);
+  CHECK(spec.drum.size_distribution.diameters.size() == 10);
+  CHECK(spec.wall.frics == spec.contact.frics);
+}
+
+TEST_CASE("The GranuDrum case can take the measured Solidsizer sizes instead of the classes") {
+  const json csv{{"drum", {{"size_distribution", {{"csv", "../data/granudrum_mcc/solidsizer_mcc.csv"}, {"column", "xFmax"},
+                                                  {"unit", "um"}, {"diameter_kind", "max_feret"}, {"min_size", 1050.0},
+                                                  {"max_size", 1500.0}, {"radius", nullptr}, {"number_fraction", nullptr}}}}}};
+  const cases::CaseSpec spec = cases::resolve_case("cases/granudrum_mcc.json", csv, DEMFIT_SOURCE_DIR);
+  CHECK(spec.drum.size_distribution.diameters.size() > 5000);  // of the 7,685 measured sizes
+  CHECK(spec.drum.size_distribution.min_diameter() >= 1.05e-3);
+  CHECK(spec.drum.size_distribution.max_diameter() <= 1.5e-3);
 }

@@ -96,3 +96,35 @@ TEST_CASE("Settling brings a poured bed to rest and frictionless densification p
   // Friction stabilises looser structures (random loose vs random close packing).
   CHECK(phi_smooth > phi_rough + 0.02);
 }
+
+TEST_CASE("A packing of explicit radii places exactly those radii, in order, without overlaps, inside the region",
+          "[dem_core][packing]") {
+  PackingRequest q;
+  q.region = DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, 0.042, 0.02, {0, 1, 0}, 0.0};
+  for (int k = 0; k < 400; ++k) q.radii.push_back(0.5e-3 + 0.25e-3 * static_cast<double>(k % 7) / 6.0);
+  q.lattice = PackingRequest::Lattice::fcc;
+  q.gap = 0.03;
+  const Packing p = generate_packing(q);
+  REQUIRE(p.radii == q.radii);
+  for (std::size_t i = 0; i < p.centers.size(); ++i) {
+    REQUIRE(region_contains(q.region, p.centers[i], p.radii[i]));
+    for (std::size_t j = i + 1; j < p.centers.size(); ++j)
+      REQUIRE(norm(p.centers[i] - p.centers[j]) >= p.radii[i] + p.radii[j]);
+  }
+  CHECK(generate_packing(q).centers == p.centers);  // seeded
+}
+
+TEST_CASE("An fcc lattice holds sqrt(2) times the sites of the cubic one at the same neighbour distance",
+          "[dem_core][packing]") {
+  // A box of 40 x 40 x 40 neighbour distances: boundary losses are a few per cent, the bulk ratio
+  // is exactly sqrt(2) (4 sites per a^3 with a = sqrt(2) d, against 1 per d^3).
+  PackingRequest q;
+  q.radius_min = q.radius_max = 1e-3;
+  q.gap = 0.0;
+  q.region = BoxRegion{{0, 0, 0}, {0.08, 0.08, 0.08}};
+  q.count = 1;
+  const double cubic = static_cast<double>(generate_packing(q).capacity);
+  q.lattice = PackingRequest::Lattice::fcc;
+  const double fcc = static_cast<double>(generate_packing(q).capacity);
+  CHECK(fcc / cubic == Approx(std::sqrt(2.0)).epsilon(0.05));
+}
