@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "demfit/identify/safe_output.hpp"
 #include "gnuplot.hpp"
 #include "study_support.hpp"
 
@@ -32,11 +33,12 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
     else if (warning.empty()) warning = problem;
   };
   const std::string csv_setup = "set datafile separator ','\nset key autotitle columnhead\n";
-  auto file = [&](const std::string& name) { return gnuplot_quote((output_dir / name).string()); };
+  // gnuplot runs inside output_dir: data files are named relative to it (slugs, never a path).
+  auto file = [&](const std::string& name) { return gnuplot_quote(safe_slug(name)); };
   if (best) {
     for (const auto& t : spec.targets) {
       if (!best->curves.count(t.curve)) continue;
-      plot("target_" + t.name + ".png",
+      plot(safe_slug("target_" + t.name + ".png"),
            csv_setup + "set title " + gnuplot_quote("target '" + t.name + "' vs best run (objective " +
                                                     format_number(best->objective) + ")") +
                "\nset xlabel " + gnuplot_quote(t.data.x_label) + "\nset ylabel " + gnuplot_quote(t.data.y_label) +
@@ -59,7 +61,7 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
     for (std::size_t j = 0; j < spec.variables.size(); ++j) {
       const auto& v = spec.variables[j];
       const int optimum = 7 + 3 * static_cast<int>(j);
-      plot("variable_" + v.name + ".png",
+      plot(safe_slug("variable_" + v.name + ".png"),
            csv_setup + "set title " + gnuplot_quote("variable " + v.name + ": predicted optimum and subregion") +
                "\nset xlabel 'iteration'\nset ylabel " + gnuplot_quote(v.name) + "\n" +
                (v.log_scale ? "set logscale y\n" : "") + "set style fill transparent solid 0.25 noborder\nplot " +
