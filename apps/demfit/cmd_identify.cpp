@@ -186,6 +186,7 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
 }
 
 void run_export(const std::string& db, const std::string& keyword_file) {
+  identify::check_user_text("--lsdyna", keyword_file);
   const auto store = identify::StudyStore::open_existing(db);
   const nlohmann::json study = store.study_json();
   const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
@@ -196,7 +197,6 @@ void run_export(const std::string& db, const std::string& keyword_file) {
   if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
       std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
     throw std::runtime_error("--lsdyna: '" + keyword_file + "' is the study store itself; give a new .k file name");
-  identify::check_user_text("--lsdyna", keyword_file);
   const identify::EvaluationRecord* best = nullptr;
   const auto runs = store.evaluations();
   for (const auto& r : runs)

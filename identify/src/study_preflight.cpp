@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/units.hpp"
+#include "study_support.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -24,6 +25,7 @@ void convert(std::vector<double>& values, double factor) {
 }  // namespace
 
 StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context) {
+  detail::check_parameter_names(spec, model);  // names first: the evaluation would fail less clearly
   ParameterSet parameters = model.default_parameters();
   for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
   for (const auto& v : spec.variables) parameters[v.name] = v.initial;

@@ -82,8 +82,8 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
   }
   in.text_or("source", "");  // informational (where inline data came from)
   // Names reach file names, plots and reports: printable text only (issue #13).
-  check_user_text("study: " + in.field("name"), t.name);
   check_user_text("study: " + in.field("curve"), t.curve);
+  check_user_text("study: " + in.field("name"), t.name);
   t.metric = parse_metric(in);
   t.weight = in.number_or("weight", 1.0);
   t.scale = in.number_or("scale", 0.0);
