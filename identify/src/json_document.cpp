@@ -80,6 +80,9 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
   } catch (const nlohmann::json::parse_error& e) {
     throw std::runtime_error(source + " is not valid JSON (line " + std::to_string(line_of(text, e.byte ? e.byte - 1 : 0)) +
                              "): " + one_line(e.what(), 160));
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. a number beyond double range (1e999): found by fuzz/fuzz_readers.
+    throw std::runtime_error(source + " is not valid JSON: " + one_line(e.what(), 160));
   }
   if (!duplicate.empty())
     throw std::runtime_error(source + ": key '" + one_line(duplicate, 40) +
