@@ -17,6 +17,7 @@
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/store_lock.hpp"
 #include "demfit/identify/study_preflight.hpp"
+#include "demfit/identify/study_warnings.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -107,6 +108,12 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
 }
 #endif
 
+// The report's warnings (issue #13) on stderr too, where a script's user sees them.
+void print_warnings(const std::filesystem::path& db) {
+  for (const auto& w : identify::study_diagnostics(identify::StudyStore::open_existing(db)).warnings)
+    std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
+}
+
 void run_identify(const IdentifyOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
   if (o.threads_per_job < 1) throw std::runtime_error("--threads-per-job: must be >= 1");
@@ -143,6 +150,7 @@ void run_identify(const IdentifyOptions& o) {
   if (!lock) lock.emplace(options.output_dir);
   const auto result = identify::run_study(spec, *model, options);
   print_summary(spec, result, options.output_dir);
+  print_warnings(options.output_dir / "study.db");
 }
 
 // The comment lines of an export: the 95 % intervals and identifiability of the identified
@@ -250,6 +258,7 @@ void register_identify(CLI::App& app) {
     identify::prepare_output_folder(out, {*report_db}, "--out");
     const auto summary = identify::write_report(store, out, !*report_no_plots);
     if (!summary.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", summary.plot_warning.c_str());
+    for (const auto& w : identify::study_diagnostics(store).warnings) std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
     std::printf("%d files written to %s\n", summary.files_written, out.string().c_str());
   });
 

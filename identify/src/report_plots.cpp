@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/study_warnings.hpp"
 #include "gnuplot.hpp"
 #include "study_support.hpp"
 
@@ -168,6 +169,21 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   }
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
      << ", " << best->kind << ")\n\n";
+  // Issue 13: what the numbers may hide, and the objective in the curve's own units.
+  const StudyDiagnostics diagnostics = study_diagnostics(spec, runs, iterations, best, result);
+  if (!diagnostics.warnings.empty()) {
+    md << "## Warnings\n\n";
+    for (const auto& w : diagnostics.warnings) md << "- **warning:** " << w << "\n";
+    md << "\n";
+  }
+  if (!diagnostics.misfits.empty()) {
+    md << "## Misfit of the best run\n\n| target | RMS misfit | unit | noise of the data (2nd differences) | misfit / noise |\n"
+          "|---|---|---|---|---|\n";
+    for (const auto& m : diagnostics.misfits)
+      md << "| " << m.target << " | " << format_number(m.rms) << " | " << m.y_label << " | " << format_number(m.noise)
+         << " | " << (m.noise > 0.0 ? format_number(m.rms / m.noise) : std::string("-")) << " |\n";
+    md << "\n";
+  }
   variables_section(md, spec, *best, result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json());
   md << "\n## Targets\n\n";
   for (const auto& t : spec.targets)
