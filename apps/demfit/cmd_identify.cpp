@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "demfit/identify/store_lock.hpp"
 #include "demfit/identify/study_preflight.hpp"
 #include "demfit/identify/study_warnings.hpp"
+#include "demfit/identify/relative_axis.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -43,8 +45,14 @@ struct IdentifyOptions {
 };
 
 // Built-in cases, case files and the "analytic" test model all come from the one case factory.
+// Targets on a relative axis ("pressure_volume@strain", relative_axis.hpp) get their derived curves.
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  return cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  auto model = cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  std::set<std::string> relative;
+  for (const auto& t : spec.targets)
+    if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
+  if (relative.empty()) return model;
+  return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
 }
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {

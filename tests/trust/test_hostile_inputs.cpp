@@ -183,6 +183,7 @@ TEST_CASE("a study that cannot match its model is refused before anything is cre
       {"unknown curve name lists the model's curves", study_with([](json& j) { j["targets"][0]["curve"] = "respnse"; }), kIdentify, "it produces: loop, response"},
       {"target x-range outside the model's", study_and_csv("x_1,y_1\n5,1\n6,1\n7,1\n"), kIdentify, "does not overlap"},
       {"unknown model", study_with([](json& j) { j["model"]["case"] = "nosuchcase.json"; }), kIdentify, "nosuchcase"},
+      {"unknown relative axis", study_with([](json& j) { j["targets"][0]["curve"] = "response@offset"; }), kIdentify, "unknown axis '@offset'"},
   };
   for (const auto& h : inputs) {
     DYNAMIC_SECTION(h.name) { check_refused(h); }
