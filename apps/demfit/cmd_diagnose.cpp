@@ -9,6 +9,7 @@
 #include "cli_safety.hpp"
 #include "commands.hpp"
 #include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/study_preflight.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/model_factory.hpp"
@@ -108,7 +109,10 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.refit_best = o.refit_best;
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
-  const diagnose::Diagnosis d = diagnose::run_diagnosis(spec, *model, candidates, options);
+  // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13).
+  const identify::StudySpec checked =
+      identify::preflight_study(spec, *model, {1, static_cast<unsigned long>(spec.seed)});
+  const diagnose::Diagnosis d = diagnose::run_diagnosis(checked, *model, candidates, options);
   identify::prepare_output_folder(out, study_inputs(spec, o.study_file), "--out");
   const std::string warnings = diagnose::write_diagnosis(d, out, !o.no_plots);
   if (!warnings.empty()) std::fprintf(stderr, "demfit: %s", warnings.c_str());

@@ -261,6 +261,11 @@ TEST_CASE("bad numeric options of diagnose and identify are refused") {
   auto study = study_with([](json&) {});
   const std::vector<Hostile> inputs = {
       {"diagnose --noise nan", study, {"diagnose", "study.json", "--noise", "nan", "--out", "out"}, "--noise"},
+      {"diagnose with an unknown curve", study_with([](json& j) { j["targets"][0]["curve"] = "respnse"; }), {"diagnose", "study.json", "--out", "out"}, "targets[0].curve"},
+      {"diagnose with a disjoint x-range", [](const Sandbox& s) {
+         write_study(s, analytic_study());
+         trust::write_text(s.work / "analytic_target.csv", "x_1,y_1\n5,1\n6,1\n7,1\n");
+       }, {"diagnose", "study.json", "--out", "out"}, "does not overlap"},
       {"diagnose --alpha inf", study, {"diagnose", "study.json", "--alpha", "inf", "--out", "out"}, "--alpha"},
       {"identify --run-timeout nan", study, {"identify", "study.json", "--out", "out", "--run-timeout", "nan"}, "--run-timeout"},
       {"identify --jobs 0", study, {"identify", "study.json", "--out", "out", "--jobs", "0"}, "--jobs"},
