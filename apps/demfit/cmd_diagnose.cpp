@@ -6,7 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli_safety.hpp"
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/study_preflight.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/model_factory.hpp"
@@ -83,10 +86,18 @@ std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec&
 
 void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
+  require_finite(o.noise, "--noise");
+  require_finite(o.alpha, "--alpha");
+  require_finite(o.bic_threshold, "--bic-threshold");
   if (o.noise < 0.0) throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
   if (!(o.alpha > 0.0 && o.alpha < 1.0)) throw std::runtime_error("--alpha: must be in (0, 1), e.g. 0.01");
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
   const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  const std::filesystem::path out =
+      o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
+                    : std::filesystem::path(o.out);
+  // Output folder rules before any work (issue #13); created, marked, when the diagnosis is written.
+  identify::check_output_folder(out, study_inputs(spec, o.study_file), "--out");
   std::vector<diagnose::EffectCandidate> candidates;
   const auto model = model_and_candidates(spec, candidates);
   const bool dem = spec.model_reference != "analytic";
@@ -98,10 +109,11 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.refit_best = o.refit_best;
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
-  const diagnose::Diagnosis d = diagnose::run_diagnosis(spec, *model, candidates, options);
-  const std::filesystem::path out =
-      o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
-                    : std::filesystem::path(o.out);
+  // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13).
+  const identify::StudySpec checked =
+      identify::preflight_study(spec, *model, {1, static_cast<unsigned long>(spec.seed)});
+  const diagnose::Diagnosis d = diagnose::run_diagnosis(checked, *model, candidates, options);
+  identify::prepare_output_folder(out, study_inputs(spec, o.study_file), "--out");
   const std::string warnings = diagnose::write_diagnosis(d, out, !o.no_plots);
   if (!warnings.empty()) std::fprintf(stderr, "demfit: %s", warnings.c_str());
   std::printf("verdict: %s%s\n%s\nresults: %s\n", diagnose::verdict_text(d.verdict),

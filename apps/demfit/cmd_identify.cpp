@@ -1,14 +1,25 @@
 // demfit identify / report / export: the identification loop on a study file, reports rebuilt
 // from a study store, and LS-DYNA keyword export of the identified parameters.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "cli_safety.hpp"
+#include "demfit/identify/json_document.hpp"
 #include "demfit/identify/lsdyna_export.hpp"
+#include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/store_lock.hpp"
+#include "demfit/identify/study_preflight.hpp"
+#include "demfit/identify/study_warnings.hpp"
+#include "demfit/identify/relative_axis.hpp"
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -34,8 +45,14 @@ struct IdentifyOptions {
 };
 
 // Built-in cases, case files and the "analytic" test model all come from the one case factory.
+// Targets on a relative axis ("pressure_volume@strain", relative_axis.hpp) get their derived curves.
 std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  return cases::make_study_model(spec);
+  auto model = cases::make_study_model(spec);
+  std::set<std::string> relative;
+  for (const auto& t : spec.targets)
+    if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
+  if (relative.empty()) return model;
+  return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
 }
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
@@ -53,6 +70,13 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
   std::printf("results: %s\n", (out / "report.md").string().c_str());
 }
 
+// What the study simulates, resolved: for a DEM case the case with every default filled in (its
+// content, not its path), so that --resume refuses any change to what is simulated.
+nlohmann::json resolved_model(const identify::StudySpec& spec) {
+  if (spec.model_reference == "analytic") return {{"analytic", spec.model_overrides}};
+  return cases::to_json(cases::resolve_case(spec.model_reference, spec.model_overrides, spec.base_dir));
+}
+
 #if defined(DEMFIT_HAVE_SCALEOUT)
 // `mpirun -np K demfit identify STUDY.json --mpi`: every rank reads the study and builds the model
 // (a shared file system is assumed); rank 0 runs the loop and owns the store, the others evaluate.
@@ -68,6 +92,9 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
       session.finish(0);
       return;
     }
+    identify::prepare_output_folder(options.output_dir, study_inputs(spec, o.study_file), "--out");
+    identify::StoreLock lock(options.output_dir);
+    options.resolved_model = resolved_model(spec);
     scaleout::MpiEvaluatorOptions mpi_options;
     mpi_options.run_timeout_seconds = o.run_timeout;
     identify::StudyResult result;
@@ -89,13 +116,20 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
 }
 #endif
 
+// The report's warnings (issue #13) on stderr too, where a script's user sees them.
+void print_warnings(const std::filesystem::path& db) {
+  for (const auto& w : identify::study_diagnostics(identify::StudyStore::open_existing(db)).warnings)
+    std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
+}
+
 void run_identify(const IdentifyOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
   if (o.threads_per_job < 1) throw std::runtime_error("--threads-per-job: must be >= 1");
+  require_finite(o.run_timeout, "--run-timeout");
   if (o.run_timeout < 0) throw std::runtime_error("--run-timeout: must be >= 0 seconds (0 = automatic)");
   identify::RunOptions options;
   options.jobs = o.jobs;
-  options.threads_per_job = o.threads_per_job;
+  options.threads_per_job = capped_threads(o.threads_per_job, "--threads-per-job");
   options.resume = o.resume;
   options.plots = !o.no_plots;
   options.output_dir = o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_results")
@@ -109,10 +143,93 @@ void run_identify(const IdentifyOptions& o) {
                              "and rebuild (scripts/build)");
 #endif
   }
-  const identify::StudySpec spec = identify::load_study_file(o.study_file);
-  const auto model = make_model(spec);
+  // Every configuration error before anything is created (issue #13): the study, the output
+  // folder rules, the model, then one evaluation at the initial point (curve names, units, overlap).
+  const identify::StudySpec parsed = identify::load_study_file(o.study_file);
+  const auto inputs = study_inputs(parsed, o.study_file);
+  identify::check_output_folder(options.output_dir, inputs, "--out");
+  std::optional<identify::StoreLock> lock;
+  if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
+  const auto model = make_model(parsed);
+  options.resolved_model = resolved_model(parsed);
+  const identify::StudySpec spec =
+      identify::preflight_study(parsed, *model, {options.threads_per_job, static_cast<unsigned long>(parsed.seed)});
+  identify::prepare_output_folder(options.output_dir, inputs, "--out");
+  if (!lock) lock.emplace(options.output_dir);
   const auto result = identify::run_study(spec, *model, options);
   print_summary(spec, result, options.output_dir);
+  print_warnings(options.output_dir / "study.db");
+}
+
+// The comment lines of an export: the 95 % intervals and identifiability of the identified
+// values, and the material context that NORMK and SHEARK are relative to (issue #13).
+std::vector<std::string> export_comments(const identify::StudyStore& store, const nlohmann::json& study,
+                                         const std::filesystem::path& db) {
+  std::vector<std::string> lines;
+  const auto result = store.result();
+  const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
+  for (const auto& v : study.value("variables", nlohmann::json::array())) {
+    const std::string name = v.value("name", std::string("?"));
+    std::string line = "variable " + name + ": bounds [" + identify::json_excerpt(v.value("lower", nlohmann::json())) +
+                       ", " + identify::json_excerpt(v.value("upper", nlohmann::json())) + "]";
+    if (uncertainty.is_object()) {
+      const auto ci = uncertainty["ci_half_width"].value(name, nlohmann::json());
+      line += ", 95 % interval +- " + (ci.is_number() ? identify::json_excerpt(ci) : std::string("n/a"));
+      const auto& flags = uncertainty["unidentifiable"];
+      line += std::find(flags.begin(), flags.end(), name) == flags.end() ? ", identifiable"
+                                                                          : ", NOT identifiable from these targets";
+    } else {
+      line += ", no interval (study not finished)";
+    }
+    lines.push_back(line);
+  }
+  try {
+    const auto& model = study.at("model");
+    const cases::CaseSpec c = cases::resolve_case(model.at("case").get<std::string>(),
+                                                  model.value("overrides", nlohmann::json::object()),
+                                                  std::filesystem::absolute(db).parent_path());
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "material context: E = %.6g Pa, nu = %.4g, K = E/(3(1-2nu)) = %.6g Pa, radius = %.6g m, "
+                  "density = %.6g kg/m3 (NORMK is relative to K R)",
+                  c.material.youngs_modulus, c.material.poisson_ratio, c.material.bulk_modulus(), c.material.radius,
+                  c.material.density);
+    lines.push_back(text);
+  } catch (const std::exception& e) {
+    lines.push_back(std::string("material context: case not available here (") + e.what() + ")");
+  }
+  return lines;
+}
+
+void run_export(const std::string& db, const std::string& keyword_file) {
+  identify::check_user_text("--lsdyna", keyword_file);
+  const auto store = identify::StudyStore::open_existing(db);
+  const nlohmann::json study = store.study_json();
+  const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
+  if (model == "analytic")
+    throw std::runtime_error("export: study store '" + db + "' identifies the \"analytic\" test model, not a DEM case; "
+                             "LS-DYNA DEM cards need a pellet_compression or rotary_drum study");
+  // Runs of a study with experiments store only the variables (each experiment has its own case
+  // values): there is no single full parameter set to write.
+  if (study.contains("experiments"))
+    throw std::runtime_error("export: study store '" + db + "' is a study with several experiments; export needs a "
+                             "single-model study (one case, one full parameter set)");
+  std::error_code error;
+  if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
+      std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
+    throw std::runtime_error("--lsdyna: '" + keyword_file + "' is the study store itself; give a new .k file name");
+  const identify::EvaluationRecord* best = nullptr;
+  const auto runs = store.evaluations();
+  for (const auto& r : runs)
+    if (r.ok && (!best || r.objective < best->objective)) best = &r;
+  if (!best) throw std::runtime_error("study store '" + db + "' has no successful run to export");
+  char objective[32];
+  std::snprintf(objective, sizeof objective, "%.6g", best->objective);
+  const std::string title = "study '" + study.value("name", std::string("study")) + "', run " +
+                            std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
+                            objective;
+  identify::write_lsdyna_keywords(keyword_file, best->parameters, title, export_comments(store, study, db));
+  std::printf("wrote %s\n", keyword_file.c_str());
 }
 
 }  // namespace
@@ -151,8 +268,10 @@ void register_identify(CLI::App& app) {
     const auto store = identify::StudyStore::open_existing(*report_db);
     const std::filesystem::path out =
         report_out->empty() ? std::filesystem::absolute(*report_db).parent_path() : std::filesystem::path(*report_out);
+    identify::prepare_output_folder(out, {*report_db}, "--out");
     const auto summary = identify::write_report(store, out, !*report_no_plots);
     if (!summary.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", summary.plot_warning.c_str());
+    for (const auto& w : identify::study_diagnostics(store).warnings) std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
     std::printf("%d files written to %s\n", summary.files_written, out.string().c_str());
   });
 
@@ -163,26 +282,7 @@ void register_identify(CLI::App& app) {
                 "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
   exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
   exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
-  exporter->callback([export_db, export_k] {
-    const auto store = identify::StudyStore::open_existing(*export_db);
-    // Runs of a study with experiments store only the variables (each experiment has its own
-    // case values): there is no single full parameter set to write.
-    if (store.study_json().contains("experiments"))
-      throw std::runtime_error("study store '" + *export_db + "' is a study with several experiments; export "
-                               "needs a single-model study (one case, one full parameter set)");
-    const identify::EvaluationRecord* best = nullptr;
-    const auto runs = store.evaluations();
-    for (const auto& r : runs)
-      if (r.ok && (!best || r.objective < best->objective)) best = &r;
-    if (!best) throw std::runtime_error("study store '" + *export_db + "' has no successful run to export");
-    char objective[32];
-    std::snprintf(objective, sizeof objective, "%.6g", best->objective);
-    const std::string title = "study '" + store.study_json().value("name", std::string("study")) + "', run " +
-                              std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
-                              objective;
-    identify::write_lsdyna_keywords(*export_k, best->parameters, title);
-    std::printf("wrote %s\n", export_k->c_str());
-  });
+  exporter->callback([export_db, export_k] { run_export(*export_db, *export_k); });
 }
 
 }  // namespace demfit::apps

@@ -2,13 +2,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
+#include "cli_safety.hpp"
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/progress.hpp"
 #include "demfit/cases/reproduce.hpp"
 
@@ -47,13 +48,14 @@ cases::ReproduceOptions options_of(const ReproduceArgs& a) {
   o.out_dir = a.out;
   o.data_dir = find_data_dir(a);
   o.jobs = a.jobs;
-  o.threads_per_job = a.threads;
+  o.threads_per_job = capped_threads(a.threads, "--threads");
   o.quick = a.quick;
   o.resume = a.resume;
   // Progress of single long simulations (drum reference runs); studies print their own lines.
   static cases::ProgressPrinter printer(10.0);
   o.progress = printer.callback();
-  std::filesystem::create_directories(o.out_dir);
+  // Never the working folder, a parent of it or a user's folder; created and marked (issue #13).
+  identify::prepare_output_folder(o.out_dir, {}, "--out");
   return o;
 }
 
@@ -62,7 +64,7 @@ using Step = std::string (*)(const cases::ReproduceOptions&);
 void run_one(const ReproduceArgs& a, const char* name, Step step) {
   const cases::ReproduceOptions o = options_of(a);
   const std::string text = step(o);
-  std::ofstream(o.out_dir / (std::string(name) + ".md")) << text;
+  identify::write_file_atomically(o.out_dir / (std::string(name) + ".md"), text);
   std::cout << text;
 }
 
@@ -91,13 +93,13 @@ void run_all(const ReproduceArgs& a) {
     char timing[96];
     std::snprintf(timing, sizeof timing, "\n_%s: %.0f s wall time._\n\n", name, seconds);
     report += "## " + std::string(name) + "\n\n" + text + timing;
-    std::ofstream(o.out_dir / "report.md") << report;  // partial report survives a later failure
+    identify::write_file_atomically(o.out_dir / "report.md", report);  // partial report survives a later failure
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   char line[96];
   std::snprintf(line, sizeof line, "Total wall time: %.0f s.\n", total);
   report += line;
-  std::ofstream(o.out_dir / "report.md") << report;
+  identify::write_file_atomically(o.out_dir / "report.md", report);
   std::cout << line << "report: " << (o.out_dir / "report.md").string() << '\n';
 }
 

@@ -1,5 +1,6 @@
 // demfit simulate CASE.json: runs one case and writes its curves (CSV with units in the header),
 // the resolved case JSON, a summary and optional VTK snapshots, all-or-nothing.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -7,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "cli_safety.hpp"
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/case_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
@@ -46,14 +49,20 @@ void run_simulate(const SimulateOptions& o) {
   if (!o.snapshots.empty()) document["output"]["snapshot_times"] = o.snapshots;
   const cases::CaseSpec spec = cases::parse_case(document, std::filesystem::path(o.case_file).parent_path());
   if (o.threads < 1) throw std::runtime_error("--threads must be >= 1");
-  if (o.noise < 0.0) throw std::runtime_error("--noise must be >= 0 (relative to max|y| of each curve)");
+  if (!(o.noise >= 0.0) || !std::isfinite(o.noise))
+    throw std::runtime_error("--noise must be a finite number >= 0 (relative to max|y| of each curve)");
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path("results") / std::filesystem::path(o.case_file).stem()
                     : std::filesystem::path(o.out);
+  // The output folder replaces an existing one only if demfit made it (issue #13): never the
+  // working folder, a parent of it, a folder holding the case file, a plain file or a user folder.
+  identify::check_replaceable_folder(out, {o.case_file}, "--out");
+  remove_stale_staging(out);
+  const int threads = capped_threads(o.threads, "--threads");
   cases::StagedDirectory staged(out);
   cases::ProgressPrinter progress(spec.output.progress_interval);
   cases::CaseRunOptions run_options;
-  run_options.threads = o.threads;
+  run_options.threads = threads;
   run_options.progress = progress.callback();
   if (!spec.output.snapshot_times.empty()) {
     run_options.snapshot_dir = staged.path() / "snapshots";
@@ -80,6 +89,7 @@ void run_simulate(const SimulateOptions& o) {
                             (parameters.empty() ? "" : " [run with --set parameters: see summary.txt; the fill uses the values below, except radius_spread, "
                                                        "which is applied to the fill too]");
   cases::write_case_result(staged.path(), result, resolved, evaluated, {o.noise, o.seed});
+  identify::mark_output_folder(staged.path(), "demfit simulate");
   staged.commit();
   std::cout << "demfit simulate: " << o.case_file << " -> " << out.string() << '\n'
             << cases::format_summary(result);
@@ -110,7 +120,8 @@ void register_simulate(CLI::App& app) {
                   "amount particle_count [original particles] or fill_volume_ml [mL bulk] (changes the fill, cached "
                   "per value); any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
       ->take_all();
-  cmd->add_option("--out", options->out, "output folder (default: results/<case file stem>); replaced if it exists");
+  cmd->add_option("--out", options->out, "output folder (default: results/<case file stem>); replaced if it exists and demfit created it "
+                  "(marker file .demfit-output); never the working folder, a parent of it, or a folder holding the case");
   cmd->add_option("--threads", options->threads, "OpenMP threads of the simulation (default 1)");
   cmd->add_option("--noise", options->noise,
                   "add seeded Gaussian noise to the written curves, sigma = NOISE x max|y| (default 0 = none); "

@@ -1,5 +1,6 @@
 // Strict parsing of case files into CaseSpec and back (see case_spec.hpp).
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/identify/json_document.hpp"
 
 #include <fstream>
 #include <numbers>
@@ -347,14 +348,8 @@ json to_key_json(const CaseSpec& s) {
 }
 
 json read_case_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("case file '" + path + "' cannot be opened: check the path");
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error("case file '" + path + "' is not valid JSON (byte " +
-                             std::to_string(e.byte) + "): fix the syntax");
-  }
+  // Size, nesting depth and duplicate keys checked while reading (identify/json_document.hpp).
+  return identify::read_json_file(path, "case file");
 }
 
 const std::vector<std::string>& parameter_names() {

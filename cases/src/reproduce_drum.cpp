@@ -2,7 +2,6 @@
 // drum studies of paper section 3 (SPEC 2.2, 2.3).
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 
@@ -13,6 +12,7 @@
 #include "demfit/cases/reproduce.hpp"
 #include "demfit/cases/result_cache.hpp"
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/run_program.hpp"
 #include "demfit/identify/study.hpp"
 
 namespace demfit::cases {
@@ -48,14 +48,11 @@ CaseSpec drum_spec(CoarseGraining model, double s, bool quick) {
   return parse_case(document);
 }
 
-// Runs gnuplot on a script file; a missing gnuplot is a warning in the text, not an error.
+// Runs gnuplot on a script file in `dir`, from an argument vector (never a shell: --out may hold
+// any text, issue #13); a missing gnuplot is a warning in the text, not an error.
 std::string run_gnuplot(const fs::path& dir, const std::string& script) {
-  std::string command = "cd '";
-  command += dir.string();
-  command += "' && gnuplot '";
-  command += script;
-  command += "' 2>/dev/null";
-  if (std::system(command.c_str()) != 0) return "(gnuplot not available or failed: PNG not written; data in CSV)\n";
+  if (identify::run_program({"gnuplot", script}, dir) != 0)
+    return "(gnuplot not available or failed: PNG not written; data in CSV)\n";
   return "";
 }
 

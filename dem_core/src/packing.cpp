@@ -123,6 +123,44 @@ double drum_fill_height(double radius, double fraction) {
 
 namespace {
 
+// Feasibility before any lattice is built (issue #13: impossible fills once spun silently). The
+// lattice of spacing 2 r_max (1 + gap) holds at most the simple-cubic fraction pi/6 of the region
+// (face-centred cubic: pi/(3 sqrt 2)), so a larger solid volume can never be placed; a sphere wider than the region fits
+// nowhere; and a lattice of more than kMaxLatticeSites sites would take minutes and gigabytes.
+void check_packing_feasible(const PackingRequest& q) {
+  const double kLatticeFraction = q.lattice == PackingRequest::Lattice::cubic ? std::numbers::pi / 6.0
+                                                                              : std::numbers::pi / (3.0 * std::sqrt(2.0));
+  constexpr double kMaxLatticeSites = 2.0e8;
+  const bool explicit_radii = !q.radii.empty();
+  const double r_largest = explicit_radii ? *std::max_element(q.radii.begin(), q.radii.end()) : 0.0;
+  const double r_hi = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
+  const double volume = region_volume(q.region);
+  const double extent = bounding_sphere(q.region).second;
+  if (r_hi >= extent) fail("packing.radius_max [m]", r_hi, "is larger than the region; no sphere fits");
+  // Smallest possible sphere: the check refuses only what surely cannot be placed.
+  const double r_lo = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
+  const double sphere = 4.0 / 3.0 * std::numbers::pi * r_lo * r_lo * r_lo;
+  double requested = q.count > 0 ? static_cast<double>(q.count) * sphere : q.solid_volume;
+  if (explicit_radii) {
+    requested = 0.0;
+    for (double r : q.radii) requested += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  }
+  if (requested > kLatticeFraction * volume) {
+    std::ostringstream msg;
+    msg << "packing: " << (explicit_radii ? "radii" : q.count > 0 ? "count" : "solid_volume") << " needs a solid volume of " << requested
+        << " m^3, more than the " << kLatticeFraction << " x " << volume
+        << " m^3 of the region that a packing can reach; fewer or smaller particles, or a larger container";
+    throw std::runtime_error(msg.str());
+  }
+  const double cells = 2.0 * std::ceil(extent / (2.0 * r_hi * (1.0 + q.gap))) + 1.0;
+  if (cells * cells * cells > kMaxLatticeSites) {
+    std::ostringstream msg;
+    msg << "packing.radius_max [m]: " << r_hi << " is too small for a region of extent " << extent << " m ("
+        << cells * cells * cells << " lattice sites, limit " << kMaxLatticeSites << "); use larger particles or coarse graining";
+    throw std::runtime_error(msg.str());
+  }
+}
+
 void validate_request(const PackingRequest& q) {
   validate_region(q.region);
   require_non_negative("packing.gap", q.gap);
@@ -152,6 +190,7 @@ std::vector<Vec3> lattice_basis(PackingRequest::Lattice lattice) {
 
 Packing generate_packing(const PackingRequest& q) {
   validate_request(q);
+  check_packing_feasible(q);
   const Frame f = frame_for(require_direction("packing.up", q.up));
   const bool explicit_radii = !q.radii.empty();
   // Radius bounds: [radius_min, radius_max], or R(1 -+ s) with a spread (identical when s = 0);

@@ -1,11 +1,11 @@
 // Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
 #include "demfit/diagnose/report.hpp"
 #include "text_format.hpp"
+#include "demfit/identify/run_program.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 namespace demfit::diagnose {
@@ -39,9 +39,14 @@ std::string tests_row(const std::string& label, const ResidualAnalysis& a) {
                 a.smooth.p_value, a.structural ? "structure" : "noise");
 }
 
+// Control characters would end a gnuplot command and start another: they become '?'.
 std::string gnuplot_quote(const std::string& text) {
   std::string out = "'";
-  for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
+  for (char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) out += '?';
+    else out += (c == '\'') ? std::string("''") : std::string(1, c);
+  }
   return out + "'";
 }
 
@@ -53,43 +58,47 @@ const CandidateFit* augmented(const Diagnosis& d) {
   return best;
 }
 
-// One PNG per target: data, base and augmented fits (top), residuals (bottom).
+// One PNG per target: data, base and augmented fits (top), residuals (bottom). Every file goes
+// through the atomic writer under a slug of the target name; gnuplot runs inside `out` from an
+// argument vector and sees relative names only (issue #13).
 std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, const std::filesystem::path& out) {
   const FitTarget& target = d.targets[t];
   const CandidateFit* aug = augmented(d);
-  const std::filesystem::path data = out / ("diagnosis_" + target.name + ".dat");
-  {
-    std::ofstream f(data);
-    f << "# x data base_fit augmented_fit base_residual augmented_residual\n";
-    f.precision(10);
-    for (std::size_t i = 0; i < target.data.x.size(); ++i) {
-      const double rb = d.base.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma;
-      const double ra = aug ? aug->fit.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma : rb;
-      f << target.data.x[i] << ' ' << target.data.y[i] << ' ' << target.data.y[i] + rb << ' ' << target.data.y[i] + ra
-        << ' ' << rb << ' ' << ra << '\n';
-    }
+  const std::string stem = identify::safe_slug("diagnosis_" + target.name);
+  const std::string data = stem + ".dat", png = stem + ".png", script = stem + ".gp";
+  std::ostringstream f;
+  f << "# x data base_fit augmented_fit base_residual augmented_residual\n";
+  f.precision(10);
+  for (std::size_t i = 0; i < target.data.x.size(); ++i) {
+    const double rb = d.base.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma;
+    const double ra = aug ? aug->fit.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma : rb;
+    f << target.data.x[i] << ' ' << target.data.y[i] << ' ' << target.data.y[i] + rb << ' ' << target.data.y[i] + ra
+      << ' ' << rb << ' ' << ra << '\n';
   }
-  const std::filesystem::path png = out / ("diagnosis_" + target.name + ".png");
-  const std::filesystem::path script = out / ("diagnosis_" + target.name + ".gp");
+  identify::write_file_atomically(identify::path_inside(out, data), f.str());
   const std::string aug_title = aug ? "base + " + aug->effect + (d.chosen >= 0 ? "" : " (not accepted)") : "";
-  {
-    std::ofstream f(script);
-    f << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,800 noenhanced } "
-         "else { set terminal png size 900,800 noenhanced }\n"
-      << "set output " << gnuplot_quote(png.string()) << "\nset grid\nset key below\nset multiplot layout 2,1\n"
-      << "set title " << gnuplot_quote(target.name + ": " + verdict_text(d.verdict)) << "\n"
-      << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label) << "\n"
-      << "plot " << gnuplot_quote(data.string()) << " u 1:2 w p pt 7 ps 0.5 t 'target', '' u 1:3 w l lw 2 t 'base fit'"
-      << (aug ? ", '' u 1:4 w l lw 2 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
-      << "set title 'residual (fit - target)'\nset ylabel " << gnuplot_quote("residual, " + target.data.y_label) << "\n"
-      << format("plot %s u 1:5 w lp pt 7 ps 0.4 t 'base', %.10g w l lt 0 t '+-2 sigma', %.10g w l lt 0 notitle",
-                gnuplot_quote(data.string()).c_str(), 2 * target.sigma, -2 * target.sigma)
-      << (aug ? ", '' u 1:6 w lp pt 7 ps 0.4 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
-      << "unset multiplot\nunset output\n";
+  std::ostringstream gp;
+  gp << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,800 noenhanced } "
+        "else { set terminal png size 900,800 noenhanced }\n"
+     << "set output " << gnuplot_quote(png + ".tmp") << "\nset grid\nset key below\nset multiplot layout 2,1\n"
+     << "set title " << gnuplot_quote(target.name + ": " + verdict_text(d.verdict)) << "\n"
+     << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label) << "\n"
+     << "plot " << gnuplot_quote(data) << " u 1:2 w p pt 7 ps 0.5 t 'target', '' u 1:3 w l lw 2 t 'base fit'"
+     << (aug ? ", '' u 1:4 w l lw 2 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
+     << "set title 'residual (fit - target)'\nset ylabel " << gnuplot_quote("residual, " + target.data.y_label) << "\n"
+     << format("plot %s u 1:5 w lp pt 7 ps 0.4 t 'base', %.10g w l lt 0 t '+-2 sigma', %.10g w l lt 0 notitle",
+               gnuplot_quote(data).c_str(), 2 * target.sigma, -2 * target.sigma)
+     << (aug ? ", '' u 1:6 w lp pt 7 ps 0.4 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
+     << "unset multiplot\nunset output\n";
+  identify::write_file_atomically(identify::path_inside(out, script), gp.str());
+  const int status = identify::run_program({"gnuplot", script}, out);
+  std::error_code error;
+  if (status != 0 || !std::filesystem::exists(out / (png + ".tmp"))) {
+    std::filesystem::remove(out / (png + ".tmp"), error);
+    return "warning: gnuplot failed for " + png + "\n";
   }
-  const int status = std::system(("gnuplot " + gnuplot_quote(script.string()) + " >/dev/null 2>&1").c_str());
-  if (status != 0 || !std::filesystem::exists(png)) return "warning: gnuplot failed for " + png.filename().string() + "\n";
-  return {};
+  std::filesystem::rename(out / (png + ".tmp"), out / png, error);
+  return error ? "warning: cannot move " + png + " into place\n" : std::string();
 }
 
 }  // namespace
@@ -179,11 +188,11 @@ std::string markdown_report(const Diagnosis& d) {
 }
 
 std::string write_diagnosis(const Diagnosis& d, const std::filesystem::path& out, bool plots) {
-  std::filesystem::create_directories(out);
-  std::ofstream(out / "report.md") << markdown_report(d);
-  std::ofstream(out / "diagnosis.json") << to_json(d).dump(2) << "\n";
+  // The one atomic writer: links are replaced, not followed; a full disk is an error (issue #13).
+  identify::write_file_atomically(out / "report.md", markdown_report(d));
+  identify::write_file_atomically(out / "diagnosis.json", to_json(d).dump(2) + "\n");
   if (!plots) return {};
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return "warning: gnuplot not found; plots skipped\n";
+  if (!identify::program_available("gnuplot")) return "warning: gnuplot not found; plots skipped\n";
   std::string warnings;
   Eigen::Index offset = 0;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {

@@ -1,11 +1,15 @@
 #pragma once
-// Internal: write a whole file through a temporary name and rename it into place, so a reader
-// (or a killed run) never sees a half-written result file.
+// Internal: the one atomic writer (public in demfit/identify/safe_output.hpp), kept under its old
+// name for the identify sources.
 #include <filesystem>
 #include <string>
 
+#include "demfit/identify/safe_output.hpp"
+
 namespace demfit::identify::detail {
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& content);
+inline void write_file_atomically(const std::filesystem::path& path, const std::string& content) {
+  identify::write_file_atomically(path, content);
+}
 
 }  // namespace demfit::identify::detail

@@ -34,6 +34,9 @@ std::size_t column_index(const std::vector<std::string>& header, const std::stri
     if (header[i] == name) return i;
   std::string known;
   for (const auto& h : header) known += (known.empty() ? "" : ", ") + h;
+  if (known.size() > 200) known = known.substr(0, 200) + "...";
+  for (char& c : known)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   throw std::runtime_error("curve file '" + path.string() + "': no column '" + name +
                            "'; the header has: " + known);
 }
@@ -44,18 +47,20 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
   const char* last = text.data() + text.size();
   if (!text.empty() && *first == '+') ++first;
   const auto result = std::from_chars(first, last, value);
-  if (result.ec != std::errc() || result.ptr != last)
+  if (result.ec != std::errc() || result.ptr != last) {
+    std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
+    for (char& c : shown)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
     throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line) +
-                             ": '" + text + "' is not a number; fix the value");
+                             ": '" + shown + "' is not a number; fix the value");
+  }
   return value;
 }
 
 }  // namespace
 
-Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column,
-                     const std::string& y_column) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("curve file '" + path.string() + "' cannot be opened; check the path");
+Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const std::string& x_column,
+                      const std::string& y_column) {
   Curve curve{x_column, y_column, {}, {}};
   std::string line;
   std::vector<std::string> header;
@@ -63,6 +68,11 @@ Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_col
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    // Excel writes a UTF-8 byte-order mark before the header: accept it.
+    if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+    if (line.size() > kMaxCurveLineBytes)
+      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) + ": longer than " +
+                               std::to_string(kMaxCurveLineBytes) + " bytes; is this a curve CSV file?");
     const std::string content = trim(line);
     if (content.empty() || content[0] == '#') continue;
     const auto fields = split_fields(content);
@@ -76,12 +86,31 @@ Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_col
       throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) +
                                ": " + std::to_string(fields.size()) + " fields, header has " +
                                std::to_string(header.size()));
+    if (curve.x.size() >= kMaxCurvePoints)
+      throw std::runtime_error("curve file '" + path.string() + "': more than " + std::to_string(kMaxCurvePoints) +
+                               " points; thin the curve (a few hundred points describe it)");
     curve.x.push_back(parse_number(fields[ix], path, line_number));
     curve.y.push_back(parse_number(fields[iy], path, line_number));
   }
+  if (header.empty())
+    throw std::runtime_error("curve file '" + path.string() + "': no header line; the first line names the columns with units, e.g. volume_cm3,pressure_MPa");
   if (curve.x.size() < 2)
     throw std::runtime_error("curve file '" + path.string() + "': fewer than 2 points; a curve needs at least 2");
   return curve;
+}
+
+Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column,
+                     const std::string& y_column) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw std::runtime_error("curve file '" + path.string() + "' is a folder; give a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("curve file '" + path.string() + "' cannot be opened; check the path");
+  const auto size = std::filesystem::file_size(path, error);
+  if (!error && size > kMaxCurveFileBytes)
+    throw std::runtime_error("curve file '" + path.string() + "': " + std::to_string(size) + " bytes, above the limit of " +
+                             std::to_string(kMaxCurveFileBytes) + " bytes; thin the curve");
+  return parse_curve_csv(in, path, x_column, y_column);
 }
 
 void write_curve_csv(const std::filesystem::path& path, const Curve& curve) {

@@ -1,41 +1,49 @@
 #include "gnuplot.hpp"
 
-#include <cstdlib>
-#include <fstream>
 #include <unistd.h>
+
+#include "demfit/identify/run_program.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::identify::detail {
 
-bool gnuplot_available() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+bool gnuplot_available() { return program_available("gnuplot"); }
 
 std::string gnuplot_quote(const std::string& text) {
   std::string out = "'";
-  for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
+  for (char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) out += '?';
+    else out += (c == '\'') ? std::string("''") : std::string(1, c);
+  }
   return out + "'";
 }
 
 std::string gnuplot_png(const std::filesystem::path& png, const std::string& commands) {
+  const std::filesystem::path folder = png.has_parent_path() ? png.parent_path() : std::filesystem::path(".");
+  const std::string name = safe_slug(png.filename().string());
   const std::string suffix = ".tmp" + std::to_string(::getpid());
-  std::filesystem::path temporary_png = png;
-  temporary_png += suffix;
-  std::filesystem::path script = png;
-  script += ".gp" + suffix;
-  {
-    std::ofstream out(script);
-    out << "out = " << gnuplot_quote(temporary_png.string()) << "\n"
-        << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
-           "else { set terminal png size 900,600 noenhanced }\n"
-        << "set output out\nset grid\nset key below\n"
-        << commands << "\nunset output\n";
+  const std::string temporary_png = name + suffix;
+  const std::string script = name + ".gp" + suffix;
+  try {
+    write_file_atomically(path_inside(folder, script),
+                          "out = " + gnuplot_quote(temporary_png) + "\n" +
+                              "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
+                              "else { set terminal png size 900,600 noenhanced }\n"
+                              "set output out\nset grid\nset key below\n" +
+                              commands + "\nunset output\n");
+  } catch (const std::exception& e) {
+    return e.what();
   }
-  const std::string command = "gnuplot " + gnuplot_quote(script.string()) + " >/dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  std::filesystem::remove(script);
-  if (status != 0 || !std::filesystem::exists(temporary_png)) {
-    std::filesystem::remove(temporary_png);
-    return "gnuplot failed for " + png.filename().string();
+  const int status = run_program({"gnuplot", script}, folder);
+  std::error_code ignored;
+  std::filesystem::remove(folder / script, ignored);
+  if (status != 0 || !std::filesystem::exists(folder / temporary_png)) {
+    std::filesystem::remove(folder / temporary_png, ignored);
+    return "gnuplot failed for " + name;
   }
-  std::filesystem::rename(temporary_png, png);
+  std::filesystem::rename(folder / temporary_png, folder / name, ignored);
+  if (ignored) return "cannot move " + name + " into place: " + ignored.message();
   return {};
 }
 

@@ -1,16 +1,18 @@
 #pragma once
-// Internal: running gnuplot as a separate process (never linked). Plots are PNG through the
-// pngcairo terminal when gnuplot has it, else the plain png terminal.
+// Internal: running gnuplot as a separate process (never linked, never through a shell). Plots
+// are PNG through the pngcairo terminal when gnuplot has it, else the plain png terminal.
 #include <filesystem>
 #include <string>
 
 namespace demfit::identify::detail {
 
 bool gnuplot_available();
-// Runs `commands` (which must plot to the file named by the gnuplot variable `out`) and renames
-// the PNG into place. Returns an empty string on success, else the reason.
+// Runs `commands` in the folder of `png` (data files are named relative to it; plot to the
+// gnuplot variable `out`) and renames the PNG into place. The script and the image are written
+// under fixed names derived from the PNG's own (a safe slug). Returns "" on success, else the reason.
 std::string gnuplot_png(const std::filesystem::path& png, const std::string& commands);
-// Quotes a path or label for a gnuplot string literal.
+// Quotes a file name or label for a gnuplot string literal; control characters (which would end
+// the gnuplot command and start a new one) become '?'.
 std::string gnuplot_quote(const std::string& text);
 
 }  // namespace demfit::identify::detail

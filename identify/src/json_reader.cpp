@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
+
+#include "demfit/identify/json_document.hpp"
 
 namespace demfit::identify::detail {
 
@@ -50,7 +53,7 @@ const nlohmann::json& JsonReader::raw(const std::string& key) {
 
 double JsonReader::number(const std::string& key) {
   const auto& value = raw(key);
-  if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
+  if (!value.is_number()) fail(key, "expected a number, got " + json_excerpt(value));
   const double result = value.get<double>();
   if (!std::isfinite(result)) fail(key, "must be finite");
   return result;
@@ -63,13 +66,18 @@ double JsonReader::number_or(const std::string& key, double fallback) {
 int JsonReader::integer_or(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
   const auto& value = raw(key);
-  if (!value.is_number_integer()) fail(key, "expected an integer, got " + value.dump());
+  if (!value.is_number_integer()) fail(key, "expected an integer, got " + json_excerpt(value));
+  // get<int>() would wrap silently (issue #13: max_iterations overflow).
+  if (value.is_number_unsigned() ? value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+                                 : (value.get<std::int64_t>() > std::numeric_limits<int>::max() ||
+                                    value.get<std::int64_t>() < std::numeric_limits<int>::min()))
+    fail(key, "integer " + json_excerpt(value) + " is out of range");
   return value.get<int>();
 }
 
 std::string JsonReader::text(const std::string& key) {
   const auto& value = raw(key);
-  if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
+  if (!value.is_string()) fail(key, "expected a string, got " + json_excerpt(value));
   return value.get<std::string>();
 }
 
@@ -80,7 +88,7 @@ std::string JsonReader::text_or(const std::string& key, const std::string& fallb
 bool JsonReader::boolean_or(const std::string& key, bool fallback) {
   if (!has(key)) return fallback;
   const auto& value = raw(key);
-  if (!value.is_boolean()) fail(key, "expected true or false, got " + value.dump());
+  if (!value.is_boolean()) fail(key, "expected true or false, got " + json_excerpt(value));
   return value.get<bool>();
 }
 

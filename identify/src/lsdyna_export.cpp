@@ -55,6 +55,13 @@ std::string effect_warnings(const ParameterSet& given) {
   return text;
 }
 
+// One comment line: control characters (a newline would start a keyword line) become blanks.
+std::string comment_line(const std::string& text) {
+  std::string line = "$ ";
+  for (char c : text) line += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
+  return line + "\n";
+}
+
 std::string blank() { return std::string(kField, ' '); }
 
 std::string card(const std::vector<std::string>& fields) {
@@ -110,10 +117,13 @@ std::string lsdyna_field(double value) {
 //   *DEFINE_DE_TO_SURFACE_COUPLING card 1: SLAVE MASTER STYPE MTYPE; card 2: FRICS FRICD DAMP BSORT ...
 // Checked against the field schema of the keyword classes generated from the manual (Ansys pydyna,
 // keyword_classes/auto: control_discrete_element, define_de_to_surface_coupling) on 2026-11-24.
-std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title) {
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title,
+                            const std::vector<std::string>& comments) {
   const ParameterSet p = with_defaults(parameters);
   std::ostringstream out;
-  out << "*KEYWORD\n$ demfit export: " << title << "\n"
+  out << "*KEYWORD\n" << comment_line("demfit export: " + title);
+  for (const auto& c : comments) out << comment_line(c);
+  out
       << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
       << effect_warnings(parameters)
       << "*CONTROL_DISCRETE_ELEMENT\n"
@@ -135,8 +145,9 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& t
   return out.str();
 }
 
-void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title) {
-  detail::write_file_atomically(path, lsdyna_keywords(parameters, title));
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title,
+                           const std::vector<std::string>& comments) {
+  detail::write_file_atomically(path, lsdyna_keywords(parameters, title, comments));
 }
 
 ParameterSet parse_lsdyna_keywords(const std::string& text) {

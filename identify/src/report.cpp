@@ -8,6 +8,7 @@
 
 #include "atomic_file.hpp"
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/rbf_surrogate/bounds.hpp"
 #include "gnuplot.hpp"
@@ -121,9 +122,11 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
     detail::write_file_atomically(output_dir / "best_parameters.json", best_parameters_json(spec, *best, result).dump(2) + "\n");
     ++summary.files_written;
     for (const auto& target : spec.targets) {
-      write_curve_csv(output_dir / ("target_" + target.name + ".csv"), target.data);
+      // File names from user strings go through the one slug function and stay in output_dir.
+      write_curve_csv(path_inside(output_dir, safe_slug("target_" + target.name + ".csv")), target.data);
       const auto found = best->curves.find(target.curve);
-      if (found != best->curves.end()) write_curve_csv(output_dir / ("best_" + target.name + ".csv"), found->second);
+      if (found != best->curves.end())
+        write_curve_csv(path_inside(output_dir, safe_slug("best_" + target.name + ".csv")), found->second);
       summary.files_written += 2;
     }
   }

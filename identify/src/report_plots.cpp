@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/study_warnings.hpp"
 #include "gnuplot.hpp"
 #include "target_misfit.hpp"
 #include "study_support.hpp"
@@ -34,11 +36,12 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
     else if (warning.empty()) warning = problem;
   };
   const std::string csv_setup = "set datafile separator ','\nset key autotitle columnhead\n";
-  auto file = [&](const std::string& name) { return gnuplot_quote((output_dir / name).string()); };
+  // gnuplot runs inside output_dir: data files are named relative to it (slugs, never a path).
+  auto file = [&](const std::string& name) { return gnuplot_quote(safe_slug(name)); };
   if (best) {
     for (const auto& t : spec.targets) {
       if (!best->curves.count(t.curve)) continue;
-      plot("target_" + t.name + ".png",
+      plot(safe_slug("target_" + t.name + ".png"),
            csv_setup + "set title " + gnuplot_quote("target '" + t.name + "' vs best run (objective " +
                                                     format_number(best->objective) + ")") +
                "\nset xlabel " + gnuplot_quote(t.data.x_label) + "\nset ylabel " + gnuplot_quote(t.data.y_label) +
@@ -61,7 +64,7 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
     for (std::size_t j = 0; j < spec.variables.size(); ++j) {
       const auto& v = spec.variables[j];
       const int optimum = 7 + 3 * static_cast<int>(j);
-      plot("variable_" + v.name + ".png",
+      plot(safe_slug("variable_" + v.name + ".png"),
            csv_setup + "set title " + gnuplot_quote("variable " + v.name + ": predicted optimum and subregion") +
                "\nset xlabel 'iteration'\nset ylabel " + gnuplot_quote(v.name) + "\n" +
                (v.log_scale ? "set logscale y\n" : "") + "set style fill transparent solid 0.25 noborder\nplot " +
@@ -220,6 +223,21 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   }
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
      << ", " << best->kind << ")\n\n";
+  // Issue 13: what the numbers may hide, and the objective in the curve's own units.
+  const StudyDiagnostics diagnostics = study_diagnostics(spec, runs, iterations, best, result);
+  if (!diagnostics.warnings.empty()) {
+    md << "## Warnings\n\n";
+    for (const auto& w : diagnostics.warnings) md << "- **warning:** " << w << "\n";
+    md << "\n";
+  }
+  if (!diagnostics.misfits.empty()) {
+    md << "## Misfit of the best run\n\n| target | RMS misfit | unit | noise of the data (2nd differences) | misfit / noise |\n"
+          "|---|---|---|---|---|\n";
+    for (const auto& m : diagnostics.misfits)
+      md << "| " << m.target << " | " << format_number(m.rms) << " | " << m.y_label << " | " << format_number(m.noise)
+         << " | " << (m.noise > 0.0 ? format_number(m.rms / m.noise) : std::string("-")) << " |\n";
+    md << "\n";
+  }
   variables_section(md, spec, *best, result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json());
   targets_section(md, spec, *best);
   if (!images.empty()) {

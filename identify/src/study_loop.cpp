@@ -50,7 +50,7 @@ class StudyLoop {
         variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
         pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
         evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
-        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume)) {}
+        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)) {}
 
   StudyResult run();
 

@@ -10,12 +10,18 @@
 
 #include "demfit/identify/curve_io.hpp"
 #include "image_target.hpp"
+#include "demfit/identify/json_document.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "json_reader.hpp"
 
 namespace demfit::identify {
 namespace {
 
 using detail::JsonReader;
+
+// Documented limits (docs/study_format.md).
+constexpr int kMaxPointsPerIteration = 10000;
+constexpr int kMaxIterations = 100000;
 
 VariableSpec parse_variable(const nlohmann::json& json, const std::string& path) {
   JsonReader in(json, path);
@@ -28,6 +34,7 @@ VariableSpec parse_variable(const nlohmann::json& json, const std::string& path)
   v.initial_range = in.number_or("initial_range", 1.0);
   in.finish();
   if (v.name.empty()) in.fail("name", "must not be empty");
+  check_user_text("study: " + in.field("name"), v.name);
   if (!(v.upper > v.lower)) in.fail("upper", "must be greater than lower (" + std::to_string(v.lower) + ")");
   if (v.initial < v.lower || v.initial > v.upper) in.fail("initial", "must lie within [lower, upper]");
   if (v.log_scale && v.lower <= 0.0) in.fail("log_scale", "needs lower > 0; raise lower or set log_scale false");
@@ -49,7 +56,7 @@ std::vector<double> number_array(JsonReader& in, const std::string& key) {
   if (!value.is_array()) in.fail(key, "expected an array of numbers");
   std::vector<double> out;
   for (const auto& item : value) {
-    if (!item.is_number()) in.fail(key, "expected only numbers, got " + item.dump());
+    if (!item.is_number()) in.fail(key, "expected only numbers, got " + json_excerpt(item));
     out.push_back(item.get<double>());
   }
   return out;
@@ -108,6 +115,9 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
     }
   }
   in.text_or("source", "");  // informational (where inline data came from)
+  // Names reach file names, plots and reports: printable text only (issue #13).
+  check_user_text("study: " + in.field("curve"), t.curve);
+  check_user_text("study: " + in.field("name"), t.name);
   t.metric = parse_metric(in);
   t.weight = in.number_or("weight", 1.0);
   t.scale = in.number_or("scale", 0.0);
@@ -152,8 +162,9 @@ void parse_targets(JsonReader& in, const std::string& path, const std::filesyste
   std::set<std::string> names;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     out.push_back(parse_target(targets[i], path + "targets[" + std::to_string(i) + "]", i, base_dir));
-    if (!names.insert(out.back().name).second)
-      in.fail("targets", "two targets are named '" + out.back().name + "'; give each a unique \"name\"");
+    if (!names.insert(safe_slug(out.back().name)).second)
+      in.fail("targets", "two targets are named '" + out.back().name +
+                             "' (or alike in file names); give each a unique \"name\"");
   }
 }
 
@@ -203,6 +214,9 @@ void parse_sampling(JsonReader in, StudySpec& spec) {
   else in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\" or \"adaptive_infill\"");
   in.finish();
   if (spec.points_per_iteration < 0) in.fail("points_per_iteration", "must be >= 0 (0 = default 1.5(n+1)+1)");
+  // Each point is one simulation run; a huge design is a typo (10^9 once ended in std::bad_alloc).
+  if (spec.points_per_iteration > kMaxPointsPerIteration)
+    in.fail("points_per_iteration", "must be <= " + std::to_string(kMaxPointsPerIteration) + " (runs per iteration)");
 }
 
 void parse_domain_reduction(JsonReader in, StudySpec& spec) {
@@ -235,6 +249,7 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
   spec.objective_tolerance = in.number_or("objective_tolerance", spec.objective_tolerance);
   in.finish();
   if (spec.max_iterations < 1) in.fail("max_iterations", "must be >= 1");
+  if (spec.max_iterations > kMaxIterations) in.fail("max_iterations", "must be <= " + std::to_string(kMaxIterations));
   if (!(spec.design_tolerance >= 0.0)) in.fail("design_tolerance", "must be >= 0");
   if (!(spec.objective_tolerance >= 0.0)) in.fail("objective_tolerance", "must be >= 0");
 }
@@ -281,6 +296,7 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
     in.fail("demfit_study_version", "version " + std::to_string(spec.version) + " is not supported; this demfit reads version " +
                                         std::to_string(kStudyFormatVersion));
   spec.name = in.text_or("name", "study");
+  check_user_text("study: name", spec.name);
   const bool experiments = in.has("experiments");
   if (experiments && (in.has("model") || in.has("targets")))
     in.fail("experiments", "give either \"experiments\" or a top-level \"model\" and \"targets\", not both");
@@ -319,14 +335,8 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
 }
 
 StudySpec load_study_file(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error("study file '" + path.string() + "' cannot be opened; check the path");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(file);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error("study file '" + path.string() + "' is not valid JSON: " + e.what());
-  }
+  // Size, nesting depth and duplicate keys are checked while reading (json_document.hpp).
+  const nlohmann::json json = read_json_file(path, "study file");
   return parse_study(json, std::filesystem::absolute(path).parent_path());
 }
 

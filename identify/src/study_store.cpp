@@ -9,6 +9,8 @@
 #include <sqlite3.h>
 
 #include "demfit/identify/curve_json.hpp"
+#include "demfit/identify/json_document.hpp"
+#include "demfit/identify/model_fingerprint.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -73,6 +75,21 @@ sqlite3* open_database(const std::filesystem::path& path, int flags) {
 
 }  // namespace
 
+// --resume of a changed model is refused, naming the field (issue #13); an older store without a
+// recorded model gets the current one.
+void StudyStore::check_same_model(StudyStore& store, const nlohmann::json& resolved_model) {
+  if (resolved_model.is_null()) return;
+  const auto stored = store.meta("resolved_model");
+  if (!stored) {
+    store.put_meta("resolved_model", resolved_model.dump());
+    return;
+  }
+  const std::string change = first_difference(nlohmann::json::parse(*stored), resolved_model);
+  if (!change.empty())
+    throw std::runtime_error("study store '" + store.path_.string() + "': the model changed since the study started (" +
+                             change + "); restore the case or use another --out folder");
+}
+
 nlohmann::json to_json(const EvaluationRecord& r) {
   return {{"iteration", r.iteration}, {"point", r.point}, {"kind", r.kind}, {"unit_x", r.unit_x},
           {"parameters", r.parameters}, {"objective", number_or_null(r.objective)},
@@ -128,7 +145,8 @@ std::optional<std::string> StudyStore::meta(const std::string& key) const {
   return std::nullopt;
 }
 
-StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume) {
+StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume,
+                                    const nlohmann::json& resolved_model) {
   const bool exists = std::filesystem::exists(path);
   if (exists && !resume)
     throw std::runtime_error("study store '" + path.string() +
@@ -149,6 +167,7 @@ StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const Stu
     store.put_meta("schema_version", std::to_string(kStoreSchemaVersion));
     store.put_meta("study_hash", hash);
     store.put_meta("study_json", to_json(spec).dump());
+    if (!resolved_model.is_null()) store.put_meta("resolved_model", resolved_model.dump());
     store.execute("COMMIT");
   } else {
     store.load();
@@ -156,6 +175,7 @@ StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const Stu
       throw std::runtime_error("study store '" + path.string() +
                                "' belongs to another study (different variables, targets or settings); "
                                "use another --out folder");
+    check_same_model(store, resolved_model);
     // A resumed study may have a new stopping rule; keep the stored spec current.
     store.put_meta("study_json", to_json(spec).dump());
   }
@@ -188,9 +208,16 @@ void StudyStore::load() {
     r.iteration = sqlite3_column_int(s.get(), 0);
     r.point = sqlite3_column_int(s.get(), 1);
     r.kind = column_text(s.get(), 2);
-    r.unit_x = nlohmann::json::parse(column_text(s.get(), 3)).get<std::vector<double>>();
-    r.parameters = nlohmann::json::parse(column_text(s.get(), 4)).get<ParameterSet>();
-    r.curves = curves_from_json(nlohmann::json::parse(column_text(s.get(), 5)));
+    try {
+      r.unit_x = nlohmann::json::parse(column_text(s.get(), 3)).get<std::vector<double>>();
+      r.parameters = nlohmann::json::parse(column_text(s.get(), 4)).get<ParameterSet>();
+      r.curves = curves_from_json(nlohmann::json::parse(column_text(s.get(), 5)));
+    } catch (const nlohmann::json::exception&) {
+      // A damaged row names the store and the run instead of a bare JSON error (issue #13).
+      throw std::runtime_error("study store '" + path_.string() + "': run " + std::to_string(r.iteration) + "/" +
+                               std::to_string(r.point) + " is corrupted (unreadable parameters or curves); "
+                               "restore study.db from a copy or rerun into a new --out folder");
+    }
     r.objective = sqlite3_column_type(s.get(), 6) == SQLITE_NULL ? std::numeric_limits<double>::quiet_NaN()
                                                                  : sqlite3_column_double(s.get(), 6);
     r.wall_seconds = sqlite3_column_double(s.get(), 7);
@@ -200,12 +227,21 @@ void StudyStore::load() {
   }
   Statement it(db_, "SELECT record FROM iterations ORDER BY iteration");
   while (sqlite3_step(it.get()) == SQLITE_ROW) {
-    IterationRecord r = iteration_from_json(nlohmann::json::parse(column_text(it.get(), 0)));
+    IterationRecord r;
+    try {
+      r = iteration_from_json(nlohmann::json::parse(column_text(it.get(), 0)));
+    } catch (const nlohmann::json::exception&) {
+      throw std::runtime_error("study store '" + path_.string() + "': iteration record " +
+                               std::to_string(iterations_.size()) + " is corrupted; restore study.db from a copy");
+    }
     iterations_[r.iteration] = r;
   }
 }
 
-nlohmann::json StudyStore::study_json() const { return nlohmann::json::parse(meta("study_json").value_or("{}")); }
+nlohmann::json StudyStore::study_json() const {
+  // A received study.db is input like any other: limits and duplicate keys checked (issue #13).
+  return parse_json_document(meta("study_json").value_or("{}"), "study store '" + path_.string() + "' (study)");
+}
 
 void StudyStore::add_evaluation(const EvaluationRecord& r) {
   Statement s(db_,

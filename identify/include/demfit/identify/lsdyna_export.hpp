@@ -16,6 +16,7 @@
 //   wall_sfp is written as a comment: its field position differs between LS-DYNA versions.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "demfit/identify/model.hpp"
 
@@ -24,8 +25,12 @@ namespace demfit::identify {
 // Formats a number into exactly 10 characters, right-aligned, with as many significant digits
 // as fit (exponent shortened to e-5 style when needed). Throws if it cannot fit.
 std::string lsdyna_field(double value);
-std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title);
-void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title);
+// `title` and each of `comments` become "$ " comment lines; control characters in them are turned
+// into blanks, so no text can leave its comment line (issue #13).
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title,
+                            const std::vector<std::string>& comments = {});
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title,
+                           const std::vector<std::string>& comments = {});
 // Reads the cards written above back into parameter names (tests, round trips).
 ParameterSet parse_lsdyna_keywords(const std::string& text);
 

@@ -30,6 +30,9 @@ struct RunOptions {
   // process; otherwise this evaluator (e.g. an MPI evaluator, issue #7), which must outlive the
   // call. Results do not depend on the choice.
   Evaluator* evaluator = nullptr;
+  // What is simulated, resolved (DEM: the case with defaults filled in; see model_fingerprint.hpp).
+  // Recorded in a new store; --resume refuses a store whose recorded model differs. null = none.
+  nlohmann::json resolved_model;
 };
 
 struct StudyResult {

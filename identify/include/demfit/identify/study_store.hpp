@@ -58,7 +58,9 @@ class StudyStore {
  public:
   // Opens path for running `spec`. A missing file is created. An existing file is refused
   // unless resume is true, and then also when it belongs to another study or schema version.
-  static StudyStore open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume);
+  // resolved_model (if not null) is recorded, or on resume compared with the recorded one.
+  static StudyStore open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume,
+                                 const nlohmann::json& resolved_model = nlohmann::json());
   // Opens an existing store for reading (report, export); refuses another schema version.
   static StudyStore open_existing(const std::filesystem::path& path);
 
@@ -83,6 +85,7 @@ class StudyStore {
   void put_meta(const std::string& key, const std::string& value);
   std::optional<std::string> meta(const std::string& key) const;
   void load();
+  static void check_same_model(StudyStore& store, const nlohmann::json& resolved_model);
 
   sqlite3* db_ = nullptr;
   std::filesystem::path path_;

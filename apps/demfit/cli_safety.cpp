@@ -1,0 +1,58 @@
+#include "cli_safety.hpp"
+
+#include <sched.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+
+namespace demfit::apps {
+
+int capped_threads(int requested, const std::string& option) {
+  int cores = static_cast<int>(std::thread::hardware_concurrency());
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) cores = CPU_COUNT(&set);
+  if (cores < 1) cores = 1;
+  if (requested <= cores) return requested;
+  std::fprintf(stderr, "demfit: note: %s %d is above the %d core(s) available; using %d\n", option.c_str(), requested,
+               cores, cores);
+  return cores;
+}
+
+void require_finite(double value, const std::string& option) {
+  if (!std::isfinite(value)) throw std::runtime_error(option + ": must be a finite number");
+}
+
+std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec, const std::filesystem::path& study_file) {
+  std::vector<std::filesystem::path> inputs{study_file};
+  for (const auto& t : spec.targets)
+    if (!t.csv.empty()) inputs.push_back(t.csv.is_absolute() ? t.csv : spec.base_dir / t.csv);
+  std::error_code error;
+  const std::filesystem::path case_file = spec.base_dir / spec.model_reference;
+  if (std::filesystem::is_regular_file(case_file, error)) inputs.push_back(case_file);
+  return inputs;
+}
+
+void remove_stale_staging(const std::filesystem::path& target) {
+  std::filesystem::path t = target.filename().empty() ? target.parent_path() : target;
+  const std::filesystem::path parent = t.parent_path().empty() ? std::filesystem::path(".") : t.parent_path();
+  std::string prefix = ".";  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+  prefix += t.filename().string();
+  prefix += ".partial-";
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(parent, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(digits);
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM) continue;  // still running
+    if (!entry.is_directory(error) || entry.is_symlink(error)) continue;
+    std::filesystem::remove_all(entry.path(), error);
+  }
+}
+
+}  // namespace demfit::apps

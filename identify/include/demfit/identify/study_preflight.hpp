@@ -1,0 +1,17 @@
+#pragma once
+// Checks a study against what its model produces, before any store or output exists (issue #13):
+// one evaluation at the initial point (initial values of the variables, fixed parameters, model
+// defaults) and then, for every target,
+//   - the curve exists (else the error lists the model's curves),
+//   - the target's units are converted to the model's (units.hpp), a dimension mismatch refused,
+//   - the target's x-range overlaps the model's x-range at the initial point.
+#include "demfit/identify/model.hpp"
+#include "demfit/identify/study_spec.hpp"
+
+namespace demfit::identify {
+
+// Returns `spec` with the target data in the model's units (labels = the model's); throws
+// std::runtime_error "study: targets[i].<field>: ..." otherwise.
+StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context);
+
+}  // namespace demfit::identify

@@ -1,0 +1,65 @@
+#include "demfit/identify/study_preflight.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "demfit/identify/units.hpp"
+#include "study_support.hpp"
+
+namespace demfit::identify {
+namespace {
+
+std::string range_text(const std::vector<double>& x, const std::string& label) {
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  char text[96];
+  std::snprintf(text, sizeof text, "[%.6g, %.6g]", *lo, *hi);
+  return text + (" " + label);
+}
+
+void convert(std::vector<double>& values, double factor) {
+  if (factor != 1.0)
+    for (double& v : values) v *= factor;
+}
+
+}  // namespace
+
+StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context) {
+  detail::check_parameter_names(spec, model);  // names first: the evaluation would fail less clearly
+  ParameterSet parameters = model.default_parameters();
+  for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
+  for (const auto& v : spec.variables) parameters[v.name] = v.initial;
+  CurveSet curves;
+  try {
+    curves = model.evaluate(parameters, context);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("study: the model fails at the initial point of the variables: ") + e.what());
+  }
+  StudySpec out = spec;
+  for (std::size_t i = 0; i < out.targets.size(); ++i) {
+    TargetSpec& t = out.targets[i];
+    const std::string field = "study: targets[" + std::to_string(i) + "]";
+    const auto found = curves.find(t.curve);
+    if (found == curves.end()) {
+      std::string known;
+      for (const auto& [name, c] : curves) known += (known.empty() ? "" : ", ") + name;
+      throw std::runtime_error(field + ".curve: '" + t.curve + "' is not a curve of model '" + spec.model_reference +
+                               "'; it produces: " + known);
+    }
+    const Curve& m = found->second;
+    convert(t.data.x, unit_factor(t.data.x_label, m.x_label, field + ".x_column"));
+    convert(t.data.y, unit_factor(t.data.y_label, m.y_label, field + ".y_column"));
+    if (column_unit(t.data.x_label).known && column_unit(m.x_label).known) t.data.x_label = m.x_label;
+    if (column_unit(t.data.y_label).known && column_unit(m.y_label).known) t.data.y_label = m.y_label;
+    if (m.x.empty()) throw std::runtime_error(field + ".curve: the model's curve '" + t.curve + "' is empty at the initial point");
+    const auto [tlo, thi] = std::minmax_element(t.data.x.begin(), t.data.x.end());
+    const auto [mlo, mhi] = std::minmax_element(m.x.begin(), m.x.end());
+    if (std::min(*thi, *mhi) <= std::max(*tlo, *mlo))
+      throw std::runtime_error(field + ".x_column: the target's x " + range_text(t.data.x, t.data.x_label) +
+                               " does not overlap the model's x at the initial point " + range_text(m.x, m.x_label) +
+                               "; check the units and the fill (docs/study_format.md, \"Matching the fill\")");
+  }
+  return out;
+}
+
+}  // namespace demfit::identify

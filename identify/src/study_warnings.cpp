@@ -1,0 +1,105 @@
+#include "demfit/identify/study_warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "demfit/identify/objective.hpp"
+
+namespace demfit::identify {
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+// Noise sigma from second differences: for white noise of variance s^2 on a smooth curve,
+// E[(y[i+1] - 2 y[i] + y[i-1])^2] = 6 s^2.
+double second_difference_noise(const std::vector<double>& y) {
+  if (y.size() < 3) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 1; i + 1 < y.size(); ++i) {
+    const double d = y[i + 1] - 2.0 * y[i] + y[i - 1];
+    sum += d * d;
+  }
+  return std::sqrt(sum / (6.0 * static_cast<double>(y.size() - 2)));
+}
+
+void bound_warnings(const StudySpec& spec, const EvaluationRecord& best, std::vector<std::string>& warnings) {
+  for (const auto& v : spec.variables) {
+    const auto found = best.parameters.find(v.name);
+    if (found == best.parameters.end()) continue;
+    const double tolerance = 0.005 * (v.upper - v.lower);
+    if (found->second - v.lower <= tolerance || v.upper - found->second <= tolerance)
+      warnings.push_back("variable '" + v.name + "' = " + number(found->second) + " lies on its " +
+                         (found->second - v.lower <= tolerance ? "lower" : "upper") + " bound [" + number(v.lower) + ", " +
+                         number(v.upper) + "]: the optimum may lie outside; widen the bounds or check units and fill");
+  }
+}
+
+}  // namespace
+
+StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
+                                   const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
+                                   const std::optional<nlohmann::json>& result) {
+  StudyDiagnostics d;
+  if (!best) return d;
+  bound_warnings(spec, *best, d.warnings);
+  if (result && !result->value("converged", false))
+    d.warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
+                         ") without converging; resume with a larger stopping.max_iterations");
+  const EvaluationRecord* verification = nullptr;
+  for (const auto& r : runs)
+    if (r.kind == "verification" && r.ok) verification = &r;
+  if (verification && !iterations.empty()) {
+    const double predicted = iterations.back().predicted_objective;
+    const double scale = std::max(std::abs(predicted), std::abs(verification->objective));
+    // Differences far below the objectives the study has seen (an exact fit: 1e-18 vs 3e-19) are no news.
+    double largest = 0.0;
+    for (const auto& r : runs)
+      if (r.ok && std::isfinite(r.objective)) largest = std::max(largest, std::abs(r.objective));
+    const double difference = std::abs(verification->objective - predicted);
+    if (std::isfinite(predicted) && difference > 0.5 * scale && difference > 1e-6 * largest)
+      d.warnings.push_back("the verification run's objective " + number(verification->objective) +
+                           " is far from the surrogate's prediction " + number(predicted) +
+                           ": the surrogate is not reliable near the optimum");
+  }
+  for (const auto& t : spec.targets) {
+    const auto curve = best->curves.find(t.curve);
+    if (t.metric != CurveMetric::mse || curve == best->curves.end() || curve->second.x.size() < 2) continue;
+    std::vector<double> simulated;
+    try {
+      simulated = resample_monotone(curve->second, t.data.x);
+    } catch (const std::exception&) {
+      continue;
+    }
+    double sum = 0.0;
+    for (std::size_t i = 0; i < simulated.size(); ++i) sum += (simulated[i] - t.data.y[i]) * (simulated[i] - t.data.y[i]);
+    TargetMisfit m{t.name, t.data.y_label, std::sqrt(sum / static_cast<double>(simulated.size())),
+                   second_difference_noise(t.data.y)};
+    if (m.noise > 0.0 && m.rms > 3.0 * m.noise)
+      d.warnings.push_back("target '" + t.name + "': the best run misses the data by RMS " + number(m.rms) + " " +
+                           m.y_label + ", " + number(m.rms / m.noise) + " x the noise of the data (" + number(m.noise) +
+                           "): the model, the units or the fill do not match the measurement");
+    d.misfits.push_back(m);
+  }
+  return d;
+}
+
+StudyDiagnostics study_diagnostics(const StudyStore& store) {
+  const StudySpec spec = parse_study(store.study_json(), store.path().parent_path());
+  const auto runs = store.evaluations();
+  const auto result = store.result();
+  const EvaluationRecord* best = nullptr;
+  if (result)
+    for (const auto& r : runs)
+      if (r.iteration == result->value("best_iteration", -1) && r.point == result->value("best_point", -1)) best = &r;
+  if (!best)
+    for (const auto& r : runs)
+      if (r.ok && (!best || r.objective < best->objective)) best = &r;
+  return study_diagnostics(spec, runs, store.iterations(), best, result);
+}
+
+}  // namespace demfit::identify
