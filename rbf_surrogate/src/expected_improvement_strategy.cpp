@@ -274,7 +274,7 @@ MatrixXd ExpectedImprovementStrategy::believer_batch(const WarpedModel& warped, 
     for (int k = 1; static_cast<int>(rows.rows()) < batch && k < 2 * batch; ++k) {
         for (Eigen::Index r = x.rows() - history_.successes(); r < rows.rows(); ++r) {
             const VectorXd p = rows.row(r).transpose();
-            const double believed = model.mean(p);
+            const double believed = options_.constant_liar ? warped.values.minCoeff() : model.mean(p);
             x.conservativeResize(x.rows() + 1, Eigen::NoChange);
             x.bottomRows(1) = p.transpose();
             y.conservativeResize(y.size() + 1);
@@ -282,8 +282,16 @@ MatrixXd ExpectedImprovementStrategy::believer_batch(const WarpedModel& warped, 
             if (!schedule_.noisy()) best = std::min(best, believed);
         }
         model = KrigingModel::fit(x, y, fixed);
-        const MatrixXd next = keep_new(
-            maximise_expected_improvement(model, best, incumbent, bounds, seed + 104729ULL * k, acquisition).x.transpose());
+        const std::uint64_t point_seed = seed + 104729ULL * static_cast<std::uint64_t>(k);
+        MatrixXd next;
+        if (options_.batch_exploit && rows.rows() == batch - 1) {
+            MinimizeOptions mo = options_.minimize;
+            mo.seed = point_seed;
+            const Objective mean = [&model](const VectorXd& p, VectorXd* g) { return model.mean(p, g); };
+            next = keep_new(minimize(mean, bounds, mo).x.transpose());
+        }
+        if (next.rows() == 0)
+            next = keep_new(maximise_expected_improvement(model, best, incumbent, bounds, point_seed, acquisition).x.transpose());
         for (Eigen::Index j = 0; j < next.rows(); ++j) {
             bool fresh = true;
             for (Eigen::Index r = 0; r < rows.rows() && fresh; ++r) fresh = (rows.row(r) - next.row(j)).norm() >= 1e-5;
