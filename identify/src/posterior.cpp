@@ -157,8 +157,18 @@ std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vec
         g << "unset border\nunset tics\nunset xlabel\nunset ylabel\nplot [0:1][0:1] NaN notitle\nset border\nset tics\n";
         continue;
       }
-      const double lo = variables[c].lower, hi = variables[c].upper;
-      g << "set xrange [" << lo << ":" << hi << "]\n";
+      // Panels span the draws (padded 5 %), not the bounds: a well-pinned parameter would be a spike.
+      const auto span = [&](int j, double& lo, double& hi) {
+        lo = e.draws.col(j).minCoeff();
+        hi = e.draws.col(j).maxCoeff();
+        const double pad = 0.05 * std::max(hi - lo, 1e-12 * std::max(1.0, std::abs(hi)));
+        lo -= pad;
+        hi += pad;
+      };
+      double lo = 0, hi = 0, ylo = 0, yhi = 0;
+      span(c, lo, hi);
+      span(r, ylo, yhi);
+      g << "set tics font ',7'\nset xrange [" << lo << ":" << hi << "]\n";
       if (r == c) {
         const double width = (hi - lo) / 40.0;
         g << "set ylabel 'draws' font ',8'\nset yrange [*:*]\n"
@@ -168,7 +178,7 @@ std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vec
           << "):(1.0) smooth frequency with boxes\n";
       } else {
         g << "set ylabel " << detail::gnuplot_quote(variables[r].name) << " font ',8'\n"
-          << "set yrange [" << variables[r].lower << ":" << variables[r].upper << "]\n"
+          << "set yrange [" << ylo << ":" << yhi << "]\n"
           << "plot $draws using " << c + 1 << ":" << r + 1 << " with dots\n";
       }
     }

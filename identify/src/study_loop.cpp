@@ -293,8 +293,13 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   // Uncertainty at the best run (issue #4): Jacobian and simulation noise from a linear
   // regression of the evaluated residuals over the runs near the optimum (see uncertainty.hpp).
   {
-    const auto estimate = estimate_uncertainty_from_runs(uncertainty_sample(best, final_region), spec_.variables);
+    const RunSample sample = uncertainty_sample(best, final_region);
+    const auto estimate = estimate_uncertainty_from_runs(sample, spec_.variables);
     uncertainty = detail::uncertainty_json(spec_, estimate);
+    std::string posterior_warning;  // issue 15: marginal intervals that stay right with poorly pinned parameters
+    uncertainty["posterior"] = detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
+    if (options_.progress && !posterior_warning.empty())
+      std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
       result.ci_half_width[name] = estimate.ci_half_width[j];

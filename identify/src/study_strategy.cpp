@@ -72,3 +72,39 @@ const char* strategy_name(SamplingStrategy strategy) {
 }
 
 }  // namespace demfit::identify
+
+namespace demfit::identify::detail {
+
+nlohmann::json posterior_json(const StudySpec& spec, const RunSample& sample, const std::filesystem::path& output_dir,
+                              bool plots, std::string& warning) {
+  PosteriorOptions options;
+  options.seed = spec.seed;
+  PosteriorEstimate e;
+  try {
+    e = sample_posterior_from_runs(sample, spec.variables, options);
+  } catch (const std::invalid_argument& error) {
+    warning = error.what();
+    return nullptr;
+  }
+  nlohmann::json variables = nlohmann::json::object();
+  for (std::size_t j = 0; j < spec.variables.size(); ++j)
+    variables[spec.variables[j].name] = {{"median", e.median[j]}, {"lower_95", e.lower[j]}, {"upper_95", e.upper[j]},
+                                         {"unidentifiable", static_cast<bool>(e.unidentifiable[j])}};
+  std::vector<std::vector<double>> correlation(spec.variables.size(), std::vector<double>(spec.variables.size()));
+  for (std::size_t i = 0; i < correlation.size(); ++i)
+    for (std::size_t j = 0; j < correlation.size(); ++j)
+      correlation[i][j] = e.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+  nlohmann::json out = {{"method", "Gibbs sampling of the posterior on the local linear residual surrogate"},
+                        {"variables", variables},
+                        {"correlation", correlation},
+                        {"simulation_noise_variance", e.simulation_noise_variance},
+                        {"data_noise_variance", e.data_noise_variance},
+                        {"runs_used", e.runs_used}};
+  if (plots) {
+    warning = write_posterior_pair_plot(e, spec.variables, output_dir / "posterior_pairs.png");
+    if (warning.empty()) out["pair_plot"] = "posterior_pairs.png";
+  }
+  return out;
+}
+
+}  // namespace demfit::identify::detail

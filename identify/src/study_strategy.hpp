@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "demfit/identify/study_spec.hpp"
+#include "demfit/identify/uncertainty.hpp"
 #include "demfit/rbf_surrogate/strategy.hpp"
 
 namespace demfit::identify::detail {
@@ -32,5 +33,16 @@ class StudyStrategy {
 // The ask/tell strategy of a study, or nullptr when the study samples by SRSM or adaptive infill
 // (those keep the loop's own iteration).
 std::unique_ptr<StudyStrategy> make_study_strategy(const StudySpec& spec);
+
+}  // namespace demfit::identify::detail
+
+namespace demfit::identify::detail {
+
+// The posterior summary of a finished study (uncertainty.hpp: sample_posterior_from_runs on the
+// runs near the best one) as the JSON stored under uncertainty.posterior, plus the pair plot
+// posterior_pairs.png in output_dir when `plots` (a reason in `warning` when it could not be drawn).
+// Null JSON (and the reason in `warning`) when there are too few runs.
+nlohmann::json posterior_json(const StudySpec& spec, const RunSample& sample, const std::filesystem::path& output_dir,
+                              bool plots, std::string& warning);
 
 }  // namespace demfit::identify::detail
