@@ -237,3 +237,27 @@ TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the
   const Diagnosis& d = o.diagnosis;
   CHECK(d.refits[d.chosen].fit.parameters.at("wall_frics") == Approx(0.2).margin(0.04));
 }
+
+// Issue 15: an s = 4 drum with hidden particle rolling friction was named "hertz_stiffness" on one
+// noise seed (screening scores within 25 %, rolling resistance ranked third and never re-fitted)
+// and named on a 148.0 vs 147.4 tie on another. Over 5 noise seeds the verdict must be the right
+// name or "ambiguous" — never another effect. ~100 s per seed on 2 cores.
+TEST_CASE("A hidden rolling friction in an s = 4 drum is named or called ambiguous on every noise seed, never misnamed",
+          "[slow][drum]") {
+  for (std::uint64_t seed = 31; seed <= 35; ++seed) {
+    Scenario s = drum_scenario("drum, hidden rolling friction, seed " + std::to_string(seed), {{"fricr", 0.15}}, seed);
+    s.variables = {{"frics", 0.1, 0.8, 0.5, false, 1.0}};  // rolling friction is the hidden effect, not a base variable
+    s.truth.erase("fricr");
+    s.truth["fricr"] = 0.15;
+    const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
+    const Diagnosis& d = o.diagnosis;
+    INFO("seed " << seed << ": " << d.summary);
+    const bool right_name = d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
+    CHECK((right_name || d.verdict == Verdict::ambiguous));
+    if (d.verdict == Verdict::ambiguous) {
+      bool listed = false;
+      for (int i : d.tied) listed = listed || d.refits[i].effect == "rolling_resistance";
+      CHECK(listed);  // ambiguous between the true effect and another, not between two wrong ones
+    }
+  }
+}
