@@ -107,6 +107,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.alpha = o.alpha;
   options.bic_threshold = o.bic_threshold;
   options.refit_best = o.refit_best;
+  options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
   // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13).
@@ -145,7 +146,8 @@ void register_diagnose(CLI::App& app) {
   cmd->add_option("--jobs", o->jobs, "Model evaluations at once (default 1); results do not depend on it");
   cmd->add_option("--alpha", o->alpha, "Family-wise level of the tests that call the base residual structural (default 0.01)");
   cmd->add_option("--bic-threshold", o->bic_threshold, "BIC improvement needed to name an effect (default 10)");
-  cmd->add_option("--refit-best", o->refit_best, "Candidates re-identified after screening (default 2)");
+  cmd->add_option("--refit-best", o->refit_best, "Candidates re-identified after screening: at least this many (default 2), plus every one scoring at "
+                  "least 1/4 of the best (DEM models) or all of them (analytic model)");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

@@ -2,7 +2,11 @@
 // kriging expected improvement, and
 // baselines from scipy (differential evolution, Nelder-Mead) and scikit-learn (GP expected improvement)
 // run by baselines.py. Prints one table with ratios. Usage:
-//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)] [results file]
+//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)] [results file] [batch]
+// batch (default 1): 1 = sequential runs through minimise_expensive (the loop stops at the run that
+// meets the target); q > 1 = the ask/tell strategies asked for q points at a time, every asked point
+// evaluated (as q parallel workers would) and counted: evaluations to target = runs up to the end of
+// the ask that contains the first hit. SRSM uses q as its batch size too.
 // With a results file (RESULT lines saved from an earlier `python3 baselines.py N` run) the python
 // baselines are read instead of re-run (the GP loop takes tens of minutes on Rosenbrock-4).
 // Environment (development only; the reported table uses none): DEMFIT_BENCH_CLIP=1 turns on
@@ -14,6 +18,7 @@
 // Gaussian noise) f* + 1e-2.
 #include "demfit/rbf_surrogate/design.hpp"
 #include "demfit/rbf_surrogate/expensive.hpp"
+#include "demfit/rbf_surrogate/strategy.hpp"
 #include "test_functions.hpp"
 
 #include <algorithm>
@@ -53,8 +58,20 @@ std::vector<Problem> problems() {
             {"branin_noisy", testfn::branin, br, testfn::kBraninMinimum + 1e-2, 100, true}};
 }
 
+// Batch mode: drive the ask/tell strategy, q points per ask, every asked point evaluated.
+void run_batches(const std::function<double(const VectorXd&)>& f, const Problem& p, const ExpensiveOptions& o,
+                 const int& hit) {
+    const auto strategy = make_strategy(static_cast<int>(p.vars.size()), o);
+    while (strategy->history().size() < p.budget && hit < 0) {
+        const MatrixXd asked = strategy->ask(o.points_per_iteration);
+        VectorXd values(asked.rows());
+        for (Eigen::Index i = 0; i < asked.rows(); ++i) values[i] = f(from_unit(p.vars, asked.row(i).transpose()));
+        strategy->tell(asked, values);
+    }
+}
+
 // Evaluations until the incumbent's true value meets the target (-1: never), and run time.
-std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std::uint64_t seed) {
+std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std::uint64_t seed, int batch) {
     std::mt19937_64 rng(1000 + seed);
     int n = 0, hit = -1;
     double best_observed = INFINITY;
@@ -87,9 +104,17 @@ std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std
     if (const char* e = std::getenv("DEMFIT_BENCH_STALL")) o.stall_evaluations = std::atoi(e);
     if (const char* e = std::getenv("DEMFIT_BENCH_CAND")) o.acquisition.candidates = std::atoi(e);
     if (const char* e = std::getenv("DEMFIT_BENCH_STARTS")) o.acquisition.local_starts = std::atoi(e);
+    if (const char* e = std::getenv("DEMFIT_BENCH_BATCH_EXPLOIT")) o.batch_exploit = std::atoi(e) != 0;
+    if (const char* e = std::getenv("DEMFIT_BENCH_LIAR")) o.constant_liar = std::atoi(e) != 0;
     if (const char* e = std::getenv("DEMFIT_BENCH_RADIUS")) o.stall_exclusion_radius = std::atof(e);
     const auto t0 = std::chrono::steady_clock::now();
-    minimise_expensive(wrapped, p.vars, o);
+    if (batch > 1) {
+        o.points_per_iteration = batch;
+        run_batches(wrapped, p, o, hit);
+        if (hit > 0) hit = std::max(hit, n);  // the whole ask containing the hit was run
+    } else {
+        minimise_expensive(wrapped, p.vars, o);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return {hit, seconds};
 }
@@ -132,6 +157,8 @@ int main(int argc, char** argv) {
     const int baseline_seeds = argc > 2 ? std::atoi(argv[2]) : 3;
     std::map<std::pair<std::string, std::string>, std::vector<int>> results;
     std::map<std::pair<std::string, std::string>, double> seconds;
+    const int batch = argc > 4 ? std::atoi(argv[4]) : 1;
+    if (batch > 1) std::printf("batch %d: evaluations counted to the end of the ask containing the hit\n", batch);
     const char* only = std::getenv("DEMFIT_BENCH_ONLY");        // e.g. "demfit_ei" (substring match)
     const char* only_problem = std::getenv("DEMFIT_BENCH_PROBLEM");
     for (const Problem& p : problems())
@@ -142,7 +169,7 @@ int main(int argc, char** argv) {
             if (only && std::string(name).find(only) == std::string::npos) continue;
             if (only_problem && p.name != only_problem) continue;
             for (int s = 1; s <= seeds; ++s) {
-                const auto [hit, secs] = run_demfit(p, strategy, static_cast<std::uint64_t>(s));
+                const auto [hit, secs] = run_demfit(p, strategy, static_cast<std::uint64_t>(s), batch);
                 results[{name, p.name}].push_back(hit);
                 if (std::getenv("DEMFIT_BENCH_VERBOSE")) std::cerr << name << " " << p.name << " seed " << s << ": " << hit << " (" << secs << " s)\n";
                 seconds[{name, p.name}] += secs / seeds;

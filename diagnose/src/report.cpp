@@ -17,9 +17,9 @@ nlohmann::json analysis_json(const ResidualAnalysis& a) {
   nlohmann::json regions = nlohmann::json::array();
   for (const auto& r : a.regions)
     regions.push_back({{"region", r.label}, {"rms", r.rms}, {"max_abs", r.max_abs}, {"rms_over_sigma", r.rms_over_sigma},
-                       {"x_at_max", r.x_at_max}});
+                       {"max_over_sigma", r.max_over_sigma}, {"x_at_max", r.x_at_max}});
   return {{"points", a.points}, {"fitted_parameters", a.fitted_parameters}, {"sigma", a.sigma}, {"rms", a.rms},
-          {"max_abs", a.max_abs}, {"structural", a.structural}, {"alpha", a.alpha},
+          {"max_abs", a.max_abs}, {"rms_over_sigma", a.rms_over_sigma}, {"max_over_sigma", a.max_over_sigma}, {"structural", a.structural}, {"alpha", a.alpha},
           {"runs_test", {{"runs", a.runs.runs}, {"positive", a.runs.positive}, {"negative", a.runs.negative},
                          {"z", a.runs.z}, {"p_value", a.runs.p_value}}},
           {"autocorrelation", {{"lag1", a.autocorrelation.lag1}, {"durbin_watson", a.autocorrelation.durbin_watson},
@@ -33,8 +33,8 @@ nlohmann::json analysis_json(const ResidualAnalysis& a) {
 }
 
 std::string tests_row(const std::string& label, const ResidualAnalysis& a) {
-  return format("| %s | %.3g | %.4g | %.4g | %.3g | %d | %.3g | %.3f | %.3g | %.3g | %.3g | %.4g (%d) | %.3g | %s |\n",
-                label.c_str(), a.alpha, a.rms, a.max_abs, a.rms / a.sigma, a.runs.runs, a.runs.p_value, a.autocorrelation.lag1,
+  return format("| %s | %.3g | %.3g | %.3g | %d | %.3g | %.3f | %.3g | %.3g | %.3g | %.4g (%d) | %.3g | %s |\n",
+                label.c_str(), a.alpha, a.rms_over_sigma, a.max_over_sigma, a.runs.runs, a.runs.p_value, a.autocorrelation.lag1,
                 a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value, a.smooth.statistic, a.smooth.basis,
                 a.smooth.p_value, a.structural ? "structure" : "noise");
 }
@@ -137,19 +137,22 @@ std::string markdown_report(const Diagnosis& d) {
     md << format("| %s | %zu | %.4g | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
                  d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)");
   md << "\n## Residual tests (family-wise level alpha per row, each test at alpha/4; a candidate must pass "
-        "at its level to be named)\n\n| fit | alpha | RMS | max | RMS/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "
-        "| variance p | smooth-structure stat (dof) | smooth p | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "at its level to be named; RMS and max of r/sigma with each target divided by its own noise level)\n\n"
+        "| fit | alpha | RMS/sigma | max/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "
+        "| variance p | smooth-structure stat (dof) | smooth p | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   md << tests_row("base", d.base_analysis);
   for (const auto& r : d.refits) md << tests_row("base + " + r.effect, r.analysis);
-  md << "\n## Gap per region (RMS / max, y units)\n\n| region | base RMS | base max | base RMS/sigma";
-  for (const auto& r : d.refits) md << " | +" << r.effect << " RMS | +" << r.effect << " max";
-  md << " |\n|---|---|---|---";
+  md << "\n## Gap per region (RMS and max of the residual / the noise level of the region's target)\n\n"
+        "| region | base RMS/sigma | base max/sigma";
+  for (const auto& r : d.refits) md << " | +" << r.effect << " RMS/sigma | +" << r.effect << " max/sigma";
+  md << " |\n|---|---|---";
   for (std::size_t i = 0; i < d.refits.size(); ++i) md << "|---|---";
   md << "|\n";
   for (std::size_t g = 0; g < d.base_analysis.regions.size(); ++g) {
     const auto& b = d.base_analysis.regions[g];
-    md << format("| %s | %.4g | %.4g | %.3g", b.label.c_str(), b.rms, b.max_abs, b.rms_over_sigma);
-    for (const auto& r : d.refits) md << format(" | %.4g | %.4g", r.analysis.regions[g].rms, r.analysis.regions[g].max_abs);
+    md << format("| %s | %.3g | %.3g", b.label.c_str(), b.rms_over_sigma, b.max_over_sigma);
+    for (const auto& r : d.refits)
+      md << format(" | %.3g | %.3g", r.analysis.regions[g].rms_over_sigma, r.analysis.regions[g].max_over_sigma);
     md << " |\n";
   }
   md << "\n## Screening (score test at the base optimum)\n\n| effect | score | p | share of residual SS |\n|---|---|---|---|\n";

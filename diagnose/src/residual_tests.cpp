@@ -213,6 +213,7 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
         }
         r.rms = std::sqrt(rss / (end - begin));
         r.rms_over_sigma = r.rms / s.sigma;
+        r.max_over_sigma = r.max_abs / s.sigma;
         a.regions.push_back(r);
       }
     }
@@ -222,6 +223,12 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
   if (a.points == 0) throw std::runtime_error("residual analysis: no residual points");
   a.rms = std::sqrt(ss / a.points);
   a.sigma = std::sqrt(sigma_ss / a.points);
+  double nss = 0.0;
+  for (double r : normalised) {
+    nss += r * r;
+    a.max_over_sigma = std::max(a.max_over_sigma, std::abs(r));
+  }
+  a.rms_over_sigma = std::sqrt(nss / a.points);
   a.runs = runs_test(normalised);
   a.autocorrelation = autocorrelation_test(normalised);
   a.variance = variance_test(normalised, 1.0, fitted_parameters, dof_noise);

@@ -33,6 +33,9 @@ DiagnoseOptions expensive_model_options() {
   o.fit.absolute_tolerance = 0.1;
   o.fit.relative_tolerance = 1e-5;
   o.fit.max_evaluations = 60;
+  // Re-fit every candidate scoring at least a quarter of the best: issue 15 measured an s = 4 drum
+  // whose three screening scores were within 25 % of each other and whose true effect ranked third.
+  o.refit_score_ratio = 0.25;
   return o;
 }
 
@@ -108,7 +111,8 @@ std::string summarise(const Diagnosis& d) {
   if (a.worst_region >= 0)
     where = "; largest misfit in " + a.regions[a.worst_region].label +
             format(" (RMS/sigma %.3g)", a.regions[a.worst_region].rms_over_sigma);
-  const std::string base_numbers = format("base fit RMS %.4g, max %.4g, noise sigma %.4g", a.rms, a.max_abs, a.sigma);
+  // Each target normalised by its own noise level before pooling (targets may differ in units).
+  const std::string base_numbers = format("base fit RMS/sigma %.3g, max/sigma %.3g", a.rms_over_sigma, a.max_over_sigma);
   switch (d.verdict) {
     case Verdict::no_missing_effect:
       return "No missing effect: the base residual is consistent with noise (" + tests_text(a) + "); " +
@@ -117,15 +121,17 @@ std::string summarise(const Diagnosis& d) {
       const CandidateFit& c = d.refits[d.chosen];
       return "Missing effect: '" + c.effect + "'" + format(" (delta BIC %.4g > %.3g, delta AICc %.4g). ", c.delta_bic, d.bic_threshold, c.delta_aicc) +
              "Residual before: " + tests_text(a) + where + ". After: " + tests_text(c.analysis) +
-             format(". RMS gap %.4g -> %.4g, max %.4g -> %.4g", a.rms, c.analysis.rms, a.max_abs, c.analysis.max_abs) +
-             format(" (noise sigma %.4g).", a.sigma);
+             format(". RMS/sigma %.3g -> %.3g, max/sigma %.3g -> %.3g (each target by its own noise level).",
+                    a.rms_over_sigma, c.analysis.rms_over_sigma, a.max_over_sigma, c.analysis.max_over_sigma);
     }
     case Verdict::ambiguous: {
       std::string names;
       for (int i : d.tied)
         names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" + format(" (delta BIC %.4g)", d.refits[i].delta_bic);
       return "Ambiguous: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers +
-             ". Each of " + names + format(" whitens it, with BICs within %.3g of each other", d.bic_threshold) +
+             ". Each of " + names +
+             format(" is favoured over the base by more than %.3g in BIC, and their BICs are within %.3g of each "
+                    "other", d.bic_threshold, d.bic_threshold) +
              ": these data cannot tell them apart; no effect is named (add a curve or case that separates them).";
     }
     case Verdict::unexplained_structural: {
@@ -133,7 +139,7 @@ std::string summarise(const Diagnosis& d) {
       if (!d.refits.empty()) {
         const auto it = std::max_element(d.refits.begin(), d.refits.end(),
                                          [](const auto& x, const auto& y) { return x.delta_bic < y.delta_bic; });
-        best = " Best candidate '" + it->effect + "'" + format(": delta BIC %.4g, RMS after %.4g", it->delta_bic, it->analysis.rms) +
+        best = " Best candidate '" + it->effect + "'" + format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
                (it->analysis.structural ? ", residual still structural (" + tests_text(it->analysis) + ")"
                                         : std::string(", below the criterion")) +
                ".";
@@ -245,23 +251,53 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
   return fitted;
 }
 
+}  // namespace
+
 // 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
-// another passing one is within the threshold (these data cannot tell them apart: name neither).
-void decide(Diagnosis& d, double bic_threshold) {
+// another plausible candidate fits about as well — its delta BIC also exceeds the threshold and is
+// within the threshold of the chosen one's (|delta BIC_a - delta BIC_b| <= threshold), whether or
+// not its residual passed the noise tests (a 148.0 vs 147.4 tie is no evidence for either; issue 15).
+void decide_verdict(Diagnosis& d, double bic_threshold) {
   for (std::size_t i = 0; i < d.refits.size(); ++i)
     if (d.refits[i].passes && (d.chosen < 0 || d.refits[i].delta_bic > d.refits[d.chosen].delta_bic))
       d.chosen = static_cast<int>(i);
   d.verdict = d.chosen >= 0 ? Verdict::effect_identified : Verdict::unexplained_structural;
   if (d.chosen < 0) return;
-  for (std::size_t i = 0; i < d.refits.size(); ++i)
-    if (d.refits[i].passes && d.refits[d.chosen].delta_bic - d.refits[i].delta_bic <= bic_threshold)
+  for (std::size_t i = 0; i < d.refits.size(); ++i) {
+    const bool plausible = d.refits[i].delta_bic > bic_threshold;
+    if (plausible && std::abs(d.refits[d.chosen].delta_bic - d.refits[i].delta_bic) <= bic_threshold)
       d.tied.push_back(static_cast<int>(i));
+  }
   if (d.tied.size() > 1) {
     d.verdict = Verdict::ambiguous;
     d.chosen = -1;
   } else {
     d.tied.clear();
   }
+}
+
+// Indices of the candidates to re-fit, best score first: every one scoring at least
+// options.refit_score_ratio x the best, and at least the options.refit_best highest.
+std::vector<int> refit_order(const std::vector<ScreeningScore>& screening, const DiagnoseOptions& options) {
+  std::vector<int> order(screening.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return screening[a].score > screening[b].score; });
+  if (order.empty()) return order;
+  const double best = screening[order.front()].score;
+  std::size_t keep = 0;
+  while (keep < order.size() && (static_cast<int>(keep) < options.refit_best ||
+                                 screening[order[keep]].score >= options.refit_score_ratio * best))
+    ++keep;
+  order.resize(keep);
+  return order;
+}
+
+namespace {
+
+void progress(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started, const std::string& what) {
+  if (!options.progress) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::fprintf(stderr, "demfit diagnose: %s (%.0f s so far)\n", what.c_str(), seconds);
 }
 
 }  // namespace
@@ -297,10 +333,14 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
   d.base_bic = bic(d.base.chi_square, k_base, context.points);
   d.base_aicc = aicc(d.base.chi_square, k_base, context.points);
+  progress(options, started, format("base fit done: %d evaluations, residual %s", d.base_evaluations,
+                                    d.base_analysis.structural ? "structural" : "noise"));
 
   // 3. Screening (always: it is cheap and the report shows it).
   d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step, options.fit,
                                   &d.screening_evaluations);
+  progress(options, started, format("screening of %zu candidates done: %d evaluations", candidates.size(),
+                                    d.screening_evaluations));
   auto finish = [&] {
     d.summary = summarise(d);
     d.evaluations = d.base_evaluations + d.screening_evaluations + d.refit_evaluations;
@@ -311,16 +351,14 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
     finish();
     return d;
   }
-  std::vector<int> order(candidates.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return d.screening[a].score > d.screening[b].score; });
-  // 3b. Re-identify the best few with their extra parameters.
-  for (int rank = 0; rank < std::min<int>(options.refit_best, static_cast<int>(order.size())); ++rank) {
+  // 3b. Re-identify every candidate that screened about as well as the best, with its extra parameters.
+  const std::vector<int> order = refit_order(d.screening, options);
+  for (std::size_t rank = 0; rank < order.size(); ++rank) {
+    progress(options, started, format("re-fit %zu/%zu: base + %s", rank + 1, order.size(), candidates[order[rank]].name.c_str()));
     CandidateFit f;
     if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f)) d.refits.push_back(std::move(f));
   }
-  decide(d, options.bic_threshold);
+  decide_verdict(d, options.bic_threshold);
   finish();
   return d;
 }

@@ -213,7 +213,9 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
                 : "NOT finished (report built from the runs stored so far)")
      << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
      << ", points per iteration: " << spec.points_per_iteration << "\n"
-     << "- strategy: " << (spec.strategy == SamplingStrategy::srsm ? "SRSM domain reduction" : "adaptive infill")
+     << "- strategy: " << (spec.strategy == SamplingStrategy::srsm ? "SRSM domain reduction"
+                          : spec.strategy == SamplingStrategy::adaptive_infill ? "adaptive infill"
+                                                                               : "batch expected improvement")
      << ", surrogate: RBF " << spec.basis << " ("
      << (spec.responses == ResponseMode::curve_points ? "one output per curve point" : "principal-component scores")
      << "), seed " << spec.seed << "\n";

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -27,6 +28,7 @@
 #include "demfit/rbf_surrogate/srsm.hpp"
 #include "atomic_file.hpp"
 #include "response_surrogate.hpp"
+#include "study_strategy.hpp"
 #include "study_support.hpp"
 
 namespace demfit::identify {
@@ -50,7 +52,8 @@ class StudyLoop {
         variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
         pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
         evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
-        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)) {}
+        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)),
+        ask_tell_(detail::make_study_strategy(spec)) {}
 
   StudyResult run();
 
@@ -80,6 +83,7 @@ class StudyLoop {
   ThreadPoolEvaluator pool_;
   Evaluator& evaluator_;
   StudyStore store_;
+  std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
   std::vector<Run> runs_;                 // successful runs, in (iteration, point) order
   std::vector<VectorXd> all_points_;      // every run (failed ones too), in order
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
@@ -154,8 +158,10 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
 
 void StudyLoop::collect(int iteration, const MatrixXd& points) {
   // Collect this batch in point order (independent of the order runs finished in).
+  VectorXd objectives(points.rows());
   for (int i = 0; i < points.rows(); ++i) {
     const EvaluationRecord* r = store_.find_evaluation(iteration, i);
+    objectives[i] = r->ok ? r->objective : std::numeric_limits<double>::quiet_NaN();
     ++total_runs_;
     all_points_.push_back(points.row(i).transpose());
     if (!r->ok) {
@@ -166,13 +172,14 @@ void StudyLoop::collect(int iteration, const MatrixXd& points) {
     Run run{iteration, i, points.row(i).transpose(), objective_.responses(r->curves), r->objective};
     runs_.push_back(std::move(run));
   }
+  if (ask_tell_) ask_tell_->tell(points, objectives);
   if (runs_.empty())
     throw std::runtime_error("every run failed (" + std::to_string(total_runs_) + " runs); first error: " +
                              first_error_ + "; fix the model settings or narrow the variable bounds");
 }
 
 Box StudyLoop::fit_box(const Box& region) const {
-  if (spec_.strategy == SamplingStrategy::adaptive_infill) return Box::unit(dims_);
+  if (spec_.strategy != SamplingStrategy::srsm) return Box::unit(dims_);
   // Twice the subregion, shifted inside the unit box: neighbours just outside the subregion
   // still shape the fit, far-away early runs do not spoil the conditioning.
   Box box{region.lower, region.upper};
@@ -296,8 +303,13 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   // Uncertainty at the best run (issue #4): Jacobian and simulation noise from a linear
   // regression of the evaluated residuals over the runs near the optimum (see uncertainty.hpp).
   {
-    const auto estimate = estimate_uncertainty_from_runs(uncertainty_sample(best, final_region), spec_.variables);
+    const RunSample sample = uncertainty_sample(best, final_region);
+    const auto estimate = estimate_uncertainty_from_runs(sample, spec_.variables);
     uncertainty = detail::uncertainty_json(spec_, estimate);
+    std::string posterior_warning;  // issue 15: marginal intervals that stay right with poorly pinned parameters
+    uncertainty["posterior"] = detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
+    if (options_.progress && !posterior_warning.empty())
+      std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
       result.ci_half_width[name] = estimate.ci_half_width[j];
@@ -337,7 +349,8 @@ MatrixXd StudyLoop::design(int iteration, const Box& region, const VectorXd& pre
     kinds[0] = "initial";
   } else {  // the previous predicted optimum plus space-filling / infill points
     points.row(0) = previous_optimum.transpose();
-    points.bottomRows(P - 1) = infill(previous_optimum, P - 1, region, seed, iteration);
+    points.bottomRows(P - 1) = ask_tell_ ? ask_tell_->ask(P - 1, previous_optimum.transpose(), seed)
+                                         : infill(previous_optimum, P - 1, region, seed, iteration);
     kinds[0] = "optimum";
   }
   return points;

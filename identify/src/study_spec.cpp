@@ -211,7 +211,8 @@ void parse_sampling(JsonReader in, StudySpec& spec) {
   const std::string strategy = in.text_or("strategy", "srsm");
   if (strategy == "srsm") spec.strategy = SamplingStrategy::srsm;
   else if (strategy == "adaptive_infill") spec.strategy = SamplingStrategy::adaptive_infill;
-  else in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\" or \"adaptive_infill\"");
+  else if (strategy == "expected_improvement") spec.strategy = SamplingStrategy::expected_improvement;
+  else in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\", \"adaptive_infill\" or \"expected_improvement\"");
   in.finish();
   if (spec.points_per_iteration < 0) in.fail("points_per_iteration", "must be >= 0 (0 = default 1.5(n+1)+1)");
   // Each point is one simulation run; a huge design is a typo (10^9 once ended in std::bad_alloc).
@@ -365,7 +366,7 @@ nlohmann::json to_json(const StudySpec& spec) {
     }
   }
   json["sampling"] = {{"points_per_iteration", spec.points_per_iteration},
-                      {"strategy", spec.strategy == SamplingStrategy::srsm ? "srsm" : "adaptive_infill"}};
+                      {"strategy", strategy_name(spec.strategy)}};
   json["domain_reduction"] = {{"gamma_pan", spec.gamma_pan}, {"gamma_osc", spec.gamma_osc}, {"eta", spec.eta}};
   json["surrogate"] = {{"basis", spec.basis},
                        {"responses", spec.responses == ResponseMode::curve_points ? "curve_points" : "principal_components"},

@@ -5,8 +5,6 @@
 #include <limits>
 
 namespace demfit::identify {
-namespace {
-
 // Inverse of the standard normal CDF (Acklam's rational approximation, |rel. error| < 1.2e-9).
 double normal_quantile(double p) {
   static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
@@ -28,8 +26,6 @@ double normal_quantile(double p) {
   return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
          (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
 }
-
-}  // namespace
 
 double student_t_quantile(double p, int dof) {
   const double z = normal_quantile(p);

@@ -30,6 +30,8 @@ struct Acquisition {
     double operator()(const VectorXd& x) const {
         for (const auto& c : options->excluded_centres)
             if ((x - c).norm() < options->excluded_radius) return kLogFloor;
+        for (const auto& c : options->failed_points)
+            if ((x - c).norm() < options->failed_radius) return kLogFloor;
         if (!std::isfinite(best)) return std::log(std::max(model->standard_deviation(x), 1e-300));
         double m = 0.0, s = 0.0;
         model->predict(x, m, s);

@@ -63,6 +63,7 @@ struct Scenario {
   std::vector<std::string> curves;  // measured curves (targets)
   std::uint64_t seed = 1;           // noise seed; target k uses seed + k (`simulate --noise` numbers all written curves in name order)
   double noise = kNoise;            // relative noise level
+  bool noise_given = false;         // diagnose with the true noise level (as `--noise`) instead of estimating it
 };
 
 Scenario pellet_scenario(const std::string& label, const identify::ParameterSet& hidden, std::uint64_t seed) {
@@ -141,6 +142,7 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
   }
   DiagnoseOptions options = expensive_model_options();
   options.fit.jobs = 2;
+  if (s.noise_given) options.noise_sigma = out.sigma.front();  // single-target scenarios only
   if (const char* starts = std::getenv("DEMFIT_DIAGNOSE_REFIT_STARTS")) options.refit_starts = std::atoi(starts);
   out.diagnosis = run_diagnosis(study, *model, candidates, options);
   // The figures of the closing note.
@@ -236,4 +238,37 @@ TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the
   check_named(o, "wall_friction");
   const Diagnosis& d = o.diagnosis;
   CHECK(d.refits[d.chosen].fit.parameters.at("wall_frics") == Approx(0.2).margin(0.04));
+}
+
+// Issue 15: an s = 4 drum with hidden particle rolling friction was named "hertz_stiffness" on one
+// noise seed (screening scores within 25 %, rolling resistance ranked third and never re-fitted)
+// and named on a 148.0 vs 147.4 tie on another. Over 5 noise seeds the verdict must be the right
+// name or "ambiguous" — never another effect. The true noise level is given (as `--noise`): with
+// the estimated one (difference-based: 0.99-1.22 against the true 0.46-0.47 on this 31-point free
+// surface) the base residual passed as noise on all 5 seeds, for FRICR 0.15 and (2 seeds) 0.25, so
+// the naming logic was never reached. ~100 s per seed on 2 cores, more with the re-fits.
+// Measured 2026-12-01 with the noise given (FRICR 0.15, seeds 31-35): "unexplained structural
+// residual" on all 5 (never misnamed, but the issue's target is missed): 2-5 candidates re-fitted
+// per seed, rolling_resistance delta BIC 58-137 but RMS/sigma_true 1.8-2.3 and a structural
+// residual, so it does not pass; wall_friction fits about as well or better on seeds 32-34
+// (delta BIC 182 vs 137, 60.6 vs 58.0, 126 vs 133), also structural. 192-416 s per seed.
+TEST_CASE("A hidden rolling friction in an s = 4 drum is named or called ambiguous on every noise seed, never misnamed",
+          "[slow][drum]") {
+  for (std::uint64_t seed = 31; seed <= 35; ++seed) {
+    Scenario s = drum_scenario("drum, hidden rolling friction, seed " + std::to_string(seed), {{"fricr", 0.15}}, seed);
+    s.variables = {{"frics", 0.1, 0.8, 0.5, false, 1.0}};  // rolling friction is the hidden effect, not a base variable
+    s.truth["fricr"] = 0.15;
+    s.noise_given = true;
+    const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
+    const Diagnosis& d = o.diagnosis;
+    INFO("seed " << seed << ": " << d.summary);
+    const bool right_name = d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
+    CHECK_FALSE((d.verdict == Verdict::effect_identified && !right_name));  // never another effect
+    CHECK((right_name || d.verdict == Verdict::ambiguous));                 // the issue's target
+    if (d.verdict == Verdict::ambiguous) {
+      bool listed = false;
+      for (int i : d.tied) listed = listed || d.refits[i].effect == "rolling_resistance";
+      CHECK(listed);  // ambiguous between the true effect and another, not between two wrong ones
+    }
+  }
 }

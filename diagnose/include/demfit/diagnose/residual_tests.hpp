@@ -69,7 +69,7 @@ struct RegionStats {
   std::string label;      // e.g. "response: x 0..0.33 (first third)"
   int begin = 0, end = 0; // index range in the residual vector [begin, end)
   double rms = 0.0, max_abs = 0.0;
-  double rms_over_sigma = 0.0;
+  double rms_over_sigma = 0.0, max_over_sigma = 0.0;   // by the noise level of the region's target
   double x_at_max = 0.0;
 };
 
@@ -77,7 +77,10 @@ struct ResidualAnalysis {
   double sigma = 0.0;             // noise level used (estimated or given), per-point units
   int points = 0;
   int fitted_parameters = 0;
-  double rms = 0.0, max_abs = 0.0;
+  double rms = 0.0, max_abs = 0.0;   // pooled in y units: meaningful for one target only
+  // Every target normalised by its own noise level (r_i / sigma_target), then pooled: the columns
+  // reported for several targets with different units (issue 15).
+  double rms_over_sigma = 0.0, max_over_sigma = 0.0;
   RunsTest runs;
   AutocorrelationTest autocorrelation;
   VarianceTest variance;

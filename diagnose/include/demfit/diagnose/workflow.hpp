@@ -25,7 +25,14 @@ struct DiagnoseOptions {
   // Base fits: study initial values, then (only if that fit ends on a bound of some variable)
   // v_lo + (v_hi - v_lo) i / base_starts, i = 1 .. base_starts - 1.
   int base_starts = 2;
-  int refit_best = 2;            // candidates re-identified after screening
+  // Candidates re-identified after screening: every one whose score is at least
+  // refit_score_ratio x the best score (0: all of them, the default for cheap models), and at least
+  // the refit_best highest. Issue 15: with DEM trajectory noise the screening scores of different
+  // effects come within 25 % of each other, so the ranking alone must not decide which are compared.
+  int refit_best = 2;
+  double refit_score_ratio = 0.0;
+  // Progress lines on stderr (base fit, screening, each re-fit with its evaluations and seconds).
+  bool progress = false;
   // Local fits per re-identified candidate (1..3). The first starts at the base optimum with the
   // score test's estimate and the base/screening Jacobian (no new finite differences); the others
   // (study initial values + estimate, + mid-range effect) run only if the first does not pass.
@@ -48,7 +55,10 @@ enum class Verdict {
   no_missing_effect,       // base residual is noise
   effect_identified,       // one candidate passes the criterion and whitens the residual
   unexplained_structural,  // structure, and no candidate explains it
-  ambiguous,               // several candidates explain it equally well (delta BIC within the threshold)
+  // Another plausible candidate fits about as well: its delta BIC also exceeds the threshold (the
+  // criterion favours it over the base) and is within the threshold of the best one's, whether or
+  // not its residual passed the noise tests.
+  ambiguous,
 };
 const char* verdict_text(Verdict verdict);
 
@@ -87,6 +97,15 @@ struct Diagnosis {
 // residual r): BIC = |r|^2 + k ln n, AICc = |r|^2 + 2k + 2k(k+1)/(n-k-1).
 double bic(double chi_square, int parameters, int points);
 double aicc(double chi_square, int parameters, int points);
+
+// Candidates to re-fit (indices into `screening`), best score first: every one scoring at least
+// options.refit_score_ratio x the best, and at least the options.refit_best highest.
+std::vector<int> refit_order(const std::vector<ScreeningScore>& screening, const DiagnoseOptions& options);
+
+// Sets verdict/chosen/tied from d.refits: the passing re-fit with the largest delta BIC is named
+// unless another plausible one (delta BIC > threshold, residual tests passed or not) has a delta
+// BIC within the threshold of it: then "ambiguous" and nothing is named.
+void decide_verdict(Diagnosis& d, double bic_threshold);
 
 // Runs the workflow on the study's variables (bounds, initial values), fixed parameters and mse
 // targets. Throws std::runtime_error (one line) on a curve_mapping target, a candidate parameter

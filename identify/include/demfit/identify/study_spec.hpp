@@ -76,7 +76,11 @@ struct ExperimentSpec {
 enum class SamplingStrategy {
   srsm,             // SPEC 3 domain reduction: optimum + maximin points in the subregion
   adaptive_infill,  // full region; optimum + infill points chosen from the objective model
+  expected_improvement,  // full region; optimum + batch expected improvement on the composite objective
 };
+
+// "srsm", "adaptive_infill" or "expected_improvement" (the study-file spelling).
+const char* strategy_name(SamplingStrategy strategy);
 
 enum class ResponseMode {
   curve_points,         // one RBF output per resampled curve value (shared factorisation)

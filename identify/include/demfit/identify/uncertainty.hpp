@@ -26,6 +26,8 @@
 //      Such a variable gets an unbounded interval ("anywhere in its bounds"); the others' J^T J is
 //      taken without it (intervals conditional on it) and debiased for the slopes' own noise:
 //      J^T J = B^T B - N sigma_fit^2 (X^T X)^-1 (slope block), the expected excess of B^T B.
+#include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -73,6 +75,51 @@ struct RunSample {
 // every variable is reported unidentifiable with an infinite interval.
 UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, const std::vector<VariableSpec>& variables,
                                                    double confidence = 0.95);
+
+// Inverse of the standard normal CDF (Acklam's rational approximation, |rel. error| < 1.2e-9).
+double normal_quantile(double p);
+
+// ---- Posterior sampling on the local surrogate (issue 15 item 3) ----
+// Intervals that stay right when another parameter is poorly pinned. The residual vector is
+// regressed on the unit coordinates over the runs near the optimum, r(u) ≈ b0 + J (u − u_best)
+// (the local linear surrogate of the residuals; its regression residuals E measure the simulation
+// noise). Likelihood of the measured curve: r(u) ~ N(0, Σ), Σ = Σ_sim + σ_w² I with
+//   Σ_sim = (1 − λ) EᵀE/(m − n − 1) + λ tr(·)/N I   (λ = 0.2: shrinkage of a rank-deficient
+//                                                      covariance, Ledoit & Wolf 2004)
+//   σ_w² = max(0, SSR_min/(N − n) − tr Σ_sim/N)        (what the best fit leaves beyond the
+//                                                      simulation noise: data noise)
+// i.e. correlated (smooth, DEM trajectory-like) noise is weighted as such instead of as N
+// independent points. Prior uniform on the variable bounds (unit box). The posterior is a normal
+// truncated to the box; it is sampled by Gibbs sampling (exact univariate truncated-normal
+// conditionals), so a weak parameter spreads over its bounds and a parameter correlated with it
+// gets the marginal (not conditional) interval. Reported: posterior median, equal-tailed
+// `confidence` interval of every marginal, the correlation of the draws.
+struct PosteriorOptions {
+  int draws = 20000;
+  int burn_in = 1000;
+  std::uint64_t seed = 1;
+  double confidence = 0.95;
+  double shrinkage = 0.2;
+};
+
+struct PosteriorEstimate {
+  std::vector<double> median, lower, upper;   // physical units, per variable
+  Eigen::MatrixXd correlation;                // of the draws
+  Eigen::MatrixXd draws;                      // up to 2000 kept draws (physical units), for the pair plot
+  std::vector<bool> unidentifiable;           // interval wider than half the bounds
+  double simulation_noise_variance = 0.0;     // tr Σ_sim / N
+  double data_noise_variance = 0.0;           // σ_w²
+  int runs_used = 0;
+};
+
+// Needs m >= n + 3 runs; throws std::invalid_argument otherwise.
+PosteriorEstimate sample_posterior_from_runs(const RunSample& sample, const std::vector<VariableSpec>& variables,
+                                             const PosteriorOptions& options = {});
+
+// Pair plot of the draws (marginal histograms on the diagonal, scatter below) as a PNG through
+// gnuplot. Returns an empty string on success, else why no plot was written.
+std::string write_posterior_pair_plot(const PosteriorEstimate& estimate, const std::vector<VariableSpec>& variables,
+                                      const std::filesystem::path& png);
 
 // Two-sided Student-t quantile t_{p, dof} (Cornish-Fisher expansion around the normal quantile;
 // relative error < 1e-3 for dof >= 3).

@@ -21,6 +21,11 @@ struct AcquisitionOptions {
     // Points closer than excluded_radius to one of excluded_centres are never proposed.
     std::vector<VectorXd> excluded_centres;
     double excluded_radius = 0.0;
+    // Failed runs (no value, so invisible to the model): no point closer than failed_radius to one
+    // of them is proposed (the EI strategy sets them; a failure region is otherwise explored as
+    // "uncertain" again and again).
+    std::vector<VectorXd> failed_points;
+    double failed_radius = 0.0;
 };
 
 struct AcquisitionResult {

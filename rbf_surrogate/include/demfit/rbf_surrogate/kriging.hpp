@@ -48,6 +48,7 @@ public:
     void predict(const VectorXd& x, double& mean, double& standard_deviation) const;
 
     const VectorXd& length_scales() const { return length_; }
+    KrigingKernel kernel() const { return kernel_; }
     double nugget() const { return nugget_; }                 // relative to the process variance
     double process_variance() const { return sigma2_ * y_scale_ * y_scale_; }
     // Concentrated −log L of the values as given (normalisation Jacobian n·log(scale) included,
