@@ -172,6 +172,9 @@ std::vector<SurfaceError> run_anchor(const identify::StudySpec& spec, const Gran
   identify::CurveSet curves;
   for (const auto& experiment : spec.experiments) {
     nlohmann::json overrides = experiment.model_overrides;
+    // s = 1 with the case's own time step (the source's 1e-5 s): a study's larger coarse-grained
+    // step would exceed the stable limit of the original particles.
+    if (overrides.is_object()) overrides.erase("time_step");
     overrides.merge_patch({{"drum", {{"scale_factor", 1.0}}}});
     overrides.merge_patch(options.anchor_overrides);
     const CaseSpec anchor_case = resolve_case(experiment.model_reference, overrides, spec.base_dir);

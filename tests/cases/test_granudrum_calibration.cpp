@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "demfit/cases/model_factory.hpp"
@@ -102,4 +103,47 @@ TEST_CASE("The granudrum report writes side-by-side and overlay pictures per spe
   CHECK(text.find("| frics | 0.6 | 0.05 |") != std::string::npos);
   CHECK(text.find("7 evaluations") != std::string::npos);
   CHECK(text.find("granudrum_rpm45_overlay.png") != std::string::npos);
+}
+
+namespace {
+
+// A tiny GranuDrum (s = 5: ~230 particles, 0.15 s of rotation) for the code paths that run DEM.
+nlohmann::json tiny_drum(double rpm) {
+  return {{"drum", {{"rpm", rpm}, {"scale_factor", 5.0}, {"duration", 0.15}, {"surface_window", 0.05},
+                    {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
+}
+
+// The shipped study with the tiny drum, 3 points per iteration and one iteration, written beside the
+// scratch folder with absolute paths to the case and photos.
+fs::path tiny_study(const fs::path& dir) {
+  nlohmann::json study = nlohmann::json::parse(std::ifstream(kSource / "cases" / "granudrum_calibration_quick.json"));
+  for (auto& e : study["experiments"]) {
+    const double rpm = e["model"]["overrides"]["drum"]["rpm"];
+    e["model"]["case"] = (kSource / "cases" / "granudrum_mcc.json").string();
+    e["model"]["overrides"] = tiny_drum(rpm);
+    for (auto& t : e["targets"]) t["image"] = (kSource / "cases" / t["image"].get<std::string>()).lexically_normal().string();
+  }
+  study["sampling"]["points_per_iteration"] = 3;
+  study["stopping"]["max_iterations"] = 1;
+  std::ofstream(dir / "tiny_study.json") << study.dump(1);
+  return dir / "tiny_study.json";
+}
+
+}  // namespace
+
+TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and writes its report", "[granudrum][slow]") {
+  const fs::path dir = scratch("tiny");
+  ::setenv("DEMFIT_CACHE_DIR", (fs::path(DEMFIT_BINARY_DIR) / "test_cache").c_str(), 1);
+  cases::GranudrumOptions options;
+  options.base.out_dir = dir / "out";
+  options.base.jobs = 2;
+  options.study_file = tiny_study(dir);
+  options.anchor = true;
+  options.anchor_overrides = {{"drum", {{"scale_factor", 5.0}, {"duration", 0.15}, {"surface_window", 0.05},
+                                        {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
+  const std::string text = cases::reproduce_granudrum(options);
+  for (const char* f : {"granudrum.md", "granudrum_rpm15_side_by_side.png", "granudrum_rpm45_overlay.png", "study/study.db"})
+    CHECK(fs::exists(options.base.out_dir / f));
+  CHECK(text.find("source's parameters at s = 1") != std::string::npos);
+  CHECK(text.find("| rpm45.surface | ") != std::string::npos);
 }
