@@ -208,7 +208,9 @@ void register_diagnose(CLI::App& app) {
       "for pellet_compression / rotary_drum studies the effects of the cases catalogue that apply to the case (plasticity, "
       "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is left "
       "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of each "
-      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch).");
+      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch; "
+      "profile_area targets are fitted as mse at their points). A study with \"experiments\" is diagnosed as one model over all "
+      "experiments, with the union of their candidates.");
   cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all that apply to the model or case)");
   cmd->add_option("--noise", o->noise,
