@@ -33,6 +33,16 @@ struct DiagnoseCliOptions {
   bool no_plots = false;
 };
 
+// Whether a catalogue parameter exists under the case's contact law. The catalogue's effects are
+// those of the LS-DYNA law; a Hertz–Mindlin case refuses every parameter but its own (the list of
+// cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
+bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& parameter) {
+  if (case_spec.law != dem_core::ContactLawKind::hertz_mindlin) return true;
+  for (const char* name : {"frics", "fricr", "restitution", "wall_frics", "wall_fricd"})
+    if (parameter == name) return true;
+  return false;
+}
+
 // The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
 // to a case. An effect is left out, with a note, when one of its parameters is a study variable
 // or already differs from its off value in the model (`values`: the effect is then part of the
@@ -49,6 +59,8 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& cas
     std::string reason;
     for (const auto& p : effect.parameters) {
       c.parameters.push_back({p.name, p.lower, p.upper, p.off_value});
+      if (!exists_under_law(case_spec, p.name))
+        reason = "'" + p.name + "' does not exist under the case's contact law " + cases::to_string(case_spec.law);
       for (const auto& v : variables)
         if (v.name == p.name) reason = "'" + p.name + "' is a study variable";
       const auto found = values.find(p.name);
