@@ -113,14 +113,15 @@ nlohmann::json tiny_drum(double rpm) {
                     {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
 }
 
-// The shipped study with the tiny drum, 3 points per iteration and one iteration, written beside the
-// scratch folder with absolute paths to the case and photos.
+// The shipped quick study with the tiny drum, 3 points per iteration and one iteration, written
+// into the scratch folder with absolute paths to the case and photos. Its coarse-grained time step
+// stays, so the anchor must drop it (a larger step than the original particles allow).
 fs::path tiny_study(const fs::path& dir) {
   nlohmann::json study = nlohmann::json::parse(std::ifstream(kSource / "cases" / "granudrum_calibration_quick.json"));
   for (auto& e : study["experiments"]) {
     const double rpm = e["model"]["overrides"]["drum"]["rpm"];
     e["model"]["case"] = (kSource / "cases" / "granudrum_mcc.json").string();
-    e["model"]["overrides"] = tiny_drum(rpm);
+    e["model"]["overrides"].merge_patch(tiny_drum(rpm));  // keeps the study's time step (4e-5 s)
     for (auto& t : e["targets"]) t["image"] = (kSource / "cases" / t["image"].get<std::string>()).lexically_normal().string();
   }
   study["sampling"]["points_per_iteration"] = 3;
