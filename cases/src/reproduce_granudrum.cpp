@@ -4,6 +4,7 @@
 // runs and wall time, and the surface errors per speed (RMS gap in mm, differing area in mm^2).
 #include "demfit/cases/reproduce_granudrum.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -48,7 +49,8 @@ const identify::Curve& curve_for(const identify::CurveSet& curves, const identif
 std::string experiment_of(const identify::TargetSpec& t) { return t.experiment.empty() ? t.name : t.experiment; }
 
 // The simulated bed as a picture: light background, the material below the simulated surface
-// (inside the compared circle and the surface's x-range) dark, the compared circle outlined.
+// (inside the compared circle; the surface's end heights held beyond its ends) dark, the compared
+// circle outlined.
 imaging::RgbImage simulated_bed(int pixels, const imaging::DrumFrame& frame, const imaging::SurfaceProfile& sim) {
   imaging::RgbImage image{pixels, pixels, std::vector<std::uint8_t>(3 * pixels * pixels, 235)};
   const double r2 = sim.compared_radius * sim.compared_radius;
@@ -56,10 +58,11 @@ imaging::RgbImage simulated_bed(int pixels, const imaging::DrumFrame& frame, con
     const double z = imaging::pixel_z(row, pixels, frame.diameter);
     for (int col = 0; col < pixels; ++col) {
       const double x = imaging::pixel_x(col, pixels, frame.diameter);
-      if (x * x + z * z > r2 || x < sim.x.front() || x > sim.x.back()) continue;
+      if (x * x + z * z > r2) continue;
       std::size_t k = 1;
       while (k + 1 < sim.x.size() && sim.x[k] < x) ++k;
-      const double t = (x - sim.x[k - 1]) / std::max(1e-12, sim.x[k] - sim.x[k - 1]);
+      // Beyond the profile's ends its end heights are held (as the metrics do).
+      const double t = std::clamp((x - sim.x[k - 1]) / std::max(1e-12, sim.x[k] - sim.x[k - 1]), 0.0, 1.0);
       if (z > sim.z[k - 1] + t * (sim.z[k] - sim.z[k - 1])) continue;
       std::fill_n(image.rgb.begin() + 3 * (static_cast<std::size_t>(row) * pixels + col), 3, std::uint8_t{70});
     }
