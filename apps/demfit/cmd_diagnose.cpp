@@ -1,5 +1,6 @@
 // demfit diagnose: is the misfit of an identified model noise, or a missing physical effect?
 // (issue #6; workflow in diagnose/include/demfit/diagnose/workflow.hpp, docs/diagnose.md)
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "demfit/diagnose/effect.hpp"
 #include "demfit/diagnose/report.hpp"
 #include "demfit/diagnose/workflow.hpp"
+#include "demfit/identify/experiments.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::apps {
@@ -34,20 +36,35 @@ struct DiagnoseCliOptions {
   bool no_plots = false;
 };
 
+// Whether a catalogue parameter exists under the case's contact law. The catalogue's effects are
+// those of the LS-DYNA law; a Hertz–Mindlin case refuses every parameter but its own (the list of
+// cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
+bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& parameter) {
+  if (case_spec.law != dem_core::ContactLawKind::hertz_mindlin) return true;
+  for (const char* name : {"frics", "fricr", "restitution", "wall_frics", "wall_fricd"})
+    if (parameter == name) return true;
+  return false;
+}
+
 // The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
-// to the study's case. An effect is left out, with a note, when one of its parameters is a study
-// variable or already differs from its off value in the model (the effect is then part of the
-// base model, not a candidate).
-std::vector<diagnose::EffectCandidate> dem_candidates(const identify::StudySpec& spec, const identify::Model& model) {
-  identify::ParameterSet values = model.default_parameters();
-  for (const auto& [name, value] : spec.fixed_parameters) values[name] = value;
+// to a case. An effect is left out, with a note, when one of its parameters is a study variable
+// or already differs from its off value in the model (`values`: the effect is then part of the
+// base model, not a candidate). `experiment` non-empty: the effect's curves are qualified
+// "<experiment>/<curve>" as an experiments study keys them.
+std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& case_spec, const identify::ParameterSet& values,
+                                                      const std::vector<identify::VariableSpec>& variables,
+                                                      const std::string& experiment) {
   std::vector<diagnose::EffectCandidate> out;
-  for (const auto& effect : cases::effects_for_case(cases::resolve_case(spec.model_reference, spec.model_overrides, spec.base_dir))) {
+  for (const auto& effect : cases::effects_for_case(case_spec)) {
     diagnose::EffectCandidate c{effect.name, effect.description, {}, effect.curves};
+    if (!experiment.empty())
+      for (auto& curve : c.curves) curve = experiment + "/" + curve;
     std::string reason;
     for (const auto& p : effect.parameters) {
       c.parameters.push_back({p.name, p.lower, p.upper, p.off_value});
-      for (const auto& v : spec.variables)
+      if (!exists_under_law(case_spec, p.name))
+        reason = "'" + p.name + "' does not exist under the case's contact law " + cases::to_string(case_spec.law);
+      for (const auto& v : variables)
         if (v.name == p.name) reason = "'" + p.name + "' is a study variable";
       const auto found = values.find(p.name);
       if (reason.empty() && found != values.end() && found->second != p.off_value)
@@ -57,31 +74,111 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const identify::StudySpec&
     if (reason.empty()) {
       out.push_back(std::move(c));
     } else {
-      std::fprintf(stderr, "demfit: note: effect '%s' is not a candidate: %s\n", effect.name.c_str(), reason.c_str());
+      std::fprintf(stderr, "demfit: note: effect '%s'%s is not a candidate: %s\n", effect.name.c_str(),
+                   experiment.empty() ? "" : (" of experiment '" + experiment + "'").c_str(), reason.c_str());
     }
   }
   return out;
 }
 
-// The model and its candidate effects. "analytic" gets the analytic family with effect terms
-// (same base curve as identify's analytic model); DEM cases get the cases catalogue's effects
-// and the options for expensive, chaotic models.
-std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
-                                                      std::vector<diagnose::EffectCandidate>& candidates) {
-  if (spec.model_reference == "analytic") {
+// Adds one experiment's candidates to the union over experiments: an effect that applies to
+// several experiments is one candidate (its parameter is shared, as the study's variables are)
+// acting on all their curves, with the narrowest upper bound any experiment gives it.
+void merge_candidates(std::vector<diagnose::EffectCandidate>& into, std::vector<diagnose::EffectCandidate> more) {
+  for (auto& c : more) {
+    auto same = std::find_if(into.begin(), into.end(), [&](const auto& o) { return o.name == c.name; });
+    if (same == into.end()) {
+      into.push_back(std::move(c));
+      continue;
+    }
+    const bool all_curves = same->curves.empty() || c.curves.empty();
+    same->curves.insert(same->curves.end(), c.curves.begin(), c.curves.end());
+    if (all_curves) same->curves.clear();
+    for (std::size_t k = 0; k < same->parameters.size() && k < c.parameters.size(); ++k)
+      same->parameters[k].upper = std::min(same->parameters[k].upper, c.parameters[k].upper);
+  }
+}
+
+// diagnose fits least squares at the target points, so an image target's profile_area metric is
+// read as mse at the photo's abscissae (the same profile z(x); docs/study_format.md allows both).
+identify::StudySpec with_pointwise_metrics(identify::StudySpec spec) {
+  for (auto& t : spec.targets) {
+    if (t.metric != identify::CurveMetric::profile_area) continue;
+    t.metric = identify::CurveMetric::mse;
+    std::fprintf(stderr, "demfit: note: target '%s': profile_area is fitted as mse at the target's points\n", t.name.c_str());
+  }
+  return spec;
+}
+
+// One model and its candidate effects. "analytic" gets the analytic family with effect terms
+// (same base curve as identify's analytic model); DEM cases get the cases catalogue's effects.
+// `experiment` non-empty: curves are qualified "<experiment>/<curve>".
+std::unique_ptr<identify::Model> one_model(const std::string& reference, const nlohmann::json& overrides,
+                                           const identify::ParameterSet& fixed, const identify::StudySpec& spec,
+                                           const std::string& experiment,
+                                           std::vector<diagnose::EffectCandidate>& candidates) {
+  if (reference == "analytic") {
     int points = 41;
-    for (const auto& [key, value] : spec.model_overrides.items()) {
+    for (const auto& [key, value] : overrides.items()) {
       if (key != "points" || !value.is_number_integer() || value.get<int>() < 3)
         throw std::runtime_error("study: model.overrides: '" + key +
                                  "' is not understood by diagnose for \"analytic\"; only \"points\" (integer >= 3)");
       points = value.get<int>();
     }
     candidates = diagnose::analytic_effect_candidates();
+    if (!experiment.empty())
+      for (auto& c : candidates)
+        for (auto& curve : c.curves) curve = experiment + "/" + curve;
     return std::make_unique<diagnose::AnalyticEffectsModel>(points);
   }
-  auto model = cases::make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-  candidates = dem_candidates(spec, *model);
+  auto model = cases::make_model(reference, overrides, spec.base_dir);
+  identify::ParameterSet values = model->default_parameters();
+  for (const auto& [name, value] : fixed) values[name] = value;
+  candidates = dem_candidates(cases::resolve_case(reference, overrides, spec.base_dir), values, spec.variables, experiment);
   return model;
+}
+
+// An experiments study as one plain Model whose evaluate() runs all experiments of a point in turn.
+// diagnose evaluates through identify::Evaluator::evaluate_batch, which sends whole parameter sets
+// to experiment 0 only when it is handed an ExperimentSetModel itself (that path splits points
+// into experiment jobs only in the study loop, via PointJobs); hiding the set keeps every
+// evaluation complete. Points still run in parallel over --jobs.
+class WholePointModel final : public identify::Model {
+ public:
+  explicit WholePointModel(std::unique_ptr<identify::Model> set) : set_(std::move(set)) {}
+  std::vector<std::string> parameter_names() const override { return set_->parameter_names(); }
+  identify::ParameterSet default_parameters() const override { return set_->default_parameters(); }
+  identify::CurveSet evaluate(const identify::ParameterSet& parameters,
+                              const identify::EvaluationContext& context) const override {
+    return set_->evaluate(parameters, context);
+  }
+
+ private:
+  std::unique_ptr<identify::Model> set_;
+};
+
+// The study's model and its candidate effects. An experiments study (e.g. the GranuDrum at 15
+// and 45 rpm) gets identify's ExperimentSetModel over one model per experiment and the union
+// of their candidates.
+std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
+                                                      std::vector<diagnose::EffectCandidate>& candidates) {
+  if (spec.experiments.empty())
+    return one_model(spec.model_reference, spec.model_overrides, spec.fixed_parameters, spec, "", candidates);
+  std::vector<std::unique_ptr<identify::Model>> models;
+  for (const auto& e : spec.experiments) {
+    std::vector<diagnose::EffectCandidate> own;
+    models.push_back(one_model(e.model_reference, e.model_overrides, e.fixed_parameters, spec, e.name, own));
+    merge_candidates(candidates, std::move(own));
+  }
+  return std::make_unique<WholePointModel>(std::make_unique<identify::ExperimentSetModel>(spec, std::move(models)));
+}
+
+// Expensive, chaotic DEM models get diagnose's options for them; the analytic model does not.
+bool uses_dem(const identify::StudySpec& spec) {
+  if (spec.experiments.empty()) return spec.model_reference != "analytic";
+  for (const auto& e : spec.experiments)
+    if (e.model_reference != "analytic") return true;
+  return false;
 }
 
 void run_diagnose(const DiagnoseCliOptions& o) {
@@ -92,7 +189,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.noise < 0.0) throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
   if (!(o.alpha > 0.0 && o.alpha < 1.0)) throw std::runtime_error("--alpha: must be in (0, 1), e.g. 0.01");
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
-  const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  const identify::StudySpec spec = with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
                     : std::filesystem::path(o.out);
@@ -100,7 +197,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   identify::check_output_folder(out, study_inputs(spec, o.study_file), "--out");
   std::vector<diagnose::EffectCandidate> candidates;
   const auto model = model_and_candidates(spec, candidates);
-  const bool dem = spec.model_reference != "analytic";
+  const bool dem = uses_dem(spec);
   if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
   diagnose::DiagnoseOptions options = dem ? diagnose::expensive_model_options() : diagnose::DiagnoseOptions{};
   options.noise_sigma = o.noise;
@@ -136,7 +233,9 @@ void register_diagnose(CLI::App& app) {
       "for pellet_compression / rotary_drum studies the effects of the cases catalogue that apply to the case (plasticity, "
       "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is left "
       "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of each "
-      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch).");
+      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch; "
+      "profile_area targets are fitted as mse at their points). A study with \"experiments\" is diagnosed as one model over all "
+      "experiments, with the union of their candidates.");
   cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all that apply to the model or case)");
   cmd->add_option("--noise", o->noise,

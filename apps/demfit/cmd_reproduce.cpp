@@ -12,6 +12,7 @@
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/progress.hpp"
 #include "demfit/cases/reproduce.hpp"
+#include "demfit/cases/reproduce_granudrum.hpp"
 
 #ifndef DEMFIT_DEFAULT_SOURCE_DIR
 #define DEMFIT_DEFAULT_SOURCE_DIR ""
@@ -27,6 +28,7 @@ struct ReproduceArgs {
   int threads = 1;
   bool quick = false;
   bool resume = false;
+  bool anchor = false;  // granudrum: also the source's parameters at s = 1
 };
 
 // The shipped data folder: --data, else ./data, else <executable>/../../data (build tree).
@@ -47,6 +49,7 @@ cases::ReproduceOptions options_of(const ReproduceArgs& a) {
   cases::ReproduceOptions o;
   o.out_dir = a.out;
   o.data_dir = find_data_dir(a);
+  o.cases_dir = o.data_dir.parent_path() / "cases";  // shipped study files beside data/
   o.jobs = a.jobs;
   o.threads_per_job = capped_threads(a.threads, "--threads");
   o.quick = a.quick;
@@ -103,6 +106,14 @@ void run_all(const ReproduceArgs& a) {
   std::cout << line << "report: " << (o.out_dir / "report.md").string() << '\n';
 }
 
+// demfit reproduce granudrum: the shipped GranuDrum calibration (cases/granudrum_calibration*.json).
+void run_granudrum(const ReproduceArgs& a) {
+  cases::GranudrumOptions g;
+  g.base = options_of(a);
+  g.anchor = a.anchor;
+  std::cout << cases::reproduce_granudrum(g) << "report: " << (g.base.out_dir / "granudrum.md").string() << '\n';
+}
+
 }  // namespace
 
 void register_reproduce(CLI::App& app) {
@@ -134,6 +145,19 @@ void register_reproduce(CLI::App& app) {
     Step step = e.step;
     sub->callback([args, name, step] { run_one(*args, name, step); });
   }
+  auto* granudrum = cmd->add_subcommand(
+      "granudrum",
+      "GranuDrum MCC photos (data/granudrum_mcc): calibrate sliding friction, rolling friction and the particle count "
+      "jointly on 15 and 45 rpm (cases/granudrum_calibration.json; --quick: granudrum_calibration_quick.json); writes "
+      "granudrum.md, the study and side-by-side/overlay PNGs into --out (default results/granudrum)");
+  add_common(granudrum);
+  granudrum->add_flag("--anchor", args->anchor,
+                      "also run the source's published parameters (mu_s 0.561, mu_r 0.293, 29,185 particles) at s = 1 "
+                      "at both speeds (about 10+ minutes per speed) and report their surface errors");
+  granudrum->callback([args, granudrum] {
+    if (granudrum->get_option("--out")->count() == 0) args->out = "results/granudrum";
+    run_granudrum(*args);
+  });
   auto* all = cmd->add_subcommand("all", "Everything above into one folder with report.md");
   add_common(all);
   all->callback([args] { run_all(*args); });

@@ -1,0 +1,215 @@
+// `demfit reproduce granudrum` (issue 14 items 4-5): calibrate sliding friction, rolling friction
+// and the fill amount jointly on the 15 and 45 rpm GranuDrum photos, then report the photo and
+// the best simulated surface side by side and overlaid, the identified values with intervals, the
+// runs and wall time, and the surface errors per speed (RMS gap in mm, differing area in mm^2).
+#include "demfit/cases/reproduce_granudrum.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "../../identify/src/atomic_file.hpp"
+#include "demfit/cases/case_runner.hpp"
+#include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/model_factory.hpp"
+#include "demfit/imaging/image.hpp"
+#include "demfit/imaging/overlay.hpp"
+#include "demfit/imaging/profile_metrics.hpp"
+
+namespace demfit::cases {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fmt(const char* pattern, double value) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+// A curve x_mm, z_mm (drum frame) as an imaging profile in metres.
+imaging::SurfaceProfile profile_of(const identify::Curve& curve, double compared_radius) {
+  imaging::SurfaceProfile p;
+  for (std::size_t i = 0; i < curve.x.size(); ++i) {
+    p.x.push_back(1e-3 * curve.x[i]);
+    p.z.push_back(1e-3 * curve.y[i]);
+  }
+  p.compared_radius = compared_radius;
+  return p;
+}
+
+const identify::Curve& curve_for(const identify::CurveSet& curves, const identify::TargetSpec& target) {
+  const auto found = curves.find(target.curve);
+  if (found == curves.end()) throw std::runtime_error("granudrum report: no simulated curve '" + target.curve + "'");
+  return found->second;
+}
+
+std::string experiment_of(const identify::TargetSpec& t) { return t.experiment.empty() ? t.name : t.experiment; }
+
+// The simulated bed as a picture: light background, the material below the simulated surface
+// (inside the compared circle; the surface's end heights held beyond its ends) dark, the compared
+// circle outlined.
+imaging::RgbImage simulated_bed(int pixels, const imaging::DrumFrame& frame, const imaging::SurfaceProfile& sim) {
+  imaging::RgbImage image{pixels, pixels, std::vector<std::uint8_t>(3 * pixels * pixels, 235)};
+  const double r2 = sim.compared_radius * sim.compared_radius;
+  for (int row = 0; row < pixels; ++row) {
+    const double z = imaging::pixel_z(row, pixels, frame.diameter);
+    for (int col = 0; col < pixels; ++col) {
+      const double x = imaging::pixel_x(col, pixels, frame.diameter);
+      if (x * x + z * z > r2) continue;
+      std::size_t k = 1;
+      while (k + 1 < sim.x.size() && sim.x[k] < x) ++k;
+      // Beyond the profile's ends its end heights are held (as the metrics do).
+      const double t = std::clamp((x - sim.x[k - 1]) / std::max(1e-12, sim.x[k] - sim.x[k - 1]), 0.0, 1.0);
+      if (z > sim.z[k - 1] + t * (sim.z[k] - sim.z[k - 1])) continue;
+      std::fill_n(image.rgb.begin() + 3 * (static_cast<std::size_t>(row) * pixels + col), 3, std::uint8_t{70});
+    }
+  }
+  imaging::SurfaceProfile no_line = sim;
+  no_line.x.clear();
+  no_line.z.clear();
+  // draw_overlay of an empty profile on a white picture gives the circle only; copy its blue pixels.
+  imaging::GreyImage white{pixels, pixels, std::vector<float>(static_cast<std::size_t>(pixels) * pixels, 1.0f), ""};
+  const imaging::RgbImage circle = imaging::draw_overlay(white, frame, no_line);
+  for (std::size_t k = 0; k < circle.rgb.size(); k += 3)
+    if (circle.rgb[k + 2] == 255 && circle.rgb[k] != 255) std::copy_n(circle.rgb.begin() + k, 3, image.rgb.begin() + k);
+  imaging::draw_profile(image, frame, sim, 20, 160, 40);
+  return image;
+}
+
+imaging::RgbImage side_by_side(const imaging::RgbImage& left, const imaging::RgbImage& right) {
+  const int gap = 8;
+  imaging::RgbImage out{left.width + gap + right.width, std::max(left.height, right.height), {}};
+  out.rgb.assign(3 * static_cast<std::size_t>(out.width) * out.height, 255);
+  auto blit = [&out](const imaging::RgbImage& in, int x0) {
+    for (int row = 0; row < in.height; ++row)
+      std::copy_n(in.rgb.begin() + 3 * static_cast<std::size_t>(row) * in.width, 3 * in.width,
+                  out.rgb.begin() + 3 * (static_cast<std::size_t>(row) * out.width + x0));
+  };
+  blit(left, 0);
+  blit(right, left.width + gap);
+  return out;
+}
+
+std::string error_row(const SurfaceError& e) {
+  return fmt("%.2f", e.rms_mm) + " | " + fmt("%.0f", e.area_mm2);
+}
+
+}  // namespace
+
+std::vector<SurfaceError> surface_errors(const identify::StudySpec& spec, const identify::CurveSet& curves) {
+  std::vector<SurfaceError> out;
+  for (const auto& target : spec.targets) {
+    if (!target.image) continue;
+    const double radius = (1.0 - target.image->margin) * 0.5 * target.image->diameter;
+    const auto photo = profile_of(target.data, radius);
+    const auto sim = profile_of(curve_for(curves, target), radius);
+    out.push_back({target.name, 1e3 * imaging::profile_rms_distance(sim, photo),
+                   1e6 * imaging::profile_differing_area(sim, photo)});
+  }
+  return out;
+}
+
+std::vector<std::string> write_surface_pictures(const identify::StudySpec& spec, const identify::CurveSet& best,
+                                                const fs::path& dir) {
+  std::vector<std::string> files;
+  for (const auto& target : spec.targets) {
+    if (!target.image) continue;
+    fs::path file = target.image->file;
+    if (file.is_relative()) file = spec.base_dir / file;
+    const imaging::GreyImage photo = imaging::read_grey_image(file);
+    const imaging::DrumFrame frame{target.image->diameter};
+    const double radius = (1.0 - target.image->margin) * 0.5 * frame.diameter;
+    const auto measured = profile_of(target.data, radius);
+    const auto simulated = profile_of(curve_for(best, target), radius);
+    const imaging::RgbImage photo_view = imaging::draw_overlay(photo, frame, measured);
+    const std::string stem = "granudrum_" + experiment_of(target);
+    imaging::write_png(dir / (stem + "_side_by_side.png"),
+                       side_by_side(photo_view, simulated_bed(photo.width, frame, simulated)));
+    imaging::RgbImage overlay = photo_view;
+    imaging::draw_profile(overlay, frame, simulated, 20, 160, 40);
+    imaging::write_png(dir / (stem + "_overlay.png"), overlay);
+    files.push_back(stem + "_side_by_side.png");
+    files.push_back(stem + "_overlay.png");
+  }
+  return files;
+}
+
+std::string granudrum_report(const identify::StudySpec& spec, const identify::StudyResult& r,
+                             const std::vector<SurfaceError>& calibrated, const std::vector<SurfaceError>& anchor,
+                             const std::vector<std::string>& pictures, double anchor_seconds) {
+  std::string t = "## GranuDrum MCC: calibration on the 15 and 45 rpm photos (" + spec.name + ")\n\n";
+  t += "| variable | identified (best run) | ± 95 % | least-squares estimate | note |\n|---|---|---|---|---|\n";
+  for (const auto& v : spec.variables) {
+    const auto best = r.best.find(v.name);
+    const auto ci = r.ci_half_width.find(v.name);
+    const auto ls = r.least_squares_estimate.find(v.name);
+    std::string note;
+    for (const auto& u : r.unidentifiable) if (u == v.name) note = "not identifiable";
+    t += "| " + v.name + " | " + (best != r.best.end() ? fmt("%.6g", best->second) : "?") + " | " +
+         (ci != r.ci_half_width.end() && std::isfinite(ci->second) ? fmt("%.3g", ci->second) : "n/a") + " | " +
+         (ls != r.least_squares_estimate.end() ? fmt("%.6g", ls->second) : "n/a") + " | " + note + " |\n";
+  }
+  t += "\nSource's published values: frics 0.561, fricr 0.293, particle_count 29,185 (50 mL).\n\n";
+  t += "Runs: " + std::to_string(r.runs) + " evaluations (each = both speeds; " + std::to_string(r.failed_runs) +
+       " failed), " + std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) + " s.\n\n";
+  t += "| target | demfit calibrated RMS [mm] | differing area [mm²] |";
+  t += anchor.empty() ? "\n|---|---|---|\n" : " source's parameters at s = 1: RMS [mm] | differing area [mm²] |\n|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < calibrated.size(); ++i) {
+    t += "| " + calibrated[i].target + " | " + error_row(calibrated[i]);
+    if (i < anchor.size()) t += " | " + error_row(anchor[i]);
+    t += " |\n";
+  }
+  if (!anchor.empty()) t += "\nAnchor runs (s = 1, both speeds): " + fmt("%.0f", anchor_seconds) + " s wall time.\n";
+  t += "\nPictures (photo with its surface in red, compared circle in blue; simulated surface in green):\n\n";
+  for (const auto& p : pictures) t += "![" + p + "](" + p + ")\n";
+  return t;
+}
+
+std::vector<SurfaceError> run_anchor(const identify::StudySpec& spec, const GranudrumOptions& options,
+                                     double* wall_seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  const identify::ParameterSet published{{"frics", 0.561}, {"fricr", 0.293}, {"particle_count", 29185.0}};
+  identify::CurveSet curves;
+  for (const auto& experiment : spec.experiments) {
+    nlohmann::json overrides = experiment.model_overrides;
+    // s = 1 with the case's own time step (the source's 1e-5 s): a study's larger coarse-grained
+    // step would exceed the stable limit of the original particles.
+    if (overrides.is_object()) overrides.erase("time_step");
+    overrides.merge_patch({{"drum", {{"scale_factor", 1.0}}}});
+    overrides.merge_patch(options.anchor_overrides);
+    const CaseSpec anchor_case = resolve_case(experiment.model_reference, overrides, spec.base_dir);
+    CaseRunOptions run;
+    run.threads = std::max(1, options.base.jobs * options.base.threads_per_job);  // one run at a time
+    run.progress = options.base.progress;
+    for (auto& [name, curve] : run_case(anchor_case, published, run).curves) curves[experiment.name + "/" + name] = curve;
+  }
+  if (wall_seconds) *wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return surface_errors(spec, curves);
+}
+
+std::string reproduce_granudrum(const GranudrumOptions& options) {
+  const ReproduceOptions& o = options.base;
+  const fs::path study_file = !options.study_file.empty() ? options.study_file
+                              : o.cases_dir / (o.quick ? "granudrum_calibration_quick.json" : "granudrum_calibration.json");
+  const identify::StudySpec spec = identify::load_study_file(study_file);
+  const auto model = make_study_model(spec);
+  identify::RunOptions run;
+  run.jobs = o.jobs;
+  run.threads_per_job = o.threads_per_job;
+  run.resume = o.resume;
+  run.output_dir = o.out_dir / "study";
+  const identify::StudyResult result = identify::run_study(spec, *model, run);
+  const auto calibrated = surface_errors(spec, result.best_curves);
+  const auto pictures = write_surface_pictures(spec, result.best_curves, o.out_dir);
+  double anchor_seconds = 0.0;
+  const std::vector<SurfaceError> anchor = options.anchor ? run_anchor(spec, options, &anchor_seconds)
+                                                          : std::vector<SurfaceError>{};
+  const std::string text = granudrum_report(spec, result, calibrated, anchor, pictures, anchor_seconds);
+  identify::detail::write_file_atomically(o.out_dir / "granudrum.md", text);
+  return text;
+}
+
+}  // namespace demfit::cases
