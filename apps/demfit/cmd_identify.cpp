@@ -72,9 +72,19 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
 
 // What the study simulates, resolved: for a DEM case the case with every default filled in (its
 // content, not its path), so that --resume refuses any change to what is simulated.
+// An experiments study: one resolved model per experiment, keyed by the experiment's name.
+nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
+                                  const std::filesystem::path& base_dir) {
+  if (reference == "analytic") return {{"analytic", overrides}};
+  return cases::to_json(cases::resolve_case(reference, overrides, base_dir));
+}
+
 nlohmann::json resolved_model(const identify::StudySpec& spec) {
-  if (spec.model_reference == "analytic") return {{"analytic", spec.model_overrides}};
-  return cases::to_json(cases::resolve_case(spec.model_reference, spec.model_overrides, spec.base_dir));
+  if (spec.experiments.empty()) return resolved_one_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  nlohmann::json experiments = nlohmann::json::object();
+  for (const auto& e : spec.experiments)
+    experiments[e.name] = resolved_one_model(e.model_reference, e.model_overrides, spec.base_dir);
+  return experiments;
 }
 
 #if defined(DEMFIT_HAVE_SCALEOUT)
