@@ -142,6 +142,19 @@ nlohmann::json fill_key(const CaseSpec& spec) {
 // Size distribution: the sampled radii, largest first (small ones fill the gaps left), each at
 // the first free random position inside the drum for its own radius (at most 200000 tries
 // each), seeded by the fill seed.
+// Adds the sphere (c, r) to the packing when it overlaps no sphere placed so far (0.01 % margin on
+// the squared contact distance); returns whether it was placed.
+bool place_if_free(dem_core::Packing& packing, const Vec3& c, double r) {
+  for (std::size_t k = 0; k < packing.centers.size(); ++k) {
+    const double contact = (packing.radii[k] + r) * (packing.radii[k] + r);
+    if (dem_core::norm2(packing.centers[k] - c) < contact * 1.0001) return false;
+  }
+  packing.centers.push_back(c);
+  packing.radii.push_back(r);
+  packing.solid_volume += sphere_volume(r);
+  return true;
+}
+
 std::optional<dem_core::Packing> random_packing_of_radii(const CaseSpec& spec, std::vector<double> radii) {
   std::stable_sort(radii.begin(), radii.end(), std::greater<>());
   std::mt19937_64 engine(static_cast<std::uint64_t>(spec.drum.fill_seed));
@@ -154,16 +167,7 @@ std::optional<dem_core::Packing> random_packing_of_radii(const CaseSpec& spec, s
     for (int attempt = 0; attempt < 200000 && !placed; ++attempt) {
       const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r + uniform() * (spec.drum.length - 2.0 * r)};
       if (c.x * c.x + c.y * c.y > reach * reach) continue;
-      bool free = true;
-      for (std::size_t k = 0; k < packing.centers.size() && free; ++k) {
-        const double contact = (packing.radii[k] + r) * (packing.radii[k] + r);
-        free = dem_core::norm2(packing.centers[k] - c) >= contact * 1.0001;
-      }
-      if (!free) continue;
-      packing.centers.push_back(c);
-      packing.radii.push_back(r);
-      packing.solid_volume += sphere_volume(r);
-      placed = true;
+      placed = place_if_free(packing, c, r);
     }
     if (!placed) return std::nullopt;
   }
@@ -193,15 +197,7 @@ std::optional<dem_core::Packing> random_packing(const CaseSpec& spec, const Powd
     }
     const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r_max + uniform() * (spec.drum.length - 2.0 * r_max)};
     if (c.x * c.x + c.y * c.y > reach * reach) continue;
-    bool free = true;
-    for (std::size_t k = 0; k < packing.centers.size() && free; ++k) {
-      const double contact = (packing.radii[k] + r) * (packing.radii[k] + r);
-      free = dem_core::norm2(packing.centers[k] - c) >= contact * 1.0001;
-    }
-    if (!free) continue;
-    packing.centers.push_back(c);
-    packing.radii.push_back(r);
-    packing.solid_volume += sphere_volume(r);
+    if (!place_if_free(packing, c, r)) continue;
     next_radius = spread > 0.0;
   }
   if (!done(packing)) return std::nullopt;
