@@ -4,17 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <unistd.h>
 
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/imaging/imaging.hpp"
 
 namespace demfit::apps {
@@ -60,31 +58,6 @@ std::string format_csv(const imaging::SurfaceProfile& profile, const imaging::Dr
   return csv.str();
 }
 
-// Writes the files into `dir` all-or-nothing: every file first to a temporary name inside `dir`,
-// then each renamed into place; on failure the temporaries (and a folder this call created) go.
-void commit_files(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& files) {
-  std::error_code error;
-  if (fs::exists(dir, error) && !fs::is_directory(dir, error))
-    throw std::runtime_error("--out '" + dir.string() + "' exists and is not a folder; give a folder path");
-  const bool created = fs::create_directories(dir, error);
-  if (error) throw std::runtime_error("--out '" + dir.string() + "': cannot create the folder (" + error.message() + ")");
-  std::vector<fs::path> temporaries;
-  try {
-    for (const auto& [name, content] : files) {
-      temporaries.push_back(dir / (name + ".tmp" + std::to_string(::getpid())));
-      std::ofstream out(temporaries.back(), std::ios::binary | std::ios::trunc);
-      out.write(content.data(), static_cast<std::streamsize>(content.size()));
-      out.flush();
-      if (!out) throw std::runtime_error("cannot write '" + temporaries.back().string() + "'; check permissions and free disk space");
-    }
-    for (std::size_t k = 0; k < files.size(); ++k) fs::rename(temporaries[k], dir / files[k].first);
-  } catch (const std::exception&) {
-    for (const fs::path& t : temporaries) fs::remove(t, error);
-    if (created) fs::remove_all(dir, error);
-    throw;
-  }
-}
-
 void run_target_from_image(const TargetFromImageOptions& o) {
   // Everything is computed before anything is written (bad input leaves nothing behind).
   const imaging::DrumFrame frame{parse_diameter(o.diameter)};
@@ -99,8 +72,12 @@ void run_target_from_image(const TargetFromImageOptions& o) {
   const imaging::GreyImage photo = imaging::read_grey_image(o.photo);
   const imaging::SurfaceProfile profile = imaging::extract_surface(photo, frame, options);
   const imaging::SurfaceLine line = imaging::fit_surface_line(profile);
-  commit_files(o.out, {{"free_surface.csv", format_csv(profile, frame, o)},
-                       {"overlay.png", imaging::encode_png(imaging::draw_overlay(photo, frame, profile))}});
+  const std::string csv = format_csv(profile, frame, o);
+  const std::string png = imaging::encode_png(imaging::draw_overlay(photo, frame, profile));
+  // The output-folder rules and the one atomic writer of every command (issue #13).
+  identify::prepare_output_folder(o.out, {o.photo}, "--out");
+  identify::write_file_atomically(fs::path(o.out) / "free_surface.csv", csv);
+  identify::write_file_atomically(fs::path(o.out) / "overlay.png", png);
   std::printf("demfit target from-image: %s -> %s\n  %zu points, x %.2f .. %.2f mm, threshold %.3f%s\n"
               "  straight-line fit: angle %.2f deg (negative = bed lifted on the left), residual %.3f mm RMS\n",
               o.photo.c_str(), o.out.c_str(), profile.x.size(), profile.x.front() * 1e3, profile.x.back() * 1e3,
