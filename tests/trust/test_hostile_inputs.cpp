@@ -212,6 +212,9 @@ TEST_CASE("an output folder that demfit did not create is never replaced or writ
     user_folder(s);
     trust::write_text(s.work / "case.json", kCase);
   };
+  auto photo = [](const Sandbox& s) {
+    fs::copy_file(fs::path(DEMFIT_SOURCE_DIR) / "data" / "granudrum_mcc" / "granudrum_mcc_15rpm.bmp", s.work / "photo.bmp");
+  };
   const std::vector<Hostile> inputs = {
       {"identify --out .", study, {"identify", "study.json", "--out", ".", "--no-plots"}, "working folder"},
       {"identify --out ..", study, {"identify", "study.json", "--out", "..", "--no-plots"}, "parent of the working folder"},
@@ -233,6 +236,10 @@ TEST_CASE("an output folder that demfit did not create is never replaced or writ
          fs::create_directory_symlink(s.outside, s.work / "out");
        }, kSimulate, "symbolic link"},
       {"diagnose --out .", study, {"diagnose", "study.json", "--out", "."}, "working folder"},
+      {"target from-image --out .", photo, {"target", "from-image", "photo.bmp", "--diameter", "84mm", "--out", "."},
+       "working folder"},
+      {"target from-image --out ..", photo, {"target", "from-image", "photo.bmp", "--diameter", "84mm", "--out", ".."},
+       "parent of the working folder"},
       {"diagnose --out a user folder", user_folder, {"diagnose", "study.json", "--out", "out"}, "not created by demfit"},
       {"reproduce --out .", [](const Sandbox&) {}, {"reproduce", "table2", "--out", "."}, "working folder"},
       {"reproduce --out a user folder", user_folder, {"reproduce", "table2", "--out", "out"}, "not created by demfit"},
