@@ -96,8 +96,8 @@ void register_target(CLI::App& app) {
       "The square image must span the drum's inner diameter in both directions, centred on the axis.\n"
       "Writes into --out: free_surface.csv (x_mm,z_mm: drum frame, x right as seen in the picture,\n"
       "z up, origin on the drum axis, millimetres; '#' lines state the threshold and source) and\n"
-      "overlay.png (the photo, the profile in red, the compared circle in blue). Other files in the\n"
-      "folder are kept; nothing is written when the input is bad.");
+      "overlay.png (the photo, the profile in red, the compared circle in blue). --out must be new, empty\n"
+      "or a folder demfit made (never the working folder); nothing is written when the input is bad.");
   cmd->add_option("photo", options->photo, "drum photo (BMP, PNG or JPEG)")->required();
   cmd->add_option("--diameter", options->diameter,
                   "inner drum diameter spanned by the image, with unit mm or m (e.g. 84mm or 0.084m; a bare number is metres)")
