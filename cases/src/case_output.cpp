@@ -4,10 +4,10 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 
 #include "demfit/cases/synthetic_noise.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::cases {
 
@@ -75,11 +75,8 @@ void write_case_result(const std::filesystem::path& dir, const CaseResult& resul
     ++k;
   }
   for (const auto& [name, table] : result.tables) write_curve_table(dir / (name + ".csv"), table);
-  std::ofstream json_out(dir / "case_resolved.json");
-  json_out << resolved_case.dump(2) << '\n';
-  std::ofstream summary(dir / "summary.txt");
-  summary << parameter_line << '\n' << format_summary(result);
-  if (!json_out || !summary) throw std::runtime_error("writing results to '" + dir.string() + "' failed");
+  identify::write_file_atomically(dir / "case_resolved.json", resolved_case.dump(2) + '\n');
+  identify::write_file_atomically(dir / "summary.txt", parameter_line + '\n' + format_summary(result));
 }
 
 std::string format_summary(const CaseResult& result, int points_per_curve) {

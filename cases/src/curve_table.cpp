@@ -1,9 +1,11 @@
 // Curve CSV output (see curve_table.hpp).
 #include "demfit/cases/curve_table.hpp"
 
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
+
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::cases {
 
@@ -11,8 +13,9 @@ void write_curve_table(const std::filesystem::path& path, const CurveTable& tabl
   if (table.columns.size() != table.values.size()) {
     throw std::runtime_error("curve table '" + path.string() + "': column names and data differ in count");
   }
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write '" + path.string() + "': check the folder permissions");
+  // Built in memory, then written through the one atomic writer (issue #13): a full disk or a
+  // planted link never leaves a half-written or redirected curve.
+  std::ostringstream out;
   for (const std::string& line : table.comments) out << "# " << line << '\n';
   for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << table.columns[c];
   out << '\n' << std::setprecision(17);
@@ -21,7 +24,7 @@ void write_curve_table(const std::filesystem::path& path, const CurveTable& tabl
     for (std::size_t c = 0; c < table.values.size(); ++c) out << (c ? "," : "") << table.values[c].at(r);
     out << '\n';
   }
-  if (!out) throw std::runtime_error("writing '" + path.string() + "' failed: disk full?");
+  identify::write_file_atomically(path, out.str());
 }
 
 CurveTable curve_table(const identify::Curve& curve, std::vector<std::string> comments) {

@@ -8,7 +8,8 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
+
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -50,21 +51,20 @@ bool read_fill(const std::filesystem::path& path, const std::string& key_text, F
 }
 
 void write_fill(const std::filesystem::path& path, const std::string& key_text, const Fill& fill) {
-  std::filesystem::create_directories(path.parent_path());
-  std::ostringstream suffix;
-  suffix << ".tmp" << std::hash<std::thread::id>{}(std::this_thread::get_id());
-  const std::filesystem::path temp = path.string() + suffix.str();
-  {
-    std::FILE* f = std::fopen(temp.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write fill cache '" + temp.string() + "': set DEMFIT_CACHE_DIR to a writable folder");
-    std::fprintf(f, "%s\n", key_text.c_str());
-    for (std::size_t i = 0; i < fill.radii.size(); ++i) {
-      std::fprintf(f, "%a %a %a %a\n", fill.positions[i][0], fill.positions[i][1], fill.positions[i][2],
-                   fill.radii[i]);
-    }
-    std::fclose(f);
+  // Hexadecimal floats (%a): the cached fill reads back bit-identical. Written through the one
+  // atomic writer (issue #13), so a concurrent reader never sees a half-written fill.
+  std::string text = key_text + '\n';
+  char line[160];
+  for (std::size_t i = 0; i < fill.radii.size(); ++i) {
+    std::snprintf(line, sizeof line, "%a %a %a %a\n", fill.positions[i][0], fill.positions[i][1],
+                  fill.positions[i][2], fill.radii[i]);
+    text += line;
   }
-  std::filesystem::rename(temp, path);
+  try {
+    identify::write_file_atomically(path, text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + " (fill cache: set DEMFIT_CACHE_DIR to a writable folder)");
+  }
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // drum studies of paper section 3 (SPEC 2.2, 2.3).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "builtin_cases.hpp"
@@ -13,6 +13,7 @@
 #include "demfit/cases/result_cache.hpp"
 #include "demfit/identify/objective.hpp"
 #include "demfit/identify/run_program.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study.hpp"
 
 namespace demfit::cases {
@@ -57,7 +58,7 @@ std::string run_gnuplot(const fs::path& dir, const std::string& script) {
 }
 
 void write_fig4_script(const fs::path& dir, const std::vector<std::string>& runs, double duration) {
-  std::ofstream gp(dir / "fig4_particles.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1500,1000 noenhanced\nset output 'fig4_particles.png'\n"
      << "set multiplot layout 2,3 title 'Fig. 4: particles in the drum cross-section at t = " << duration << " s'\n"
      << "set size ratio -1\nset xrange [-52:52]\nset yrange [-52:52]\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
@@ -67,10 +68,11 @@ void write_fig4_script(const fs::path& dir, const std::vector<std::string>& runs
        << "fs transparent solid 0.5 lc rgb '#1f77b4' notitle\n";
   }
   gp << "unset multiplot\n";
+  identify::write_file_atomically(dir / "fig4_particles.gp", gp.str());
 }
 
 void write_fig5_script(const fs::path& dir, const std::vector<std::string>& runs) {
-  std::ofstream gp(dir / "fig5_torque.gp");
+  std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,600 noenhanced\nset output 'fig5_torque.png'\nset datafile separator ','\n"
      << "set title 'Fig. 5: drive torque (z-moment) of the drum'\nset xlabel 'time [s]'\nset ylabel 'torque [N m]'\n"
      << "set key outside right\nplot ";
@@ -78,6 +80,7 @@ void write_fig5_script(const fs::path& dir, const std::vector<std::string>& runs
     gp << (i ? ", " : "") << "'" << runs[i] << "/torque.csv' skip 4 using 1:2 with lines title '" << runs[i] << "'";
   }
   gp << "\n";
+  identify::write_file_atomically(dir / "fig5_torque.gp", gp.str());
 }
 
 double rms_surface_error(const identify::Curve& target, const identify::Curve& computed) {

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "../../identify/src/atomic_file.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
@@ -126,11 +126,11 @@ std::vector<std::string> write_surface_pictures(const identify::StudySpec& spec,
     const auto simulated = profile_of(curve_for(best, target), radius);
     const imaging::RgbImage photo_view = imaging::draw_overlay(photo, frame, measured);
     const std::string stem = "granudrum_" + experiment_of(target);
-    imaging::write_png(dir / (stem + "_side_by_side.png"),
-                       side_by_side(photo_view, simulated_bed(photo.width, frame, simulated)));
+    identify::write_file_atomically(dir / (stem + "_side_by_side.png"),
+                                    imaging::encode_png(side_by_side(photo_view, simulated_bed(photo.width, frame, simulated))));
     imaging::RgbImage overlay = photo_view;
     imaging::draw_profile(overlay, frame, simulated, 20, 160, 40);
-    imaging::write_png(dir / (stem + "_overlay.png"), overlay);
+    identify::write_file_atomically(dir / (stem + "_overlay.png"), imaging::encode_png(overlay));
     files.push_back(stem + "_side_by_side.png");
     files.push_back(stem + "_overlay.png");
   }
@@ -208,7 +208,7 @@ std::string reproduce_granudrum(const GranudrumOptions& options) {
   const std::vector<SurfaceError> anchor = options.anchor ? run_anchor(spec, options, &anchor_seconds)
                                                           : std::vector<SurfaceError>{};
   const std::string text = granudrum_report(spec, result, calibrated, anchor, pictures, anchor_seconds);
-  identify::detail::write_file_atomically(o.out_dir / "granudrum.md", text);
+  identify::write_file_atomically(o.out_dir / "granudrum.md", text);
   return text;
 }
 

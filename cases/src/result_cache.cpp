@@ -5,6 +5,7 @@
 
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/identify/curve_json.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -50,10 +51,7 @@ CaseResult cached_case_result(const CaseSpec& spec, const CaseRunOptions& option
     }
   }
   CaseResult result = run_case(spec, {}, resolved);
-  std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temp = path.string() + ".tmp";
-  std::ofstream(temp) << json{{"key", key}, {"result", to_json(result)}}.dump();
-  std::filesystem::rename(temp, path);
+  identify::write_file_atomically(path, json{{"key", key}, {"result", to_json(result)}}.dump());
   if (computed) *computed = true;
   return result;
 }

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -122,7 +122,7 @@ void write_curve_csv(const std::filesystem::path& path, const Curve& curve) {
     std::snprintf(buffer, sizeof buffer, "%.17g,%.17g\n", curve.x[i], curve.y[i]);
     text += buffer;
   }
-  detail::write_file_atomically(path, text);
+  write_file_atomically(path, text);
 }
 
 }  // namespace demfit::identify

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -147,7 +147,7 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& t
 
 void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title,
                            const std::vector<std::string>& comments) {
-  detail::write_file_atomically(path, lsdyna_keywords(parameters, title, comments));
+  write_file_atomically(path, lsdyna_keywords(parameters, title, comments));
 }
 
 ParameterSet parse_lsdyna_keywords(const std::string& text) {

@@ -50,9 +50,12 @@ GaussianPosterior fit_posterior(const RunSample& s, const PosteriorOptions& o, P
   const Eigen::VectorXd b0 = B.row(0).transpose();
   const Eigen::MatrixXd J = B.bottomRows(n).transpose();  // N x n
   const int dof = std::max(1, m - n - 1);
-  const Eigen::MatrixXd raw_sim = E.transpose() * E / dof;
-  const double sim_mean = raw_sim.trace() / N;
-  const Eigen::MatrixXd sim = (1.0 - o.shrinkage) * raw_sim + o.shrinkage * sim_mean * Eigen::MatrixXd::Identity(N, N);
+  // Σ_sim = (1 − λ) EᵀE/dof + λ tr(EᵀE/dof)/N I is N x N for N curve points: a 20,000-point
+  // target would need 3 GB and O(N³) work. It is a rank-m update of a multiple of I, so every
+  // product below goes through the m x m Woodbury form instead, O(m² N).
+  const double sim_trace = E.squaredNorm() / dof;  // tr(EᵀE/dof)
+  const double sim_mean = sim_trace / N;
+  const double update_scale = (1.0 - o.shrinkage) / dof;
   // Unweighted least squares of the linear surrogate (minimum-norm step for rank-deficient J).
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
   const Eigen::VectorXd step = cod.solve(-b0);
@@ -61,19 +64,29 @@ GaussianPosterior fit_posterior(const RunSample& s, const PosteriorOptions& o, P
   // E[SSR_min] = tr(M Σ_sim) + σ_w² tr(M), M = I − J J⁺ the residual projector: the fit absorbs the
   // part of the smooth simulation noise that looks like a parameter change, so only tr(M Σ_sim) of
   // it is left in SSR_min (subtracting all of tr Σ_sim measured σ_w² = 0 on most seeds).
-  const Eigen::MatrixXd JpJ = J * cod.pseudoInverse();  // N x N projector onto range(J)
-  const double rank = std::round(JpJ.trace());
-  const double residual_sim = raw_sim.trace() - (JpJ * raw_sim).trace();
+  // tr(J J⁺ EᵀE) = tr((E J)(J⁺ Eᵀ)).
+  const Eigen::MatrixXd EJ = E * J;  // m x n
+  const double rank = static_cast<double>(cod.rank());
+  const double residual_sim = sim_trace - (EJ * cod.solve(E.transpose())).trace() / dof;
   const double white = std::max(0.0, (g.ssr_min - residual_sim) / std::max(1.0, N - rank));
   out.simulation_noise_variance = sim_mean;
   out.data_noise_variance = white;
-  const Eigen::MatrixXd sigma = sim + (white + 1e-12 * std::max(sim_mean, 1e-300)) * Eigen::MatrixXd::Identity(N, N);
-  const Eigen::LLT<Eigen::MatrixXd> llt(sigma);
-  const Eigen::MatrixXd whitened_J = llt.matrixL().solve(J);
-  const Eigen::VectorXd whitened_b0 = llt.matrixL().solve(b0);
-  g.precision = whitened_J.transpose() * whitened_J;
-  // −½|a + A(u − u_best)|² = −½ uᵀPu + uᵀ(P u_best − Aᵀa) + const
-  g.linear = g.precision * s.best_unit - whitened_J.transpose() * whitened_b0;
+  // Σ = a I + s EᵀE, a = λ·mean + σ_w² (+ a floor), s = (1 − λ)/dof.
+  // Woodbury: Σ⁻¹ = (I − Eᵀ (a/s I + E Eᵀ)⁻¹ E) / a.
+  const double a = o.shrinkage * sim_mean + white + 1e-12 * std::max(sim_mean, 1e-300);
+  const Eigen::VectorXd Eb0 = E * b0;
+  Eigen::MatrixXd JtSiJ = J.transpose() * J;
+  Eigen::VectorXd JtSib0 = J.transpose() * b0;
+  if (update_scale > 0.0) {
+    Eigen::MatrixXd K = E * E.transpose();
+    K.diagonal().array() += a / update_scale;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(K);
+    JtSiJ -= EJ.transpose() * ldlt.solve(EJ);
+    JtSib0 -= EJ.transpose() * ldlt.solve(Eb0);
+  }
+  g.precision = JtSiJ / a;
+  // −½|a + A(u − u_best)|² = −½ uᵀPu + uᵀ(P u_best − Aᵀa) + const, in whitened terms
+  g.linear = g.precision * s.best_unit - JtSib0 / a;
   return g;
 }
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "atomic_file.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/curve_io.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_spec.hpp"
@@ -114,12 +114,12 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
   const EvaluationRecord* best = find_best(runs, result);
   ReportSummary summary;
   std::filesystem::create_directories(output_dir);
-  detail::write_file_atomically(output_dir / "evaluations.csv", evaluations_csv(spec, runs));
-  detail::write_file_atomically(output_dir / "iterations.csv", iterations_csv(spec, iterations));
-  detail::write_file_atomically(output_dir / "study_resolved.json", store.study_json().dump(2) + "\n");
+  write_file_atomically(output_dir / "evaluations.csv", evaluations_csv(spec, runs));
+  write_file_atomically(output_dir / "iterations.csv", iterations_csv(spec, iterations));
+  write_file_atomically(output_dir / "study_resolved.json", store.study_json().dump(2) + "\n");
   summary.files_written += 3;
   if (best) {
-    detail::write_file_atomically(output_dir / "best_parameters.json", best_parameters_json(spec, *best, result).dump(2) + "\n");
+    write_file_atomically(output_dir / "best_parameters.json", best_parameters_json(spec, *best, result).dump(2) + "\n");
     ++summary.files_written;
     for (const auto& target : spec.targets) {
       // File names from user strings go through the one slug function and stay in output_dir.
@@ -142,7 +142,7 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
       summary.files_written += static_cast<int>(images.size());
     }
   }
-  detail::write_file_atomically(output_dir / "report.md", detail::report_markdown(spec, runs, iterations, best, result, images));
+  write_file_atomically(output_dir / "report.md", detail::report_markdown(spec, runs, iterations, best, result, images));
   ++summary.files_written;
   return summary;
 }

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -102,9 +103,12 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
   std::error_code error;
   if (fs::is_directory(fs::symlink_status(path, error)))
     throw std::runtime_error("cannot write '" + path.string() + "': it is a folder; give a file name");
-  // The pid keeps concurrent writers from sharing a temporary; remove_stale_temporaries knows it.
+  // The pid keeps concurrent processes, the sequence number concurrent threads of one process
+  // (two evaluations caching the same fill) from sharing a temporary; remove_stale_temporaries
+  // knows the form "<name>.tmp<pid>-<sequence>".
+  static std::atomic<unsigned long> sequence{0};
   fs::path temporary = path;
-  temporary += ".tmp" + std::to_string(::getpid());
+  temporary += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(sequence.fetch_add(1));
   const int fd = open_exclusive(temporary);
   if (fd < 0)
     throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(errno) +
@@ -190,7 +194,12 @@ int remove_stale_temporaries(const fs::path& folder) {
     const std::string name = entry.path().filename().string();
     const auto at = name.rfind(".tmp");
     if (at == std::string::npos || at + 4 >= name.size()) continue;
-    const std::string digits = name.substr(at + 4);
+    std::string digits = name.substr(at + 4);
+    const auto dash = digits.find('-');  // "<pid>-<sequence>" (older files: "<pid>")
+    if (dash != std::string::npos) {
+      if (dash == 0 || digits.find_first_not_of("0123456789", dash + 1) != std::string::npos) continue;
+      digits.resize(dash);
+    }
     if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
     const long pid = std::stol(digits);
     if (pid == static_cast<long>(::getpid()) || process_alive(pid)) continue;

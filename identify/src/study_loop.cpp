@@ -26,7 +26,7 @@
 #include "demfit/rbf_surrogate/design.hpp"
 #include "demfit/rbf_surrogate/optimize.hpp"
 #include "demfit/rbf_surrogate/srsm.hpp"
-#include "atomic_file.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "response_surrogate.hpp"
 #include "study_strategy.hpp"
 #include "study_support.hpp"
@@ -425,7 +425,7 @@ StudyResult run_study(const StudySpec& spec, const Model& model, const RunOption
   detail::check_experiments(spec, model);
   StudyLoop loop(spec, model, options);
   // The resolved input beside the results (targets inline, defaults filled in).
-  detail::write_file_atomically(options.output_dir / "study_resolved.json", to_json(spec).dump(2) + "\n");
+  write_file_atomically(options.output_dir / "study_resolved.json", to_json(spec).dump(2) + "\n");
   return loop.run();
 }
 

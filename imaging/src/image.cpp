@@ -9,7 +9,6 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "atomic_write.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -120,16 +119,6 @@ std::string encode_jpeg(const RgbImage& image, int quality) {
   if (stbi_write_jpg_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), quality) == 0)
     throw std::runtime_error("cannot encode a JPEG of " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
   return encoded;
-}
-
-void write_png(const std::filesystem::path& file, const RgbImage& image) {
-  std::string encoded;
-  try {
-    encoded = encode_png(image);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error("'" + file.string() + "': " + e.what());
-  }
-  detail::write_file_atomically(file, encoded);
 }
 
 RgbImage to_rgb(const GreyImage& image) {

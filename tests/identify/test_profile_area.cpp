@@ -7,6 +7,7 @@
 #include <random>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
@@ -90,7 +91,7 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
       if (diameter / 2 - row * diameter / (n - 1) < level)
         for (int c = 0; c < 3; ++c) picture.rgb[3 * (row * n + column) + c] = 40;
   const auto dir = test::fresh_dir("image_target");
-  demfit::imaging::write_png(dir / "drum.png", picture);
+  demfit::identify::write_file_atomically(dir / "drum.png", demfit::imaging::encode_png(picture));
   nlohmann::json study = test::analytic_study();
   study["targets"] = {{{"name", "surface"}, {"curve", "response"}, {"image", "drum.png"}, {"image_diameter", diameter},
                        {"image_margin", 0.2}, {"image_points", 21}, {"metric", "profile_area"}}};
@@ -111,7 +112,7 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
   study["targets"][0]["x_column"] = "x_mm";
   CHECK_THROWS_WITH(parse_study(study, dir), Catch::Contains("targets[0].image: an image target takes its points"));
   study["targets"][0].erase("x_column");
-  demfit::imaging::write_png(dir / "dark.png", demfit::imaging::RgbImage{n, n, std::vector<std::uint8_t>(3 * n * n, 10)});
+  demfit::identify::write_file_atomically(dir / "dark.png", demfit::imaging::encode_png(demfit::imaging::RgbImage{n, n, std::vector<std::uint8_t>(3 * n * n, 10)}));
   study["targets"][0]["image"] = "dark.png";  // no surface to find: one line naming the field
   try {
     parse_study(study, dir);

@@ -3,12 +3,20 @@
 // z = surface(x) (drum frame, metres). Each pixel's grey level is the area fraction of the pixel
 // below the surface (8 x 8 sub-samples), blended between an empty and a material grey level.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/surface.hpp"
 
 namespace demfit::imaging::test {
+
+// Test pictures are written with a plain stream: imaging itself writes no files.
+inline void write_png(const std::filesystem::path& file, const RgbImage& image) {
+  std::ofstream out(file, std::ios::binary);
+  out << encode_png(image);
+}
 
 struct DrawnDrum {
   int pixels = 406;

@@ -1,4 +1,4 @@
-// Image files: PNG written by write_png and a BMP written by the test are read back through
+// Image files: PNG encoded by encode_png and a BMP written by the test are read back through
 // stb_image; broken files give one-line errors naming the file and the fix.
 #include <catch2/catch.hpp>
 
@@ -72,10 +72,10 @@ double max_difference(const GreyImage& a, const GreyImage& b) {
 
 }  // namespace
 
-TEST_CASE("a PNG written by write_png reads back with the same grey levels to 8-bit rounding") {
+TEST_CASE("a PNG encoded by encode_png reads back with the same grey levels to 8-bit rounding") {
   const fs::path dir = scratch("png");
   const GreyImage drawn = test::draw_surface(test::DrawnDrum{}, [](double x) { return -0.6 * x; });
-  write_png(dir / "drum.png", to_rgb(drawn));
+  test::write_png(dir / "drum.png", to_rgb(drawn));
   CHECK(fs::directory_iterator(dir) != fs::directory_iterator());
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);  // no temporary left
   const GreyImage read = read_grey_image(dir / "drum.png");
@@ -122,7 +122,7 @@ TEST_CASE("truncated BMP and PNG files are refused as truncated, naming the file
   const std::string bmp = encode_bmp(drawn);
   write_bytes(dir / "cut.bmp", bmp.substr(0, bmp.size() * 2 / 3));
   CHECK_THROWS_WITH(read_grey_image(dir / "cut.bmp"), Catch::Contains("cut.bmp") && Catch::Contains("truncated"));
-  write_png(dir / "whole.png", to_rgb(drawn));
+  test::write_png(dir / "whole.png", to_rgb(drawn));
   const std::string png = read_bytes(dir / "whole.png");
   write_bytes(dir / "cut.png", png.substr(0, png.size() / 2));
   CHECK_THROWS_WITH(read_grey_image(dir / "cut.png"), Catch::Contains("cut.png") && Catch::Contains("truncated"));

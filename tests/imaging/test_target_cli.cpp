@@ -48,7 +48,7 @@ CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
 const auto kSurface = [](double x) { return 0.002 - std::tan(35.0 * M_PI / 180.0) * x; };
 
 fs::path drawn_photo(const fs::path& dir) {
-  write_png(dir / "photo.png", to_rgb(test::draw_surface(test::DrawnDrum{}, kSurface)));
+  test::write_png(dir / "photo.png", to_rgb(test::draw_surface(test::DrawnDrum{}, kSurface)));
   return dir / "photo.png";
 }
 

@@ -4,7 +4,9 @@
 
 #include <sqlite3.h>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -57,6 +59,28 @@ TEST_CASE("the atomic writer replaces a symbolic link instead of writing through
   CHECK(fs::is_regular_file(fs::symlink_status(s.work / "report.md")));
   CHECK(trust::read_text(s.work / "report.md") == "new report\n");
   CHECK(trust::read_text(s.outside / "precious.txt") == "a file of the user that no command may touch\n");
+}
+
+TEST_CASE("two threads writing the same file at once both succeed and leave no temporary") {
+  Sandbox s("lib_threads");
+  // Two evaluations of one study may cache the same fill at the same moment.
+  std::atomic<int> failures{0};
+  auto writer = [&](char fill) {
+    for (int i = 0; i < 200; ++i) {
+      try {
+        id::write_file_atomically(s.work / "fill.txt", std::string(4000, fill));
+      } catch (const std::exception&) {
+        ++failures;
+      }
+    }
+  };
+  std::thread a(writer, 'a'), b(writer, 'b');
+  a.join();
+  b.join();
+  CHECK(failures == 0);
+  const std::string content = trust::read_text(s.work / "fill.txt");
+  CHECK((content == std::string(4000, 'a') || content == std::string(4000, 'b')));
+  CHECK(trust::leftovers(s.work).empty());
 }
 
 TEST_CASE("the atomic writer reports a full disk and leaves neither the file nor a temporary") {
@@ -127,6 +151,11 @@ TEST_CASE("stale temporaries of a killed run are removed on the next run, live o
   id::prepare_output_folder(s.work / "out", {}, "--out");
   CHECK(!fs::exists(s.work / "out" / "report.md.tmp999999999"));
   CHECK(fs::exists(s.work / "out" / ("report.md.tmp" + std::to_string(getppid()))));
+  trust::write_text(s.work / "out" / "fill.txt.tmp999999999-3", "half");  // today's form: <pid>-<sequence>
+  trust::write_text(s.work / "out" / ("fill.txt.tmp" + std::to_string(getppid()) + "-3"), "live");
+  id::prepare_output_folder(s.work / "out", {}, "--out");
+  CHECK(!fs::exists(s.work / "out" / "fill.txt.tmp999999999-3"));
+  CHECK(fs::exists(s.work / "out" / ("fill.txt.tmp" + std::to_string(getppid()) + "-3")));
 }
 
 TEST_CASE("a second identify on a study in use fails with one line naming the store") {

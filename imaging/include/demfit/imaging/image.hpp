@@ -29,11 +29,8 @@ struct RgbImage {
 // unreadable, truncated or not an image.
 GreyImage read_grey_image(const std::filesystem::path& file);
 
-// Writes `image` as PNG atomically: to a temporary name beside `file`, then renamed into place,
-// so a reader never sees a half-written picture. Throws std::runtime_error (one line) on failure.
-void write_png(const std::filesystem::path& file, const RgbImage& image);
-
-// The PNG file content of `image` (for callers that stage several files before committing them).
+// The PNG file content of `image`. imaging writes no files: callers write the bytes through the
+// one atomic writer (identify/safe_output.hpp), which also keeps them inside the output folder.
 std::string encode_png(const RgbImage& image);
 
 // The JPEG file content of `image` at quality 1..100 (lossy; for previews and for tests of the
