@@ -15,6 +15,7 @@
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "demfit/identify/study_warnings.hpp"
 
 namespace demfit::cases::detail {
 namespace {
@@ -151,6 +152,10 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
                       "bottom_force_N", "kinetic_energy_J", "elastic_energy_J"},
                      std::vector<std::vector<double>>(8)};
   double worst_ratio = 0.0;
+  // SPEC 2.1: the compression is quasi-static while the bed's kinetic energy stays below 1 % of
+  // its elastic energy. The study warns when a run crosses it (identify::kQuasiStaticCurve).
+  constexpr double quasi_static_limit = 0.01;
+  identify::Curve quasi_static{"volume_cm3", "kinetic_over_elastic_energy_per_limit", {}, {}};
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const Sample& s = run.samples[i];
     const double values[8] = {s.time, s.travel * 1e3, s.volume_cm3, s.pressure_mpa, s.piston_force,
@@ -159,8 +164,11 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
     // Quasi-static check (SPEC 2.1) once the bed carries load (> 10 % of P_max).
     if (i < run.loading_end && s.pressure_mpa * 1e6 > 0.1 * spec.pellet.max_pressure && s.elastic > 0.0) {
       worst_ratio = std::max(worst_ratio, s.kinetic / s.elastic);
+      quasi_static.x.push_back(s.volume_cm3);
+      quasi_static.y.push_back(s.kinetic / s.elastic / quasi_static_limit);
     }
   }
+  if (!quasi_static.x.empty()) result.curves[identify::kQuasiStaticCurve] = quasi_static;
   result.tables["history"] = history;
   const Sample& last_loading = run.samples.at(run.loading_end - 1);
   auto& sum = result.summary;

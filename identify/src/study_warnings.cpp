@@ -39,6 +39,31 @@ void bound_warnings(const StudySpec& spec, const EvaluationRecord& best, std::ve
   }
 }
 
+double largest_y(const EvaluationRecord& run, const std::string& curve) {
+  const auto found = run.curves.find(curve);
+  if (found == run.curves.end() || found->second.y.empty()) return 0.0;
+  return *std::max_element(found->second.y.begin(), found->second.y.end());
+}
+
+void quasi_static_warnings(const std::vector<EvaluationRecord>& runs, const EvaluationRecord& best,
+                           std::vector<std::string>& warnings) {
+  int checked = 0, dynamic = 0;
+  for (const auto& r : runs) {
+    if (!r.ok || !r.curves.count(kQuasiStaticCurve)) continue;
+    ++checked;
+    dynamic += largest_y(r, kQuasiStaticCurve) > 1.0;
+  }
+  const double best_ratio = largest_y(best, kQuasiStaticCurve);
+  if (best_ratio > 1.0)
+    warnings.push_back("the best run is far from quasi-static: its kinetic energy reached " + number(best_ratio) +
+                       " x the case's limit on kinetic/elastic energy, so inertia shapes the curve; lower the loading "
+                       "speed (e.g. pellet.piston_speed) or raise the damping");
+  else if (dynamic > 0)
+    warnings.push_back(std::to_string(dynamic) + " of " + std::to_string(checked) +
+                       " runs were far from quasi-static (kinetic/elastic energy above the case's limit); the best "
+                       "run was not, but the surrogate was fitted to them too");
+}
+
 }  // namespace
 
 StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
@@ -47,6 +72,7 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
   StudyDiagnostics d;
   if (!best) return d;
   bound_warnings(spec, *best, d.warnings);
+  quasi_static_warnings(runs, *best, d.warnings);
   if (result && !result->value("converged", false))
     d.warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
                          ") without converging; resume with a larger stopping.max_iterations");

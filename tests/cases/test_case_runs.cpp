@@ -12,6 +12,7 @@
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/synthetic_noise.hpp"
 #include "demfit/identify/study.hpp"
+#include "demfit/identify/study_warnings.hpp"
 
 using namespace demfit::cases;
 using nlohmann::json;
@@ -57,6 +58,22 @@ TEST_CASE("A small pellet compression runs and, with frictionless walls, the bot
   const double area = std::numbers::pi * 0.012 * 0.012;
   CHECK(curve.x.front() > 120 * sphere_volume(spec.material.radius) * 1e6);
   CHECK(curve.x.front() < area * 0.3 * 1e6);
+  // The quasi-static check curve is the history's kinetic/elastic energy over SPEC 2.1's 1 % limit,
+  // at every loading sample that carries more than 10 % of the maximum pressure.
+  const auto& check = result.curves.at(demfit::identify::kQuasiStaticCurve);
+  const auto& volume = history.values[2];
+  const auto& pressure = history.values[3];
+  const auto& kinetic = history.values[6];
+  const auto& elastic = history.values[7];
+  std::size_t k = 0;
+  for (std::size_t i = 0; i <= end && k < check.x.size(); ++i) {
+    if (pressure[i] * 1e6 <= 0.1 * spec.pellet.max_pressure || elastic[i] <= 0.0) continue;
+    CHECK(check.x[k] == volume[i]);
+    CHECK(check.y[k] == Approx(kinetic[i] / elastic[i] / 0.01).epsilon(1e-12));
+    ++k;
+  }
+  CHECK(k == check.x.size());
+  CHECK(k > 0);
 }
 
 TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and radius, and resists the rotation") {

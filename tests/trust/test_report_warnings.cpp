@@ -1,6 +1,7 @@
 // The report says what a confident-looking answer may hide (issue #13): an optimum on a bound, a
 // study stopped at the iteration limit, a verification run far from its prediction, and a misfit
-// far above the noise of the data, with the misfit in the curve's own units.
+// far above the noise of the data, with the misfit in the curve's own units, and runs far from
+// quasi-static.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -85,4 +86,25 @@ TEST_CASE("an optimum on a bound, the iteration limit and a verification far fro
   last.predicted_objective = 3e-19;
   const auto exact = id::study_diagnostics(spec, {design, verification}, {last}, &best, nlohmann::json{{"converged", true}});
   CHECK(!mentions(exact.warnings, "far from the surrogate's prediction"));
+}
+
+TEST_CASE("a best run far from quasi-static is warned, and so are other runs that were") {
+  std::vector<double> y{0, 1, 2, 3, 4};
+  const auto spec = spec_with_target(y);
+  auto with_check = [&](double k, double largest) {
+    auto r = run(k, y);
+    r.curves[id::kQuasiStaticCurve] = {"volume_cm3", "kinetic_over_elastic_energy_per_limit", {3, 2, 1}, {0.1, largest, 0.2}};
+    return r;
+  };
+  const auto inertial = with_check(1.5, 4.0);
+  const auto calm = with_check(1.4, 0.5);
+  const auto d = id::study_diagnostics(spec, {inertial, calm}, {}, &inertial, nlohmann::json{{"converged", true}});
+  CHECK(mentions(d.warnings, "the best run is far from quasi-static: its kinetic energy reached 4 x the case's limit"));
+  const auto other = id::study_diagnostics(spec, {inertial, calm}, {}, &calm, nlohmann::json{{"converged", true}});
+  CHECK(mentions(other.warnings, "1 of 2 runs were far from quasi-static"));
+  const auto fine = id::study_diagnostics(spec, {calm}, {}, &calm, nlohmann::json{{"converged", true}});
+  CHECK(!mentions(fine.warnings, "quasi-static"));
+  // A model without the check curve (the drum, the analytic model) gets no such warning.
+  const auto plain = run(1.5, y);
+  CHECK(!mentions(id::study_diagnostics(spec, {plain}, {}, &plain, nlohmann::json{{"converged", true}}).warnings, "quasi-static"));
 }

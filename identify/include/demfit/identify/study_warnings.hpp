@@ -6,6 +6,10 @@
 //   - the verification run far from the surrogate's prediction (more than 50 % apart),
 //   - the best run's misfit far above the noise of the data (RMS misfit > 3 x noise), where
 //     the noise of a target is estimated from its second differences (sigma^2 = sum(d2^2)/(6(n-2))),
+//   - runs far from quasi-static: a model that can check it returns a curve named
+//     kQuasiStaticCurve whose y is the run's kinetic/elastic energy ratio divided by the case's own
+//     limit (pellet compression: 1 %, SPEC 2.1), so y > 1 means inertia, not the contact law,
+//     shaped part of the measured curve,
 // plus, per target, the RMS misfit of the best run in the curve's own units and as a multiple of
 // that noise (the objective translated into physical terms).
 #include <string>
@@ -14,6 +18,9 @@
 #include "demfit/identify/study_store.hpp"
 
 namespace demfit::identify {
+
+// Name of the optional quasi-static check curve (y = kinetic/elastic energy over the case's limit).
+inline constexpr const char* kQuasiStaticCurve = "quasi_static_check";
 
 struct TargetMisfit {
   std::string target;
