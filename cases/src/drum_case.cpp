@@ -256,6 +256,8 @@ Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
   dem_core::SettleOptions settle_options;
   settle_options.max_time = spec.drum.densify_time;
   settle_options.frictionless = true;
+  if (options.progress)
+    settle_options.progress = [&](double elapsed, double end) { options.progress("densify", elapsed, end); };
   dem_core::settle(sim, settle_options);
   if (options.progress) options.progress("densify", spec.drum.densify_time, spec.drum.densify_time);
   return detail::fill_of(sim);

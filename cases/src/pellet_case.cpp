@@ -94,6 +94,8 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   settle_options.max_time = spec.pellet.settle_time;
   settle_options.frictionless = true;
   settle_options.refriction_time = 0.1;
+  if (options.progress)
+    settle_options.progress = [&](double elapsed, double end) { options.progress("settle", elapsed, end); };
   dem_core::settle(sim, settle_options);
   if (options.progress) options.progress("settle", spec.pellet.settle_time, spec.pellet.settle_time);
   return detail::fill_of(sim);

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "demfit/dem_core/packing.hpp"
@@ -57,7 +58,8 @@ TEST_CASE("Drum fill height and segment volume agree with the circle-segment for
 namespace {
 
 /// 250 spheres (R = 1 mm) poured into a 18 mm cylinder and settled; returns the volume fraction.
-double settled_fraction(bool frictionless, SettleReport& report) {
+double settled_fraction(bool frictionless, SettleReport& report,
+                        std::function<void(double, double)> progress = {}, std::vector<Vec3>* positions = nullptr) {
   SimulationSettings settings;
   settings.contact = {0.01, 2.0 / 7.0, 0.5, 0.5, 0.5, -1.0, 0.0, 0.1, 1.0};
   Simulation sim(settings);
@@ -75,7 +77,8 @@ double settled_fraction(bool frictionless, SettleReport& report) {
   q.radius_min = q.radius_max = 1.0e-3;
   q.count = 250;
   add_packing(sim, generate_packing(q));
-  report = settle(sim, {.max_time = 0.5, .frictionless = frictionless});
+  report = settle(sim, {.max_time = 0.5, .frictionless = frictionless, .progress = progress});
+  if (positions) positions->assign(sim.positions().begin(), sim.positions().end());
   for (std::size_t i = 0; i < sim.particle_count(); ++i) REQUIRE(region_contains(region, sim.positions()[i], 0.99e-3));
   return packed_volume_fraction(sim, region, {0, 0, 1});
 }
@@ -95,6 +98,29 @@ TEST_CASE("Settling brings a poured bed to rest and frictionless densification p
   CHECK(phi_rough < 0.62);
   // Friction stabilises looser structures (random loose vs random close packing).
   CHECK(phi_smooth > phi_rough + 0.02);
+}
+
+TEST_CASE("Settling reports its progress after every check and settles the same bed with or without it",
+          "[dem_core][packing]") {
+  SettleReport quiet, reported;
+  std::vector<Vec3> quiet_bed, reported_bed;
+  std::vector<std::pair<double, double>> calls;
+  settled_fraction(true, quiet, {}, &quiet_bed);
+  settled_fraction(true, reported, [&](double elapsed, double end) { calls.emplace_back(elapsed, end); }, &reported_bed);
+  REQUIRE(!calls.empty());
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    CHECK(calls[i].second == 0.5);
+    CHECK(calls[i].first <= 0.5);
+    if (i > 0) CHECK(calls[i].first > calls[i - 1].first);
+  }
+  CHECK(calls.back().first == Approx(reported.simulated_time).margin(1e-12));
+  // One call per convergence check (every 5 ms of simulated time, SettleOptions::check_interval).
+  CHECK(static_cast<double>(calls.size()) == Approx(reported.simulated_time / 0.005).margin(1.0));
+  REQUIRE(quiet_bed.size() == reported_bed.size());
+  for (std::size_t i = 0; i < quiet_bed.size(); ++i) {
+    CHECK(quiet_bed[i].x == reported_bed[i].x);
+    CHECK(quiet_bed[i].z == reported_bed[i].z);
+  }
 }
 
 TEST_CASE("A packing of explicit radii places exactly those radii, in order, without overlaps, inside the region",

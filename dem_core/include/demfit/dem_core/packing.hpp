@@ -4,6 +4,7 @@
 // region, lowest sites first (so little settling is needed), fully seeded: std::mt19937_64 with
 // our own uniform mapping (std distributions are implementation-defined).
 #include <cstdint>
+#include <functional>
 #include <variant>
 #include <vector>
 
@@ -103,6 +104,9 @@ struct SettleOptions {
   /// packing, as the paper's densification stage.
   bool frictionless = false;
   double refriction_time = 0.05;  ///< [s]
+  /// Called after every convergence check with the simulated time spent settling and max_time
+  /// [s], so a long settle shows progress (issue #13). May be empty.
+  std::function<void(double elapsed, double max_time)> progress;
 };
 
 struct SettleReport {
