@@ -138,25 +138,6 @@ std::unique_ptr<identify::Model> one_model(const std::string& reference, const n
   return model;
 }
 
-// An experiments study as one plain Model whose evaluate() runs all experiments of a point in turn.
-// diagnose evaluates through identify::Evaluator::evaluate_batch, which sends whole parameter sets
-// to experiment 0 only when it is handed an ExperimentSetModel itself (that path splits points
-// into experiment jobs only in the study loop, via PointJobs); hiding the set keeps every
-// evaluation complete. Points still run in parallel over --jobs.
-class WholePointModel final : public identify::Model {
- public:
-  explicit WholePointModel(std::unique_ptr<identify::Model> set) : set_(std::move(set)) {}
-  std::vector<std::string> parameter_names() const override { return set_->parameter_names(); }
-  identify::ParameterSet default_parameters() const override { return set_->default_parameters(); }
-  identify::CurveSet evaluate(const identify::ParameterSet& parameters,
-                              const identify::EvaluationContext& context) const override {
-    return set_->evaluate(parameters, context);
-  }
-
- private:
-  std::unique_ptr<identify::Model> set_;
-};
-
 // The study's model and its candidate effects. An experiments study (e.g. the GranuDrum at 15
 // and 45 rpm) gets identify's ExperimentSetModel over one model per experiment and the union
 // of their candidates.
@@ -170,7 +151,8 @@ std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec&
     models.push_back(one_model(e.model_reference, e.model_overrides, e.fixed_parameters, spec, e.name, own));
     merge_candidates(candidates, std::move(own));
   }
-  return std::make_unique<WholePointModel>(std::make_unique<identify::ExperimentSetModel>(spec, std::move(models)));
+  // identify's evaluators split each point of the set into one job per experiment and join them.
+  return std::make_unique<identify::ExperimentSetModel>(spec, std::move(models));
 }
 
 // Expensive, chaotic DEM models get diagnose's options for them; the analytic model does not.

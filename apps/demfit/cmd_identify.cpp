@@ -90,39 +90,52 @@ nlohmann::json resolved_model(const identify::StudySpec& spec) {
 #if defined(DEMFIT_HAVE_SCALEOUT)
 // `mpirun -np K demfit identify STUDY.json --mpi`: every rank reads the study and builds the model
 // (a shared file system is assumed); rank 0 runs the loop and owns the store, the others evaluate.
+// Rank 0: the checks, the store and the loop. The evaluator exists before anything can fail, so
+// its destructor always releases the workers and every rank can finalise normally.
+void run_identify_rank0(const IdentifyOptions& o, identify::RunOptions options, const identify::StudySpec& parsed,
+                        const identify::Model& model, scaleout::MpiSession& session) {
+  scaleout::MpiEvaluatorOptions mpi_options;
+  mpi_options.run_timeout_seconds = o.run_timeout;
+  scaleout::MpiEvaluator evaluator(session, mpi_options);
+  // As without MPI (issue #13): every configuration error before anything is created, the
+  // initial point evaluated on a worker rank (curve names, units, overlap).
+  const auto inputs = study_inputs(parsed, o.study_file);
+  identify::check_output_folder(options.output_dir, inputs, "--out");
+  std::optional<identify::StoreLock> lock;
+  if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
+  options.resolved_model = resolved_model(parsed);
+  const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator);
+  identify::prepare_output_folder(options.output_dir, inputs, "--out");
+  if (!lock) lock.emplace(options.output_dir);
+  options.evaluator = &evaluator;
+  std::fprintf(stderr, "demfit: MPI: rank 0 runs the loop, %d worker rank(s) evaluate\n", session.size() - 1);
+  const auto result = identify::run_study(spec, model, options);
+  print_summary(spec, result, options.output_dir);
+  std::fflush(stdout);
+}
+
 void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
   int argc = 0;
   char** argv = nullptr;
   scaleout::MpiSession session(argc, argv);
+  int status = 0;
   try {
-    const identify::StudySpec spec = identify::load_study_file(o.study_file);
-    const auto model = make_model(spec);
-    if (session.rank() != 0) {
-      scaleout::run_worker(*model, o.threads_per_job, spec.seed);
-      session.finish(0);
-      return;
-    }
-    identify::prepare_output_folder(options.output_dir, study_inputs(spec, o.study_file), "--out");
-    identify::StoreLock lock(options.output_dir);
-    options.resolved_model = resolved_model(spec);
-    scaleout::MpiEvaluatorOptions mpi_options;
-    mpi_options.run_timeout_seconds = o.run_timeout;
-    identify::StudyResult result;
-    {
-      scaleout::MpiEvaluator evaluator(session, mpi_options);
-      options.evaluator = &evaluator;
-      std::fprintf(stderr, "demfit: MPI: rank 0 runs the loop, %d worker rank(s) evaluate\n", session.size() - 1);
-      result = identify::run_study(spec, *model, options);
-    }
-    print_summary(spec, result, options.output_dir);
-    std::fflush(stdout);
-    session.finish(0);
+    // Every rank reads the same study: a bad study fails on every rank alike, before any message.
+    const identify::StudySpec parsed = identify::load_study_file(o.study_file);
+    const auto model = make_model(parsed);
+    if (session.rank() != 0)
+      scaleout::run_worker(*model, o.threads_per_job, parsed.seed);
+    else
+      run_identify_rank0(o, options, parsed, *model, session);
   } catch (const std::exception& e) {
-    // Workers wait for rank 0: end the whole job here, with the error, rather than hang.
-    std::cerr << "demfit: error: " << e.what() << std::endl;
-    session.mark_peer_lost();
-    session.finish(1);
+    if (session.rank() == 0) std::cerr << "demfit: error: " << e.what() << std::endl;
+    status = 1;
   }
+  // A normal finalisation, then the status: Open MPI 4.1's mpirun --enable-recovery reports an
+  // aborted or unfinalised job as success (exit 0), but passes on a finalised rank's exit code.
+  // After a lost worker, finish() exits at once with the status instead of waiting for it.
+  session.finish(status);
+  if (status != 0) std::exit(status);
 }
 #endif
 

@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     for (const auto& p : batch) run_seconds += identify::evaluate_safely(model, p, {1, 1}).wall_seconds;
   } else {
     scaleout::MpiEvaluator evaluator(session, {});
-    for (const auto& outcome : evaluator.evaluate_batch(batch, nullptr)) run_seconds += outcome.wall_seconds;
+    for (const auto& outcome : evaluator.evaluate_points(model, batch, nullptr)) run_seconds += outcome.wall_seconds;
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("ranks %d runs %d seconds %.3f runs_per_second %.3f per_run_seconds %.3f\n", session.size(), runs,

@@ -104,7 +104,7 @@ std::vector<identify::CurveSet> evaluate_many(const identify::Model& model,
   // The identify thread pool: same scheduling, failure capture and ordering as a study's runs.
   identify::ThreadPoolEvaluator evaluator(model, jobs, 1, seed);
   std::vector<identify::CurveSet> out;
-  for (auto& outcome : evaluator.evaluate_batch(sets, nullptr)) {
+  for (auto& outcome : evaluator.evaluate_points(model, sets, nullptr)) {
     out.push_back(outcome.ok ? std::move(outcome.curves) : identify::CurveSet{});  // empty: failed run
   }
   return out;

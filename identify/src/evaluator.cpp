@@ -29,11 +29,18 @@ EvaluationOutcome evaluate_safely(const Model& model, const ParameterSet& parame
   return outcome;
 }
 
-std::vector<EvaluationOutcome> Evaluator::evaluate_batch(const std::vector<ParameterSet>& batch,
-                                                         const DoneCallback& on_done) {
-  std::vector<EvaluationJob> jobs;
-  for (const auto& parameters : batch) jobs.push_back({0, parameters});
-  return evaluate_jobs(jobs, on_done);
+std::vector<EvaluationOutcome> Evaluator::evaluate_points(const Model& model, const std::vector<ParameterSet>& points,
+                                                          const DoneCallback& on_done) {
+  PointJobs jobs(model, points);
+  std::vector<EvaluationOutcome> outcomes(points.size());
+  evaluate_jobs(jobs.jobs(), [&](std::size_t index, const EvaluationOutcome& part) {
+    std::size_t point = 0;
+    EvaluationOutcome outcome;
+    if (!jobs.finish(index, part, point, outcome)) return;
+    outcomes[point] = outcome;
+    if (on_done) on_done(point, outcomes[point]);
+  });
+  return outcomes;
 }
 
 ThreadPoolEvaluator::ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed)

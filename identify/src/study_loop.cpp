@@ -136,11 +136,7 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
   if (pending.empty()) return collect(iteration, points);
   // One job per (point, experiment): the experiments of a point run in parallel too. A point is
   // recorded when its last experiment finishes.
-  PointJobs jobs(model_, pending);
-  evaluator_.evaluate_jobs(jobs.jobs(), [&](std::size_t index, const EvaluationOutcome& part) {
-    std::size_t p = 0;
-    EvaluationOutcome outcome;
-    if (!jobs.finish(index, part, p, outcome)) return;
+  evaluator_.evaluate_points(model_, pending, [&](std::size_t p, const EvaluationOutcome& outcome) {
     const int i = pending_point[p];
     const EvaluationRecord record = make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome);
     store_.add_evaluation(record);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 
 #include "demfit/identify/units.hpp"
@@ -22,16 +23,15 @@ void convert(std::vector<double>& values, double factor) {
     for (double& v : values) v *= factor;
 }
 
-}  // namespace
-
-StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context) {
+StudySpec checked_against(const StudySpec& spec, const Model& model,
+                          const std::function<CurveSet(const ParameterSet&)>& evaluate) {
   detail::check_parameter_names(spec, model);  // names first: the evaluation would fail less clearly
   ParameterSet parameters = model.default_parameters();
   for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
   for (const auto& v : spec.variables) parameters[v.name] = v.initial;
   CurveSet curves;
   try {
-    curves = model.evaluate(parameters, context);
+    curves = evaluate(parameters);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("study: the model fails at the initial point of the variables: ") + e.what());
   }
@@ -60,6 +60,20 @@ StudySpec preflight_study(const StudySpec& spec, const Model& model, const Evalu
                                "; check the units and the fill (docs/study_format.md, \"Matching the fill\")");
   }
   return out;
+}
+
+}  // namespace
+
+StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context) {
+  return checked_against(spec, model, [&](const ParameterSet& p) { return model.evaluate(p, context); });
+}
+
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator) {
+  return checked_against(spec, model, [&](const ParameterSet& p) {
+    EvaluationOutcome outcome = evaluator.evaluate_points(model, {p}, nullptr).at(0);
+    if (!outcome.ok) throw std::runtime_error(outcome.error);
+    return std::move(outcome.curves);
+  });
 }
 
 }  // namespace demfit::identify

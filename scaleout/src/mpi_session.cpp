@@ -34,6 +34,15 @@ void MpiSession::finish(int exit_code) {
   MPI_Finalize();
 }
 
+void MpiSession::abort_job(int exit_code) {
+  finished_ = true;
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  MPI_Abort(MPI_COMM_WORLD, exit_code);
+  std::_Exit(exit_code);  // MPI_Abort returned (it should not)
+}
+
 MpiSession::~MpiSession() { finish(0); }
 
 }  // namespace demfit::scaleout

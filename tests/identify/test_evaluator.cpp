@@ -14,7 +14,7 @@ TEST_CASE("The thread pool returns outcomes in submission order and records mode
   batch[4] = {{"stiffness", 1.0}};  // unknown parameter: the model throws
   ThreadPoolEvaluator pool(model, 3, 1, 0);
   int callbacks = 0;
-  const auto outcomes = pool.evaluate_batch(batch, [&](std::size_t, const EvaluationOutcome&) { ++callbacks; });
+  const auto outcomes = pool.evaluate_points(model, batch, [&](std::size_t, const EvaluationOutcome&) { ++callbacks; });
   CHECK(callbacks == 9);
   for (int i = 0; i < 9; ++i) {
     if (i == 4) {
@@ -33,7 +33,7 @@ TEST_CASE("An exception thrown by the completion callback stops the batch and pr
   std::vector<ParameterSet> batch(20, ParameterSet{});
   ThreadPoolEvaluator pool(model, 2, 1, 0);
   int done = 0;
-  CHECK_THROWS_WITH(pool.evaluate_batch(batch, [&](std::size_t, const EvaluationOutcome&) {
+  CHECK_THROWS_WITH(pool.evaluate_points(model, batch, [&](std::size_t, const EvaluationOutcome&) {
                       if (++done == 3) throw std::runtime_error("killed");
                     }),
                     "killed");

@@ -2,6 +2,7 @@
 // experiment), curves and targets qualified by the experiment, errors before the store exists.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -122,6 +123,29 @@ TEST_CASE("Each experiment of a design point is its own job and the answer does 
   CHECK(calls_three.load() == calls_one.load());
   CHECK(three.best == one.best);
   CHECK(three.best_objective == one.best_objective);
+}
+
+TEST_CASE("An evaluator given points of an experiments model runs every experiment and returns whole points",
+          "[identify][experiments][evaluator]") {
+  // diagnose and the MPI preflight hand whole points to an evaluator: each must come back with
+  // the curves of every experiment, equal to evaluating the set model directly.
+  const StudySpec spec = parse_study(study(true, true), ".");
+  std::atomic<int> calls{0};
+  const auto set = models_for(spec, &calls);
+  const std::vector<ParameterSet> points{{{"a", 1.5}, {"b", 0.7}}, {{"a", 3.0}, {"b", 1.2}}, {{"a", 0.9}, {"b", 0.4}}};
+  ThreadPoolEvaluator pool(*set, 2, 1, 0);
+  std::vector<std::size_t> done;
+  const auto outcomes = pool.evaluate_points(*set, points, [&](std::size_t point, const EvaluationOutcome&) { done.push_back(point); });
+  CHECK(calls.load() == 6);
+  std::sort(done.begin(), done.end());
+  CHECK(done == std::vector<std::size_t>{0, 1, 2});
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    REQUIRE(outcomes[p].ok);
+    const CurveSet direct = set->evaluate(points[p], {});
+    REQUIRE(outcomes[p].curves.size() == 2);
+    CHECK(outcomes[p].curves.at("product/signal").y == direct.at("product/signal").y);
+    CHECK(outcomes[p].curves.at("ratio/signal").y == direct.at("ratio/signal").y);
+  }
 }
 
 TEST_CASE("The store keeps each experiment's curves under its name and the report lists every experiment's targets",

@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     scaleout::MpiEvaluatorOptions options;
     options.run_timeout_seconds = 5.0;  // a hung worker is given up after 5 s
     scaleout::MpiEvaluator evaluator(session, options);
-    outcomes = evaluator.evaluate_batch(batch, [&](std::size_t, const identify::EvaluationOutcome&) { ++callbacks; });
+    outcomes = evaluator.evaluate_points(model, batch, [&](std::size_t, const identify::EvaluationOutcome&) { ++callbacks; });
   }
   const identify::EvaluationContext context{1, 7};
   for (std::size_t i = 0; i + 1 < batch.size(); ++i) {

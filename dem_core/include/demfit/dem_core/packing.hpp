@@ -106,7 +106,7 @@ struct SettleOptions {
   double refriction_time = 0.05;  ///< [s]
   /// Called after every convergence check with the simulated time spent settling and max_time
   /// [s], so a long settle shows progress (issue #13). May be empty.
-  std::function<void(double elapsed, double max_time)> progress;
+  std::function<void(double elapsed, double max_time)> progress = {};
 };
 
 struct SettleReport {

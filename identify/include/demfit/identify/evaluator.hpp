@@ -35,8 +35,12 @@ class Evaluator {
   using DoneCallback = std::function<void(std::size_t index, const EvaluationOutcome&)>;
   virtual std::vector<EvaluationOutcome> evaluate_jobs(const std::vector<EvaluationJob>& jobs,
                                                        const DoneCallback& on_done) = 0;
-  // Every parameter set evaluated as experiment 0.
-  std::vector<EvaluationOutcome> evaluate_batch(const std::vector<ParameterSet>& batch, const DoneCallback& on_done);
+  // Complete design points of `model` (the model this evaluator was built for): a point of an
+  // experiments model is split into one job per experiment (experiments.hpp PointJobs), so its
+  // experiments run in parallel too; outcomes and on_done are per point, with the curves of all
+  // its experiments. on_done is called when a point's last experiment finishes.
+  std::vector<EvaluationOutcome> evaluate_points(const Model& model, const std::vector<ParameterSet>& points,
+                                                 const DoneCallback& on_done);
   virtual int concurrency() const = 0;
 };
 

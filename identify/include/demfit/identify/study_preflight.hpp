@@ -5,6 +5,7 @@
 //   - the curve exists (else the error lists the model's curves),
 //   - the target's units are converted to the model's (units.hpp), a dimension mismatch refused,
 //   - the target's x-range overlaps the model's x-range at the initial point.
+#include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/model.hpp"
 #include "demfit/identify/study_spec.hpp"
 
@@ -13,5 +14,9 @@ namespace demfit::identify {
 // Returns `spec` with the target data in the model's units (labels = the model's); throws
 // std::runtime_error "study: targets[i].<field>: ..." otherwise.
 StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context);
+
+// The same, with the initial point evaluated by `evaluator` (e.g. on an MPI worker rank, so rank 0
+// only schedules and the run uses the workers' settings).
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator);
 
 }  // namespace demfit::identify

@@ -21,6 +21,9 @@ class MpiSession {
   void mark_peer_lost() { peer_lost_ = true; }
   // Ends MPI; if a peer was lost, flushes stdio and exits the process with `exit_code`.
   void finish(int exit_code);
+  // Ends the whole job with `exit_code` (MPI_Abort): rank 0's fatal error. Exiting rank 0 alone
+  // was reported by mpirun --enable-recovery as success (exit status 0).
+  [[noreturn]] void abort_job(int exit_code);
 
  private:
   int rank_ = 0;
