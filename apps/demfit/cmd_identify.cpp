@@ -58,15 +58,17 @@ std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
   std::printf("best objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective, result.runs,
               result.failed_runs, result.iterations, result.converged ? "converged" : "iteration limit reached");
+  // The same interval as report.md, best_parameters.json and the export (reported_interval.hpp).
   for (const auto& v : spec.variables) {
-    const auto ci = result.ci_half_width.find(v.name);
+    const auto found = result.intervals.find(v.name);
     std::printf("  %-12s %.9g", v.name.c_str(), result.best.at(v.name));
-    if (ci != result.ci_half_width.end()) std::printf("  +- %.3g (95 %% CI)", ci->second);
+    if (found != result.intervals.end() && found->second.available)
+      std::printf("  95 %% interval %s", identify::interval_text(found->second).c_str());
     std::printf("\n");
+    if (found != result.intervals.end() && !found->second.identifiable)
+      std::printf("  warning: '%s' is not identifiable from these targets (its interval spans most of its bounds)\n",
+                  v.name.c_str());
   }
-  for (const auto& name : result.unidentifiable)
-    std::printf("  warning: '%s' is not identifiable from these targets (interval too wide or J^T J singular)\n",
-                name.c_str());
   std::printf("results: %s\n", (out / "report.md").string().c_str());
 }
 
@@ -195,12 +197,13 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
     const std::string name = v.value("name", std::string("?"));
     std::string line = "variable " + name + ": bounds [" + identify::json_excerpt(v.value("lower", nlohmann::json())) +
                        ", " + identify::json_excerpt(v.value("upper", nlohmann::json())) + "]";
-    if (uncertainty.is_object()) {
-      const auto ci = uncertainty["ci_half_width"].value(name, nlohmann::json());
-      line += ", 95 % interval +- " + (ci.is_number() ? identify::json_excerpt(ci) : std::string("n/a"));
-      const auto& flags = uncertainty["unidentifiable"];
-      line += std::find(flags.begin(), flags.end(), name) == flags.end() ? ", identifiable"
-                                                                          : ", NOT identifiable from these targets";
+    const nlohmann::json value = result ? result->value("best_parameters", nlohmann::json::object()).value(name, nlohmann::json())
+                                        : nlohmann::json();
+    if (uncertainty.is_object() && value.is_number()) {
+      // The same interval as report.md and best_parameters.json (reported_interval.hpp).
+      const identify::ReportedInterval interval = identify::reported_interval(uncertainty, name, value.get<double>());
+      line += ", 95 % interval " + identify::interval_text(interval);
+      line += interval.identifiable ? ", identifiable" : ", NOT identifiable from these targets";
     } else {
       line += ", no interval (study not finished)";
     }

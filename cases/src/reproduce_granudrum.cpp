@@ -141,15 +141,15 @@ std::string granudrum_report(const identify::StudySpec& spec, const identify::St
                              const std::vector<SurfaceError>& calibrated, const std::vector<SurfaceError>& anchor,
                              const std::vector<std::string>& pictures, double anchor_seconds) {
   std::string t = "## GranuDrum MCC: calibration on the 15 and 45 rpm photos (" + spec.name + ")\n\n";
-  t += "| variable | identified (best run) | ± 95 % | least-squares estimate | note |\n|---|---|---|---|---|\n";
+  t += "| variable | identified (best run) | 95 % interval | least-squares estimate | note |\n|---|---|---|---|---|\n";
   for (const auto& v : spec.variables) {
     const auto best = r.best.find(v.name);
-    const auto ci = r.ci_half_width.find(v.name);
+    const auto interval = r.intervals.find(v.name);  // the same interval as report.md (reported_interval.hpp)
     const auto ls = r.least_squares_estimate.find(v.name);
-    std::string note;
-    for (const auto& u : r.unidentifiable) if (u == v.name) note = "not identifiable";
+    const bool known = interval != r.intervals.end();
+    const std::string note = known && !interval->second.identifiable ? "not identifiable" : "";
     t += "| " + v.name + " | " + (best != r.best.end() ? fmt("%.6g", best->second) : "?") + " | " +
-         (ci != r.ci_half_width.end() && std::isfinite(ci->second) ? fmt("%.3g", ci->second) : "n/a") + " | " +
+         (known ? identify::interval_text(interval->second) : std::string("n/a")) + " | " +
          (ls != r.least_squares_estimate.end() ? fmt("%.6g", ls->second) : "n/a") + " | " + note + " |\n";
   }
   t += "\nSource's published values: frics 0.561, fricr 0.293, particle_count 29,185 (50 mL).\n\n";

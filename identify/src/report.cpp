@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/rbf_surrogate/bounds.hpp"
@@ -89,10 +89,16 @@ nlohmann::json best_parameters_json(const StudySpec& spec, const EvaluationRecor
     nlohmann::json entry = {{"value", best.parameters.at(v.name)}, {"initial", v.initial}, {"lower", v.lower},
                             {"upper", v.upper}, {"log_scale", v.log_scale}};
     if (uncertainty.is_object()) {
-      entry["ci95_half_width"] = uncertainty["ci_half_width"].value(v.name, nlohmann::json());
-      entry["standard_error"] = uncertainty["standard_error"].value(v.name, nlohmann::json());
-      const auto& flags = uncertainty["unidentifiable"];
-      entry["identifiable"] = std::find(flags.begin(), flags.end(), v.name) == flags.end();
+      // The reported interval (the same object as in report.md and the export), then the
+      // linearised estimate for comparison.
+      const ReportedInterval interval = reported_interval(uncertainty, v.name, best.parameters.at(v.name));
+      if (interval.available) {
+        entry["interval_95"] = {interval.lower, interval.upper};
+        entry["interval_method"] = interval.method;
+      }
+      entry["identifiable"] = interval.identifiable;
+      entry["linearised_ci95_half_width"] = uncertainty["ci_half_width"].value(v.name, nlohmann::json());
+      entry["linearised_standard_error"] = uncertainty["standard_error"].value(v.name, nlohmann::json());
     }
     json["variables"][v.name] = entry;
   }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_warnings.hpp"
 #include "gnuplot.hpp"
@@ -90,21 +91,26 @@ namespace {
 void variables_section(std::ostringstream& md, const StudySpec& spec, const EvaluationRecord& best,
                        const nlohmann::json& uncertainty) {
   md << "## Identified variables\n\n"
-     << "| variable | initial | identified | ±95 % CI | bounds | identifiable |\n|---|---|---|---|---|---|\n";
+     << "| variable | initial | identified | 95 % interval | bounds | identifiable |\n|---|---|---|---|---|---|\n";
   for (const auto& v : spec.variables) {
     std::string ci = "-", identifiable = "-";
     if (uncertainty.is_object()) {
-      ci = number_or_dash(uncertainty["ci_half_width"].value(v.name, nlohmann::json()));
-      const auto& flags = uncertainty["unidentifiable"];
-      identifiable = std::find(flags.begin(), flags.end(), v.name) == flags.end() ? "yes" : "**no**";
+      const ReportedInterval interval = reported_interval(uncertainty, v.name, best.parameters.at(v.name));
+      ci = interval_text(interval);
+      identifiable = interval.identifiable ? "yes" : "**no**";
     }
     md << "| " << v.name << " | " << format_number(v.initial) << " | " << format_number(best.parameters.at(v.name))
        << " | " << ci << " | [" << format_number(v.lower) << ", " << format_number(v.upper) << "]"
        << (v.log_scale ? " log" : "") << " | " << identifiable << " |\n";
   }
   if (!uncertainty.is_object()) return;
+  md << "\nThe 95 % interval is the marginal of the posterior (Gibbs sampling on the local linear surrogate of "
+        "the residuals, noise level estimated from the runs), the same in `best_parameters.json` and the LS-DYNA "
+        "export; it stays right when another variable is poorly pinned. \"(linearised)\" marks a value ± "
+        "half-width, used only when the posterior could not be computed.\n";
   if (uncertainty.value("jacobian", std::string()) == "regression") {
-    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹). J is the slope of a linear regression of the "
+    md << "\nFor comparison, the linearised half-widths (conditional on the other variables; "
+          "`linearised_ci95_half_width` in best_parameters.json) use Cov = s² (JᵀJ)⁻¹. J is the slope of a linear regression of the "
           "evaluated residual vectors on the variables over the "
        << uncertainty["runs_used"] << " runs nearest the optimum; s² = residual variance at the best run ("
        << uncertainty["degrees_of_freedom"] << " degrees of freedom) plus the regression's scatter (simulation noise, "
@@ -115,7 +121,7 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
       md << " " << v.name << " " << number_or_dash(uncertainty["effect_significance"].value(v.name, nlohmann::json()));
     md << "). Correlation matrix:\n\n| |";
   } else {
-    md << "\nConfidence intervals are linearised (Cov = s² (JᵀJ)⁻¹, J = Jacobian of the residual vector at "
+    md << "\nFor comparison, linearised half-widths (Cov = s² (JᵀJ)⁻¹, J = Jacobian of the residual vector at "
           "the best run, s² = residual variance, "
        << uncertainty["degrees_of_freedom"] << " degrees of freedom). Correlation matrix:\n\n| |";
   }

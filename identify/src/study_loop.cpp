@@ -313,6 +313,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
       if (estimate.unidentifiable[j]) result.unidentifiable.push_back(name);
       if (!estimate.least_squares_estimate.empty()) result.least_squares_estimate[name] = estimate.least_squares_estimate[j];
     }
+    for (const auto& v : spec_.variables)
+      result.intervals[v.name] = reported_interval(uncertainty, v.name, result.best.at(v.name));
     result.correlation.assign(dims_, std::vector<double>(dims_));
     for (int i = 0; i < dims_; ++i)
       for (int j = 0; j < dims_; ++j) result.correlation[i][j] = estimate.correlation(i, j);

@@ -93,14 +93,19 @@ TEST_CASE("The granudrum report writes side-by-side and overlay pictures per spe
   }
   identify::StudyResult result;
   result.best = {{"frics", 0.6}, {"fricr", 0.3}, {"particle_count", 30000}};
-  result.ci_half_width = {{"frics", 0.05}};
+  identify::ReportedInterval frics_interval;
+  frics_interval.available = true;
+  frics_interval.lower = 0.55;
+  frics_interval.upper = 0.66;
+  frics_interval.method = "posterior";
+  result.intervals["frics"] = frics_interval;
   result.runs = 7;
   result.wall_seconds = 123;
   const auto errors = cases::surface_errors(spec, best);
   const std::string text = cases::granudrum_report(spec, result, errors, errors, files, 10.0);
   CHECK(text.find("| rpm15.surface | 3.00 |") != std::string::npos);
   CHECK(text.find("| rpm45.surface | 3.00 |") != std::string::npos);
-  CHECK(text.find("| frics | 0.6 | 0.05 |") != std::string::npos);
+  CHECK(text.find("| frics | 0.6 | [0.55, 0.66] (posterior) |") != std::string::npos);
   CHECK(text.find("7 evaluations") != std::string::npos);
   CHECK(text.find("granudrum_rpm45_overlay.png") != std::string::npos);
 }

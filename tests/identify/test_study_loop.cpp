@@ -4,11 +4,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <random>
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/report.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
 #include "test_helpers.hpp"
@@ -205,6 +207,53 @@ TEST_CASE("The report is rebuilt from the study store alone", "[identify][report
     CHECK(std::filesystem::exists(rebuilt / "variable_rate.png"));
     CHECK(std::filesystem::exists(rebuilt / "target_response.png"));
   }
+}
+
+TEST_CASE("The summary, report.md and best_parameters.json show one and the same 95 % interval, the posterior's",
+          "[identify][report][posterior]") {
+  const auto dir = test::fresh_dir("one_interval");
+  const auto spec = parse_study(test::analytic_study(0.01, 10), ".");
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet_options(dir));
+  std::ifstream json_in(dir / "best_parameters.json");
+  const auto best = nlohmann::json::parse(json_in);
+  std::ifstream md_in(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+  for (const char* name : {"amplitude", "rate"}) {
+    const ReportedInterval& interval = result.intervals.at(name);
+    INFO(name << " " << interval_text(interval));
+    REQUIRE(interval.available);
+    CHECK(interval.method == "posterior");
+    CHECK(interval.lower < result.best.at(name));
+    CHECK(result.best.at(name) < interval.upper);
+    const auto& entry = best["variables"][name];
+    CHECK(entry["interval_95"][0].get<double>() == interval.lower);
+    CHECK(entry["interval_95"][1].get<double>() == interval.upper);
+    CHECK(entry["interval_method"] == "posterior");
+    CHECK(report.find(interval_text(interval)) != std::string::npos);
+  }
+  // Truth (1.3, 4.2) inside, as the coverage tests of uncertainty.hpp measure over many seeds.
+  CHECK(result.intervals.at("amplitude").lower <= 1.3);
+  CHECK(1.3 <= result.intervals.at("amplitude").upper);
+}
+
+TEST_CASE("The reported interval falls back to the linearised one only without a posterior", "[identify][report]") {
+  const nlohmann::json linearised = {{"ci_half_width", {{"k", 0.5}}}, {"unidentifiable", nlohmann::json::array({"k"})}};
+  const ReportedInterval fallback = reported_interval(linearised, "k", 2.0);
+  CHECK(fallback.available);
+  CHECK(fallback.method == "linearised");
+  CHECK(fallback.lower == 1.5);
+  CHECK(fallback.upper == 2.5);
+  CHECK_FALSE(fallback.identifiable);
+  nlohmann::json both = linearised;
+  both["posterior"] = {{"variables", {{"k", {{"lower_95", 1.1}, {"upper_95", 3.2}, {"unidentifiable", false}}}}}};
+  const ReportedInterval posterior = reported_interval(both, "k", 2.0);
+  CHECK(posterior.method == "posterior");
+  CHECK(posterior.lower == 1.1);
+  CHECK(posterior.upper == 3.2);
+  CHECK(posterior.identifiable);
+  CHECK(interval_text(posterior) == "[1.1, 3.2] (posterior)");
+  CHECK_FALSE(reported_interval(nullptr, "k", 2.0).available);
+  CHECK(interval_text(reported_interval(nullptr, "k", 2.0)) == "-");
 }
 
 TEST_CASE("Adaptive infill and principal-component responses also identify the analytic parameters", "[identify][loop]") {

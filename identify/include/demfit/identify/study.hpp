@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::identify {
@@ -41,9 +42,12 @@ struct StudyResult {
   int runs = 0;                         // evaluations in the store (finished + failed)
   int failed_runs = 0;
   int iterations = 0;
+  // The interval every output reports (reported_interval.hpp: posterior marginal, else linearised).
+  std::map<std::string, ReportedInterval> intervals;
+  // The linearised estimate (conditional on the other variables), kept for comparison and tests.
   std::map<std::string, double> ci_half_width;  // ~95 % confidence half-width per variable
   std::map<std::string, double> standard_error;
-  std::vector<std::string> unidentifiable;      // variables the data cannot pin down
+  std::vector<std::string> unidentifiable;      // variables the data cannot pin down (linearised)
   // Centre of the local least-squares fit of the runs near the best one (uncertainty.hpp),
   // per variable; empty when too few runs.
   std::map<std::string, double> least_squares_estimate;
