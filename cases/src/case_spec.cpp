@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "demfit/cases/json_fields.hpp"
+#include "demfit/cases/parameter_table.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -20,8 +21,7 @@ MaterialSpec parse_material(const json& j, MaterialSpec m) {
   m.density = read_number(j, p, "density", m.density, Sign::positive);
   m.youngs_modulus = read_number(j, p, "youngs_modulus", m.youngs_modulus, Sign::positive);
   m.poisson_ratio = read_bounded(j, p, "poisson_ratio", m.poisson_ratio, -0.99, 0.499);
-  // Up to 0.3: the drum's lattice packing (gap 0.03) still holds the s = 1 fill (checked).
-  m.radius_spread = read_bounded(j, p, "radius_spread", m.radius_spread, 0.0, 0.3);
+  m.radius_spread = read_parameter(j, p, "radius_spread", m.radius_spread);  // range: parameter table
   return m;
 }
 
@@ -29,29 +29,29 @@ ContactSpec parse_contact(const json& j, ContactSpec c) {
   const char* p = "contact";
   require_known_keys(j, p, {"normk", "sheark", "ndamp", "tdamp", "frics", "fricd", "dc", "fricr",
                             "unloading_stiffness_ratio", "surface_energy", "stiffness_exponent"});
-  c.normk = read_number(j, p, "normk", c.normk, Sign::positive);
-  c.sheark = read_number(j, p, "sheark", c.sheark, Sign::non_negative);
-  c.ndamp = read_bounded(j, p, "ndamp", c.ndamp, 0.0, 1.0);
-  c.tdamp = read_bounded(j, p, "tdamp", c.tdamp, 0.0, 1.0);
-  c.frics = read_number(j, p, "frics", c.frics, Sign::non_negative);
+  // Ranges of identified parameters: the parameter table (read_parameter).
+  c.normk = read_parameter(j, p, "normk", c.normk);
+  c.sheark = read_parameter(j, p, "sheark", c.sheark);
+  c.ndamp = read_parameter(j, p, "ndamp", c.ndamp);
+  c.tdamp = read_parameter(j, p, "tdamp", c.tdamp);
+  c.frics = read_parameter(j, p, "frics", c.frics);
   // LS-DYNA: FRICD defaults to FRICS.
-  c.fricd = read_number(j, p, "fricd", j.contains("fricd") ? c.fricd : c.frics, Sign::non_negative);
-  c.dc = read_number(j, p, "dc", c.dc, Sign::non_negative);
-  c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
-  c.unloading_stiffness_ratio =
-      read_bounded(j, p, "unloading_stiffness_ratio", c.unloading_stiffness_ratio, 1.0, 100.0);
-  c.surface_energy = read_number(j, p, "surface_energy", c.surface_energy, Sign::non_negative);
-  c.stiffness_exponent = read_bounded(j, p, "stiffness_exponent", c.stiffness_exponent, 1.0, 2.0);
+  c.fricd = read_parameter(j, p, "fricd", j.contains("fricd") ? c.fricd : c.frics);
+  c.dc = read_parameter(j, p, "dc", c.dc);
+  c.fricr = read_parameter(j, p, "fricr", c.fricr);
+  c.unloading_stiffness_ratio = read_parameter(j, p, "unloading_stiffness_ratio", c.unloading_stiffness_ratio);
+  c.surface_energy = read_parameter(j, p, "surface_energy", c.surface_energy);
+  c.stiffness_exponent = read_parameter(j, p, "stiffness_exponent", c.stiffness_exponent);
   return c;
 }
 
 WallContactSpec parse_wall(const json& j, WallContactSpec w) {
   const char* p = "wall_contact";
   require_known_keys(j, p, {"frics", "fricd", "damp", "sfp"});
-  w.frics = read_number(j, p, "frics", w.frics, Sign::non_negative);
-  w.fricd = read_number(j, p, "fricd", w.fricd, Sign::non_negative);
-  w.damp = read_bounded(j, p, "damp", w.damp, 0.0, 1.0);
-  w.sfp = read_number(j, p, "sfp", w.sfp, Sign::positive);
+  w.frics = read_parameter(j, p, "frics", w.frics);
+  w.fricd = read_parameter(j, p, "fricd", w.fricd);
+  w.damp = read_parameter(j, p, "damp", w.damp);
+  w.sfp = read_parameter(j, p, "sfp", w.sfp);
   return w;
 }
 
@@ -61,9 +61,9 @@ ContactSpec parse_hertz_contact(const json& j, ContactSpec c) {
   const char* p = "contact";
   require_known_keys(j, p, {"law", "restitution", "frics", "fricr"});
   if (!j.contains("restitution")) throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in (0, 1]");
-  c.restitution = read_bounded(j, p, "restitution", c.restitution, 1e-3, 1.0);
-  c.frics = read_number(j, p, "frics", c.frics, Sign::non_negative);
-  c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
+  c.restitution = read_parameter(j, p, "restitution", c.restitution);
+  c.frics = read_parameter(j, p, "frics", c.frics);
+  c.fricr = read_parameter(j, p, "fricr", c.fricr);
   c.fricd = c.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
   c.dc = 0.0;
   return c;
@@ -79,8 +79,8 @@ WallContactSpec parse_hertz_wall(const json& j, WallContactSpec w, const Materia
   as_particles = read_bool(j, p, "friction_as_particles", false);
   if (as_particles && (j.contains("frics") || j.contains("fricr")))
     throw std::runtime_error("'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: remove one");
-  w.frics = read_number(j, p, "frics", w.frics, Sign::non_negative);
-  w.fricd = read_number(j, p, "fricr", w.fricd, Sign::non_negative);
+  w.frics = read_parameter(j, p, "frics", w.frics);
+  w.fricd = read_parameter(j, p, "fricr", w.fricd);
   w.damp = 0.0;
   w.sfp = 1.0;
   return w;
@@ -151,10 +151,10 @@ void parse_fill_amount(const json& j, DrumSpec& s) {
   s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
   if (j.contains("fill_volume_ml")) {
     s.fill_by = FillBy::fill_volume;
-    s.fill_volume_ml = read_number(j, p, "fill_volume_ml", 0.0, Sign::positive);
+    s.fill_volume_ml = read_parameter(j, p, "fill_volume_ml", 0.0);
   } else if (j.contains("particle_count")) {
     s.fill_by = FillBy::particle_count;
-    s.particle_count = read_integer(j, p, "particle_count", 0, 1);
+    s.particle_count = read_integer(j, p, "particle_count", 0, static_cast<long long>(find_parameter("particle_count")->valid.lower));
   } else if (j.contains("fill_mass")) {
     s.fill_by = FillBy::fill_mass;
     s.fill_mass = read_number(j, p, "fill_mass", 0.0, Sign::positive);
@@ -353,26 +353,17 @@ json read_case_json(const std::string& path) {
 }
 
 const std::vector<std::string>& parameter_names() {
-  static const std::vector<std::string> names{"normk", "sheark", "ndamp", "tdamp", "frics", "fricd",
-                                              "dc", "fricr", "wall_frics", "wall_fricd",
-                                              "wall_damp", "wall_sfp",
-                                              // effects library (issue #6), off by default
-                                              "unloading_stiffness_ratio", "surface_energy",
-                                              "stiffness_exponent", "radius_spread",
-                                              // Hertz–Mindlin and the general drum (issues 12, 14)
-                                              "restitution", "particle_count", "fill_volume_ml"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ParameterRow& row : parameter_table()) out.emplace_back(row.name);
+    return out;
+  }();
   return names;
 }
 
 std::string parameter_path(const std::string& name) {
-  for (const std::string& n : parameter_names()) {
-    if (n != name) continue;
-    if (name.rfind("wall_", 0) == 0) return "wall_contact." + name.substr(5);
-    if (name == "radius_spread") return "particle.radius_spread";
-    if (name == "particle_count" || name == "fill_volume_ml") return "drum." + name;
-    return "contact." + name;
-  }
-  return "";
+  const ParameterRow* row = find_parameter(name);
+  return row ? row->case_path : "";
 }
 
 void apply_setting(json& document, const std::string& assignment) {
@@ -390,10 +381,12 @@ void apply_setting(json& document, const std::string& assignment) {
   }
   std::string path = parameter_path(name);
   if (path.empty()) path = name;
-  // Hertz files name the wall rolling friction "fricr" (its LS-DYNA card calls it FRICD).
-  if (path == "wall_contact.fricd" && document.contains("contact") && document["contact"].is_object() &&
+  // Hertz files may name a parameter's field differently (the wall rolling friction is "fricr"
+  // there; its LS-DYNA card calls it FRICD).
+  const ParameterRow* row = find_parameter(name);
+  if (row && row->hertz_path && document.contains("contact") && document["contact"].is_object() &&
       document["contact"].value("law", "") == "hertz_mindlin")
-    path = "wall_contact.fricr";
+    path = row->hertz_path;
   // A fill amount replaces the file's fill amount (exactly one may be given).
   for (const char* fill : {"drum.fill_fraction", "drum.fill_volume_ml", "drum.particle_count", "drum.fill_mass"}) {
     if (path != fill || !document.contains("drum") || !document["drum"].is_object()) continue;
