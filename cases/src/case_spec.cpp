@@ -337,13 +337,17 @@ json to_json(const CaseSpec& s) {
 
 json to_key_json(const CaseSpec& s) {
   json j = to_json(s);
-  if (s.material.radius_spread == 0.0) j["particle"].erase("radius_spread");
+  // Effects at their off values leave the key (the parameter table's effect rows).
+  for (const ParameterRow& row : parameter_table()) {
+    if (row.home != ParameterHome::effect || !(row.get(s) == row.off_value)) continue;
+    const std::string path = row.case_path;
+    const auto dot = path.find('.');
+    const std::string section = path.substr(0, dot);
+    if (j.contains(section)) j[section].erase(path.substr(dot + 1));
+  }
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());
-  if (s.contact.unloading_stiffness_ratio == 1.0) j["contact"].erase("unloading_stiffness_ratio");
-  if (s.contact.surface_energy == 0.0) j["contact"].erase("surface_energy");
-  if (s.contact.stiffness_exponent == 1.0) j["contact"].erase("stiffness_exponent");
   return j;
 }
 

@@ -123,10 +123,18 @@ void check_experiments(const StudySpec& spec, const Model& model) {
       throw std::runtime_error("study: experiments[" + std::to_string(e) + "]: model built for experiment '" +
                                set->name(e) + "', the study names '" + experiment.name + "'");
     const auto names = set->model(e).parameter_names();
-    for (const auto& [name, value] : experiment.fixed_parameters)
+    const auto descriptors = set->model(e).parameters();
+    for (const auto& [name, value] : experiment.fixed_parameters) {
+      const std::string field = "study: experiments[" + std::to_string(e) + "].model.fixed_parameters." + name;
       if (std::find(names.begin(), names.end(), name) == names.end())
-        throw std::runtime_error("study: experiments[" + std::to_string(e) + "].model.fixed_parameters." + name +
-                                 ": not a parameter of case '" + experiment.model_reference + "'");
+        throw std::runtime_error(field + ": not a parameter of case '" + experiment.model_reference + "'");
+      const ParameterDescriptor* d = find_descriptor(descriptors, name);
+      if (d && !d->valid.contains(value)) {
+        char text[48];
+        std::snprintf(text, sizeof text, "%g", value);
+        throw std::runtime_error(field + " = " + text + " lies outside the valid range " + d->valid.to_string() + "; change it");
+      }
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/experiments.hpp"
 #include "demfit/identify/study.hpp"
 #include "test_helpers.hpp"
 
@@ -10,21 +11,43 @@ using namespace demfit::identify;
 
 namespace {
 
-// The analytic model declaring that its amplitude must lie in (0, 2] and its rate in [1, 10].
+// The analytic model declaring that its amplitude must lie in (0, amplitude_max] and its rate in
+// [1, 10], its slope in [0, 1].
 class BoundedAnalyticModel final : public Model {
  public:
+  explicit BoundedAnalyticModel(double amplitude_max = 2.0) : amplitude_max_(amplitude_max) {}
   std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
   std::vector<ParameterDescriptor> parameters() const override {
-    return {{"amplitude", "-", {0.0, 2.0, true, false}, 1.0, std::nullopt, ""},
+    return {{"amplitude", "-", {0.0, amplitude_max_, true, false}, 1.0, std::nullopt, ""},
             {"rate", "1/s", {1.0, 10.0}, 3.0, std::nullopt, ""},
-            {"slope", "-", {}, 0.5, std::nullopt, ""}};
+            {"slope", "-", {0.0, 1.0}, 0.5, std::nullopt, ""}};
   }
   ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override { return inner_.evaluate(p, c); }
 
  private:
+  double amplitude_max_;
   AnalyticCurveModel inner_;
 };
+
+// The analytic study as two experiments "wide" and "narrow" on the same target.
+StudySpec two_experiment_study(const nlohmann::json& narrow_fixed = nlohmann::json::object()) {
+  nlohmann::json single = test::analytic_study(0.0, 1);
+  nlohmann::json study = single;
+  study.erase("model");
+  study.erase("targets");
+  nlohmann::json narrow = {{"name", "narrow"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}};
+  if (!narrow_fixed.empty()) narrow["model"]["fixed_parameters"] = narrow_fixed;
+  study["experiments"] = {{{"name", "wide"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}}, narrow};
+  return parse_study(study, ".");
+}
+
+ExperimentSetModel two_models(const StudySpec& spec) {
+  std::vector<std::unique_ptr<Model>> models;
+  models.push_back(std::make_unique<BoundedAnalyticModel>(3.0));
+  models.push_back(std::make_unique<BoundedAnalyticModel>(1.8));
+  return ExperimentSetModel(spec, std::move(models));
+}
 
 RunOptions quiet_options(const std::filesystem::path& dir) {
   RunOptions options;
@@ -92,4 +115,28 @@ TEST_CASE("A parameter range says which values it contains and prints its open a
   CHECK(positive.contains_interval(1e-3, 1e9));
   CHECK_FALSE(positive.contains_interval(0.0, 1.0));
   CHECK_FALSE(positive.contains_interval(2.0, 1.0));
+}
+
+TEST_CASE("Several experiments accept a variable only in the intersection of their models' valid ranges",
+          "[identify][parameters][experiments]") {
+  const StudySpec spec = two_experiment_study();
+  const ExperimentSetModel model = two_models(spec);
+  const ParameterDescriptor* amplitude = find_descriptor(model.parameters(), "amplitude");
+  REQUIRE(amplitude != nullptr);
+  CHECK(amplitude->valid.to_string() == "(0, 1.8]");
+  const auto dir = test::fresh_dir("bounds_experiments");
+  // The study's amplitude bounds [0.5, 2] lie inside "wide" (0, 3] but not inside "narrow" (0, 1.8].
+  CHECK_THROWS_WITH(run_study(spec, model, quiet_options(dir)), Catch::Contains("(0, 1.8]"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+TEST_CASE("An experiment's fixed parameter outside its model's valid range is refused naming the experiment",
+          "[identify][parameters][experiments]") {
+  StudySpec spec = two_experiment_study({{"slope", 1.5}});
+  spec.variables[0].upper = 1.5;  // amplitude inside both models
+  const ExperimentSetModel model = two_models(spec);
+  const auto dir = test::fresh_dir("bounds_experiment_fixed");
+  CHECK_THROWS_WITH(run_study(spec, model, quiet_options(dir)),
+                    Catch::Contains("experiments[1].model.fixed_parameters.slope = 1.5") && Catch::Contains("[0, 1]"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
 }
