@@ -25,65 +25,48 @@ MaterialSpec parse_material(const json& j, MaterialSpec m) {
   return m;
 }
 
-ContactSpec parse_contact(const json& j, ContactSpec c) {
-  const char* p = "contact";
-  require_known_keys(j, p, {"normk", "sheark", "ndamp", "tdamp", "frics", "fricd", "dc", "fricr",
-                            "unloading_stiffness_ratio", "surface_energy", "stiffness_exponent"});
-  // Ranges of identified parameters: the parameter table (read_parameter).
-  c.normk = read_parameter(j, p, "normk", c.normk);
-  c.sheark = read_parameter(j, p, "sheark", c.sheark);
-  c.ndamp = read_parameter(j, p, "ndamp", c.ndamp);
-  c.tdamp = read_parameter(j, p, "tdamp", c.tdamp);
-  c.frics = read_parameter(j, p, "frics", c.frics);
-  // LS-DYNA: FRICD defaults to FRICS.
-  c.fricd = read_parameter(j, p, "fricd", j.contains("fricd") ? c.fricd : c.frics);
-  c.dc = read_parameter(j, p, "dc", c.dc);
-  c.fricr = read_parameter(j, p, "fricr", c.fricr);
-  c.unloading_stiffness_ratio = read_parameter(j, p, "unloading_stiffness_ratio", c.unloading_stiffness_ratio);
-  c.surface_energy = read_parameter(j, p, "surface_energy", c.surface_energy);
-  c.stiffness_exponent = read_parameter(j, p, "stiffness_exponent", c.stiffness_exponent);
-  return c;
+constexpr auto kLsDyna = dem_core::ContactLawKind::lsdyna_linear;
+constexpr auto kHertz = dem_core::ContactLawKind::hertz_mindlin;
+
+std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_view section, dem_core::ContactLawKind law) {
+  for (std::string& key : parameter_keys(section, law)) keys.push_back(std::move(key));
+  return keys;
 }
 
-WallContactSpec parse_wall(const json& j, WallContactSpec w) {
-  const char* p = "wall_contact";
-  require_known_keys(j, p, {"frics", "fricd", "damp", "sfp"});
-  w.frics = read_parameter(j, p, "frics", w.frics);
-  w.fricd = read_parameter(j, p, "fricd", w.fricd);
-  w.damp = read_parameter(j, p, "damp", w.damp);
-  w.sfp = read_parameter(j, p, "sfp", w.sfp);
-  return w;
+// LS-DYNA *CONTROL_DISCRETE_ELEMENT (with the effects) and coupling card 2: every key is a row of
+// the parameter table, read with its range.
+void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec) {
+  require_known_keys(contact, "contact", parameter_keys("contact", kLsDyna));
+  read_parameter_fields(contact, "contact", kLsDyna, spec);
+  if (!contact.contains("fricd")) spec.contact.fricd = spec.contact.frics;  // LS-DYNA: FRICD defaults to FRICS
+  require_known_keys(wall, "wall_contact", parameter_keys("wall_contact", kLsDyna));
+  read_parameter_fields(wall, "wall_contact", kLsDyna, spec);
 }
 
 // Hertz–Mindlin contact (issue 12 item 3): restitution, sliding and rolling friction; the
 // LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
-ContactSpec parse_hertz_contact(const json& j, ContactSpec c) {
-  const char* p = "contact";
-  require_known_keys(j, p, {"law", "restitution", "frics", "fricr"});
+void parse_hertz_contact(const json& j, CaseSpec& spec) {
+  require_known_keys(j, "contact", keys_with({"law"}, "contact", kHertz));
   if (!j.contains("restitution")) throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in (0, 1]");
-  c.restitution = read_parameter(j, p, "restitution", c.restitution);
-  c.frics = read_parameter(j, p, "frics", c.frics);
-  c.fricr = read_parameter(j, p, "fricr", c.fricr);
-  c.fricd = c.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
-  c.dc = 0.0;
-  return c;
+  read_parameter_fields(j, "contact", kHertz, spec);
+  spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
+  spec.contact.dc = 0.0;
 }
 
 // Hertz wall: its elastic material (default: the particle's) and friction; "fricr" is the
 // wall rolling friction (stored in WallContactParameters::fricd, its LS-DYNA place).
-WallContactSpec parse_hertz_wall(const json& j, WallContactSpec w, const MaterialSpec& particle, bool& as_particles) {
+void parse_hertz_wall(const json& j, CaseSpec& spec) {
   const char* p = "wall_contact";
-  require_known_keys(j, p, {"youngs_modulus", "poisson_ratio", "frics", "fricr", "friction_as_particles"});
-  w.youngs_modulus = read_number(j, p, "youngs_modulus", particle.youngs_modulus, Sign::positive);
-  w.poisson_ratio = read_bounded(j, p, "poisson_ratio", particle.poisson_ratio, -0.99, 0.499);
-  as_particles = read_bool(j, p, "friction_as_particles", false);
-  if (as_particles && (j.contains("frics") || j.contains("fricr")))
+  require_known_keys(j, p, keys_with({"youngs_modulus", "poisson_ratio", "friction_as_particles"}, p, kHertz));
+  WallContactSpec& w = spec.wall;
+  w.youngs_modulus = read_number(j, p, "youngs_modulus", spec.material.youngs_modulus, Sign::positive);
+  w.poisson_ratio = read_bounded(j, p, "poisson_ratio", spec.material.poisson_ratio, -0.99, 0.499);
+  spec.wall_friction_as_particles = read_bool(j, p, "friction_as_particles", false);
+  if (spec.wall_friction_as_particles && (j.contains("frics") || j.contains("fricr")))
     throw std::runtime_error("'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: remove one");
-  w.frics = read_parameter(j, p, "frics", w.frics);
-  w.fricd = read_parameter(j, p, "fricr", w.fricd);
+  read_parameter_fields(j, p, kHertz, spec);
   w.damp = 0.0;
   w.sfp = 1.0;
-  return w;
 }
 
 TimeStepSpec parse_time_step(const json& j, TimeStepSpec t) {
@@ -239,9 +222,8 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
     if (spec.kind != CaseKind::rotary_drum)
       throw std::runtime_error("'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
     spec.law = dem_core::ContactLawKind::hertz_mindlin;
-    spec.contact = parse_hertz_contact(contact, spec.contact);
-    spec.wall = parse_hertz_wall(child_object(document, "", "wall_contact"), spec.wall, spec.material,
-                                 spec.wall_friction_as_particles);
+    parse_hertz_contact(contact, spec);
+    parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
     if (spec.wall_friction_as_particles) {
       spec.wall.frics = spec.contact.frics;
       spec.wall.fricd = spec.contact.fricr;
@@ -251,8 +233,7 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   } else if (law == "lsdyna_linear") {
     json plain = contact;
     plain.erase("law");
-    spec.contact = parse_contact(plain, spec.contact);
-    spec.wall = parse_wall(child_object(document, "", "wall_contact"), spec.wall);
+    parse_lsdyna_contact(plain, child_object(document, "", "wall_contact"), spec);
   } else {
     throw std::runtime_error("'contact.law' must be \"lsdyna_linear\" or \"hertz_mindlin\" (got \"" + law + "\")");
   }
@@ -283,25 +264,20 @@ json to_json(const CaseSpec& s) {
                    {"radius_spread", s.material.radius_spread}};
   const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
   if (distribution) j["particle"].erase("radius");
-  const ContactSpec& c = s.contact;
+  // The identified parameters' fields come from the parameter table (write_parameter_fields).
   if (s.law == dem_core::ContactLawKind::hertz_mindlin) {
     j["particle"].erase("radius_spread");
-    j["contact"] = {{"law", to_string(s.law)}, {"restitution", c.restitution}, {"frics", c.frics}, {"fricr", c.fricr}};
+    j["contact"] = {{"law", to_string(s.law)}};
+    write_parameter_fields(j["contact"], "contact", s.law, s);
     j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-    if (s.wall_friction_as_particles) {
-      j["wall_contact"]["friction_as_particles"] = true;
-    } else {
-      j["wall_contact"]["frics"] = s.wall.frics;
-      j["wall_contact"]["fricr"] = s.wall.fricd;
-    }
+    if (s.wall_friction_as_particles) j["wall_contact"]["friction_as_particles"] = true;
+    else write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   } else {
     // lsdyna_linear: the text of a case file from before the law could be chosen.
-    j["contact"] = {{"normk", c.normk}, {"sheark", c.sheark}, {"ndamp", c.ndamp}, {"tdamp", c.tdamp},
-                    {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr},
-                    {"unloading_stiffness_ratio", c.unloading_stiffness_ratio},
-                    {"surface_energy", c.surface_energy}, {"stiffness_exponent", c.stiffness_exponent}};
-    j["wall_contact"] = {{"frics", s.wall.frics}, {"fricd", s.wall.fricd}, {"damp", s.wall.damp},
-                         {"sfp", s.wall.sfp}};
+    j["contact"] = json::object();
+    write_parameter_fields(j["contact"], "contact", s.law, s);
+    j["wall_contact"] = json::object();
+    write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times},

@@ -71,6 +71,15 @@ void check_parameter_value(const ParameterRow& row, double value);
 // the field is not a table row (a programming error).
 double read_parameter(const nlohmann::json& object, std::string_view path, const char* key, double fallback);
 
+// Case-file fields of the rows under `section` ("contact", "wall_contact") of a `law` case file:
+// their keys (Hertz files use a row's hertz_path), reading them into `spec` (absent keys keep
+// spec's value; ranges from the rows) and writing them from `spec`.
+std::vector<std::string> parameter_keys(std::string_view section, dem_core::ContactLawKind law);
+void read_parameter_fields(const nlohmann::json& object, std::string_view section, dem_core::ContactLawKind law,
+                           CaseSpec& spec);
+void write_parameter_fields(nlohmann::json& object, std::string_view section, dem_core::ContactLawKind law,
+                            const CaseSpec& spec);
+
 // One line per row for `demfit simulate --set` help: "name [unit] range: meaning".
 std::string parameter_help_text();
 
