@@ -99,12 +99,14 @@ std::string parameters_markdown() {
   }
   md +=
       "\n## Adding a parameter\n\n"
-      "1. Add its physics (dem_core, with a test against an analytic solution) and its field to the\n"
-      "   CaseSpec it lives in.\n"
+      "1. Add its physics (dem_core, with a test against an analytic solution) and the member that holds\n"
+      "   it (dem_core's ContactParameters / WallContactParameters, or the CaseSpec).\n"
       "2. Add one row to `parameter_table()` in cases/src/parameter_table.cpp: name, unit, meaning, valid\n"
       "   range, default, off value (effects), where it lives, LS-DYNA card and field, laws, case-file field\n"
-      "   and its getter/setter. Parsing ranges (`read_parameter`), `with_parameters`/`parameters_of`,\n"
-      "   `--set` help, the descriptors studies are checked against and this page follow from the row.\n"
+      "   and its getter/setter. A field under `contact` or `wall_contact` is then read (with the range),\n"
+      "   refused outside it and written to `case_resolved.json`; `with_parameters`/`parameters_of`,\n"
+      "   `--set`, its help, the descriptors studies are checked against and this page follow from the row.\n"
+      "   A field elsewhere (`particle`, `drum`) is read in cases/src/case_spec.cpp with `read_parameter`.\n"
       "3. If it is an effect, add it to the effect catalogue (cases/src/effect_catalogue.cpp) with a\n"
       "   fitting range inside the valid range.\n"
       "4. Regenerate this page: `demfit parameters > docs/parameters.md`.\n";
