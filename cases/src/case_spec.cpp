@@ -47,7 +47,9 @@ void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec)
 // LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
 void parse_hertz_contact(const json& j, CaseSpec& spec) {
   require_known_keys(j, "contact", keys_with({"law"}, "contact", kHertz));
-  if (!j.contains("restitution")) throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in (0, 1]");
+  if (!j.contains("restitution"))
+    throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
+                             find_parameter("restitution")->valid.to_string());
   read_parameter_fields(j, "contact", kHertz, spec);
   spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
   spec.contact.dc = 0.0;

@@ -26,11 +26,6 @@ constexpr ParameterRange damping() { return {0.0, 1.0, false, true}; }
 const dem_core::ContactParameters kPair{};
 const dem_core::WallContactParameters kWall{};
 
-const char* const kControl = "*CONTROL_DISCRETE_ELEMENT ";
-const char* const kCoupling = "*DEFINE_DE_TO_SURFACE_COUPLING ";
-
-std::string card(const char* keyword, const char* field) { return std::string(keyword) + field; }
-
 // Fill amounts exist only in the form the case gives them: NaN otherwise.
 double fill_count(const CaseSpec& s) {
   return s.kind == CaseKind::rotary_drum && s.drum.fill_by == FillBy::particle_count ? static_cast<double>(s.drum.particle_count) : kNone;
@@ -41,46 +36,52 @@ double fill_volume(const CaseSpec& s) {
 
 #define DEMFIT_FIELD(member) [](const CaseSpec& s) { return s.member; }, [](CaseSpec& s, double v) { s.member = v; }
 
-std::vector<ParameterRow> build_rows() {
-  static const std::string normk = card(kControl, "NORMK"), sheark = card(kControl, "SHEARK"),
-                           ndamp = card(kControl, "NDAMP"), tdamp = card(kControl, "TDAMP"),
-                           frics = card(kControl, "FRICS"), fricd = card(kControl, "FRICD"), dc = card(kControl, "DC"),
-                           fricr = card(kControl, "FRICR"), wfrics = card(kCoupling, "FRICS"),
-                           wfricd = card(kCoupling, "FRICD"), wdamp = card(kCoupling, "DAMP"),
-                           wsfp = card(kCoupling, "SFP (written as a comment)");
+// *CONTROL_DISCRETE_ELEMENT: particle pairs (frics, fricr also in Hertz-Mindlin).
+std::vector<ParameterRow> pair_rows() {
   return {
       {"normk", "-", "particle spring k_i = NORMK K R_i (K bulk modulus); a pair is two springs in series",
-       positive(), kPair.normk, false, 0.0, Home::pair_contact, normk.c_str(), Law::lsdyna_linear, false,
+       positive(), kPair.normk, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT NORMK", Law::lsdyna_linear, false,
        "contact.normk", nullptr, DEMFIT_FIELD(contact.normk)},
       {"sheark", "-", "tangential spring k_t = SHEARK k_n", non_negative(), kPair.sheark, false, 0.0,
-       Home::pair_contact, sheark.c_str(), Law::lsdyna_linear, false, "contact.sheark", nullptr, DEMFIT_FIELD(contact.sheark)},
+       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT SHEARK", Law::lsdyna_linear, false, "contact.sheark", nullptr, DEMFIT_FIELD(contact.sheark)},
       {"ndamp", "-", "normal damping, fraction of critical", damping(), kPair.ndamp, false, 0.0, Home::pair_contact,
-       ndamp.c_str(), Law::lsdyna_linear, false, "contact.ndamp", nullptr, DEMFIT_FIELD(contact.ndamp)},
+       "*CONTROL_DISCRETE_ELEMENT NDAMP", Law::lsdyna_linear, false, "contact.ndamp", nullptr, DEMFIT_FIELD(contact.ndamp)},
       {"tdamp", "-", "tangential damping, fraction of critical", damping(), kPair.tdamp, false, 0.0, Home::pair_contact,
-       tdamp.c_str(), Law::lsdyna_linear, false, "contact.tdamp", nullptr, DEMFIT_FIELD(contact.tdamp)},
+       "*CONTROL_DISCRETE_ELEMENT TDAMP", Law::lsdyna_linear, false, "contact.tdamp", nullptr, DEMFIT_FIELD(contact.tdamp)},
       {"frics", "-", "static (sliding) friction between particles; 0 switches particle rotation off", non_negative(),
-       kPair.frics, false, 0.0, Home::pair_contact, frics.c_str(), Law::both, false, "contact.frics", nullptr,
+       kPair.frics, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICS", Law::both, false, "contact.frics", nullptr,
        DEMFIT_FIELD(contact.frics)},
       {"fricd", "-", "dynamic friction, mu = FRICD + (FRICS - FRICD) exp(-DC abs(v_t)); default FRICS", non_negative(),
-       kNone, false, 0.0, Home::pair_contact, fricd.c_str(), Law::lsdyna_linear, false, "contact.fricd", nullptr,
+       kNone, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICD", Law::lsdyna_linear, false, "contact.fricd", nullptr,
        DEMFIT_FIELD(contact.fricd)},
       {"dc", "s/m", "decay of friction with sliding speed (FRICS -> FRICD)", non_negative(), kPair.dc, false, 0.0,
-       Home::pair_contact, dc.c_str(), Law::lsdyna_linear, false, "contact.dc", nullptr, DEMFIT_FIELD(contact.dc)},
+       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT DC", Law::lsdyna_linear, false, "contact.dc", nullptr, DEMFIT_FIELD(contact.dc)},
       {"fricr", "-", "rolling friction between particles, constant-torque model (acts only with FRICS > 0)",
-       non_negative(), kPair.fricr, true, 0.0, Home::pair_contact, fricr.c_str(), Law::both, false, "contact.fricr",
+       non_negative(), kPair.fricr, true, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICR", Law::both, false, "contact.fricr",
        nullptr, DEMFIT_FIELD(contact.fricr)},
+  };
+}
+
+// *DEFINE_DE_TO_SURFACE_COUPLING card 2 (and SFP): particle-wall contact.
+std::vector<ParameterRow> wall_rows() {
+  return {
       {"wall_frics", "-", "particle-wall sliding friction", non_negative(), kWall.frics, true, 0.0, Home::wall_contact,
-       wfrics.c_str(), Law::both, false, "wall_contact.frics", nullptr, DEMFIT_FIELD(wall.frics)},
+       "*DEFINE_DE_TO_SURFACE_COUPLING FRICS", Law::both, false, "wall_contact.frics", nullptr, DEMFIT_FIELD(wall.frics)},
       {"wall_fricd", "-", "particle-wall ROLLING friction (FRICD of the coupling card)", non_negative(), kWall.fricd,
-       false, 0.0, Home::wall_contact, wfricd.c_str(), Law::both, false, "wall_contact.fricd", "wall_contact.fricr",
+       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING FRICD", Law::both, false, "wall_contact.fricd", "wall_contact.fricr",
        DEMFIT_FIELD(wall.fricd)},
       {"wall_damp", "-", "particle-wall damping, fraction of critical (normal and tangential)", damping(), kWall.damp,
-       false, 0.0, Home::wall_contact, wdamp.c_str(), Law::lsdyna_linear, false, "wall_contact.damp", nullptr,
+       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING DAMP", Law::lsdyna_linear, false, "wall_contact.damp", nullptr,
        DEMFIT_FIELD(wall.damp)},
       {"wall_sfp", "-", "scale factor on the wall normal spring, k_n,w = SFP NORMK K R", positive(), kWall.sfp, false,
-       0.0, Home::wall_contact, wsfp.c_str(), Law::lsdyna_linear, false, "wall_contact.sfp", nullptr,
+       0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING SFP (written as a comment)", Law::lsdyna_linear, false, "wall_contact.sfp", nullptr,
        DEMFIT_FIELD(wall.sfp)},
-      // Effects library (issue #6): pairs and walls; off at the off value (the plain LS-DYNA law).
+  };
+}
+
+// Effects library (issue #6): pairs and walls; off at the off value (the plain LS-DYNA law).
+std::vector<ParameterRow> effect_rows() {
+  return {
       {"unloading_stiffness_ratio", "-", "plasticity (Walton-Braun): unloading stiffness k2 = ratio k1", closed(1.0, 100.0),
        kPair.unloading_stiffness_ratio, true, 1.0, Home::effect, "", Law::lsdyna_linear, false,
        "contact.unloading_stiffness_ratio", nullptr, DEMFIT_FIELD(contact.unloading_stiffness_ratio)},
@@ -94,6 +95,11 @@ std::vector<ParameterRow> build_rows() {
       {"radius_spread", "-", "polydispersity: radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (changes the fill)",
        closed(0.0, 0.3), 0.0, true, 0.0, Home::effect, "", Law::lsdyna_linear, false, "particle.radius_spread",
        nullptr, DEMFIT_FIELD(material.radius_spread)},
+  };
+}
+
+std::vector<ParameterRow> law_and_fill_rows() {
+  return {
       // Hertz-Mindlin (issue 12): shared by pairs and walls; required in a hertz_mindlin file.
       {"restitution", "-", "coefficient of restitution of pairs and walls (Hertz-Mindlin damping)", closed(1e-3, 1.0),
        kNone, false, 0.0, Home::pair_contact, "", Law::hertz_mindlin, false, "contact.restitution", nullptr,
@@ -114,6 +120,13 @@ std::vector<ParameterRow> build_rows() {
 }
 
 #undef DEMFIT_FIELD
+
+std::vector<ParameterRow> build_rows() {
+  std::vector<ParameterRow> rows;
+  for (auto part : {pair_rows, wall_rows, effect_rows, law_and_fill_rows})
+    for (const ParameterRow& row : part()) rows.push_back(row);
+  return rows;
+}
 
 }  // namespace
 
