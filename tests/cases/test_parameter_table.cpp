@@ -4,14 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <string>
 
 #include "../../cases/src/dem_setup.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
+#include "demfit/cases/model_factory.hpp"
 #include "demfit/cases/parameter_table.hpp"
 #include "demfit/dem_core/packing.hpp"
+#include "demfit/identify/study.hpp"
 
 using namespace demfit::cases;
 using nlohmann::json;
@@ -170,4 +173,25 @@ TEST_CASE("parameters_of gives the parameters of the case's contact law and the 
   CHECK(std::count(drum.begin(), drum.end(), "fill_volume_ml") == 1);
   CHECK(std::count(drum.begin(), drum.end(), "particle_count") == 0);
   CHECK(drum.size() == 17);
+}
+
+TEST_CASE("A DEM study whose damping bounds reach 1 is refused before the store exists, naming the valid range [0, 1)",
+          "[cases][parameters]") {
+  const json study = {
+      {"demfit_study_version", 1},
+      {"model", {{"case", "pellet_compression"}}},
+      {"variables", json::array({{{"name", "ndamp"}, {"lower", 0.1}, {"upper", 1.0}, {"initial", 0.5}}})},
+      {"targets", json::array({{{"curve", "pressure_volume"}, {"x_column", "volume_cm3"}, {"y_column", "pressure_MPa"},
+                                {"x", {50.0, 60.0}}, {"y", {1.0, 0.0}}}})}};
+  const demfit::identify::StudySpec spec = demfit::identify::parse_study(study, DEMFIT_BINARY_DIR);
+  const auto model = make_study_model(spec);
+  demfit::identify::RunOptions options;
+  options.output_dir = std::string(DEMFIT_BINARY_DIR) + "/test_cases_bounds_refused";
+  options.plots = false;
+  options.progress = false;
+  std::filesystem::remove_all(options.output_dir);
+  std::filesystem::create_directories(options.output_dir);
+  CHECK_THROWS_WITH(demfit::identify::run_study(spec, *model, options),
+                    Catch::Contains("'ndamp'") && Catch::Contains("[0.1, 1]") && Catch::Contains("[0, 1) [-]"));
+  CHECK_FALSE(std::filesystem::exists(options.output_dir / "study.db"));
 }
