@@ -13,6 +13,7 @@
 #include "demfit/identify/study_preflight.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
+#include "demfit/cases/parameter_table.hpp"
 #include "demfit/cases/model_factory.hpp"
 #include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/diagnose/effect.hpp"
@@ -40,10 +41,8 @@ struct DiagnoseCliOptions {
 // those of the LS-DYNA law; a Hertz–Mindlin case refuses every parameter but its own (the list of
 // cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
 bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& parameter) {
-  if (case_spec.law != dem_core::ContactLawKind::hertz_mindlin) return true;
-  for (const char* name : {"frics", "fricr", "restitution", "wall_frics", "wall_fricd"})
-    if (parameter == name) return true;
-  return false;
+  const cases::ParameterRow* row = cases::find_parameter(parameter);
+  return row && row->applies_to(case_spec.law);
 }
 
 // The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
@@ -61,7 +60,7 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& cas
       for (auto& curve : c.curves) curve = experiment + "/" + curve;
     std::string reason;
     for (const auto& p : effect.parameters) {
-      c.parameters.push_back({p.name, p.lower, p.upper, p.off_value});
+      c.parameters.push_back(p);
       if (!exists_under_law(case_spec, p.name))
         reason = "'" + p.name + "' does not exist under the case's contact law " + cases::to_string(case_spec.law);
       for (const auto& v : variables)

@@ -24,6 +24,7 @@
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/cases/parameter_table.hpp"
 #if defined(DEMFIT_HAVE_SCALEOUT)
 #include <iostream>
 
@@ -254,7 +255,9 @@ void run_export(const std::string& db, const std::string& keyword_file) {
   const std::string title = "study '" + study.value("name", std::string("study")) + "', run " +
                             std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
                             objective;
-  identify::write_lsdyna_keywords(keyword_file, best->parameters, title, export_comments(store, study, db));
+  // The effects without an LS-DYNA field, with their off values: the parameter table.
+  identify::write_lsdyna_keywords(keyword_file, best->parameters, cases::parameter_descriptors(), title,
+                                  export_comments(store, study, db));
   std::printf("wrote %s\n", keyword_file.c_str());
 }
 

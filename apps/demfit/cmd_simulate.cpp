@@ -14,6 +14,7 @@
 #include "demfit/cases/case_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/parameter_table.hpp"
 
 namespace demfit::apps {
 namespace {
@@ -114,11 +115,9 @@ void register_simulate(CLI::App& app) {
       "60 rpm for 3 s, fill 30 % at phi 0.64, SCG s = 1, free surface averaged over the last 0.1 s (5 snapshots).");
   cmd->add_option("case", options->case_file, "case JSON file (e.g. cases/pellet_compression.json)")->required();
   cmd->add_option("--set", options->settings,
-                  "override: name=value. Identified parameters (normk sheark ndamp tdamp frics fricd dc fricr "
-                  "wall_frics wall_fricd wall_damp wall_sfp; dimensionless, dc in s/m) act on the measured stage; "
-                  "Hertz-Mindlin drums: frics fricr restitution wall_frics wall_fricd (wall rolling); drum fill "
-                  "amount particle_count [original particles] or fill_volume_ml [mL bulk] (changes the fill, cached "
-                  "per value); any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
+                  "override: name=value. Identified parameters (listed below with unit, valid range and contact "
+                  "law) act on the measured stage; those marked \"changes the fill\" make a new fill, cached per "
+                  "value; any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
       ->take_all();
   cmd->add_option("--out", options->out, "output folder (default: results/<case file stem>); replaced if it exists and demfit created it "
                   "(marker file .demfit-output); never the working folder, a parent of it, or a folder holding the case");
@@ -130,6 +129,7 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--snapshots", options->snapshots,
                   "VTK snapshot times [s] from the start of the measured stage (default: none)")
       ->delimiter(',');
+  cmd->footer("Identified parameters for --set (docs/parameters.md, `demfit parameters`):\n" + cases::parameter_help_text());
   cmd->callback([options] { run_simulate(*options); });
 }
 

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   demfit::apps::register_reproduce(app);
   demfit::apps::register_diagnose(app);
   demfit::apps::register_target(app);
+  demfit::apps::register_parameters(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "demfit/cases/json_fields.hpp"
+#include "demfit/cases/parameter_table.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -20,70 +21,54 @@ MaterialSpec parse_material(const json& j, MaterialSpec m) {
   m.density = read_number(j, p, "density", m.density, Sign::positive);
   m.youngs_modulus = read_number(j, p, "youngs_modulus", m.youngs_modulus, Sign::positive);
   m.poisson_ratio = read_bounded(j, p, "poisson_ratio", m.poisson_ratio, -0.99, 0.499);
-  // Up to 0.3: the drum's lattice packing (gap 0.03) still holds the s = 1 fill (checked).
-  m.radius_spread = read_bounded(j, p, "radius_spread", m.radius_spread, 0.0, 0.3);
+  m.radius_spread = read_parameter(j, p, "radius_spread", m.radius_spread);  // range: parameter table
   return m;
 }
 
-ContactSpec parse_contact(const json& j, ContactSpec c) {
-  const char* p = "contact";
-  require_known_keys(j, p, {"normk", "sheark", "ndamp", "tdamp", "frics", "fricd", "dc", "fricr",
-                            "unloading_stiffness_ratio", "surface_energy", "stiffness_exponent"});
-  c.normk = read_number(j, p, "normk", c.normk, Sign::positive);
-  c.sheark = read_number(j, p, "sheark", c.sheark, Sign::non_negative);
-  c.ndamp = read_bounded(j, p, "ndamp", c.ndamp, 0.0, 1.0);
-  c.tdamp = read_bounded(j, p, "tdamp", c.tdamp, 0.0, 1.0);
-  c.frics = read_number(j, p, "frics", c.frics, Sign::non_negative);
-  // LS-DYNA: FRICD defaults to FRICS.
-  c.fricd = read_number(j, p, "fricd", j.contains("fricd") ? c.fricd : c.frics, Sign::non_negative);
-  c.dc = read_number(j, p, "dc", c.dc, Sign::non_negative);
-  c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
-  c.unloading_stiffness_ratio =
-      read_bounded(j, p, "unloading_stiffness_ratio", c.unloading_stiffness_ratio, 1.0, 100.0);
-  c.surface_energy = read_number(j, p, "surface_energy", c.surface_energy, Sign::non_negative);
-  c.stiffness_exponent = read_bounded(j, p, "stiffness_exponent", c.stiffness_exponent, 1.0, 2.0);
-  return c;
+constexpr auto kLsDyna = dem_core::ContactLawKind::lsdyna_linear;
+constexpr auto kHertz = dem_core::ContactLawKind::hertz_mindlin;
+
+std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_view section, dem_core::ContactLawKind law) {
+  for (std::string& key : parameter_keys(section, law)) keys.push_back(std::move(key));
+  return keys;
 }
 
-WallContactSpec parse_wall(const json& j, WallContactSpec w) {
-  const char* p = "wall_contact";
-  require_known_keys(j, p, {"frics", "fricd", "damp", "sfp"});
-  w.frics = read_number(j, p, "frics", w.frics, Sign::non_negative);
-  w.fricd = read_number(j, p, "fricd", w.fricd, Sign::non_negative);
-  w.damp = read_bounded(j, p, "damp", w.damp, 0.0, 1.0);
-  w.sfp = read_number(j, p, "sfp", w.sfp, Sign::positive);
-  return w;
+// LS-DYNA *CONTROL_DISCRETE_ELEMENT (with the effects) and coupling card 2: every key is a row of
+// the parameter table, read with its range.
+void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec) {
+  require_known_keys(contact, "contact", parameter_keys("contact", kLsDyna));
+  read_parameter_fields(contact, "contact", kLsDyna, spec);
+  if (!contact.contains("fricd")) spec.contact.fricd = spec.contact.frics;  // LS-DYNA: FRICD defaults to FRICS
+  require_known_keys(wall, "wall_contact", parameter_keys("wall_contact", kLsDyna));
+  read_parameter_fields(wall, "wall_contact", kLsDyna, spec);
 }
 
 // Hertz–Mindlin contact (issue 12 item 3): restitution, sliding and rolling friction; the
 // LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
-ContactSpec parse_hertz_contact(const json& j, ContactSpec c) {
-  const char* p = "contact";
-  require_known_keys(j, p, {"law", "restitution", "frics", "fricr"});
-  if (!j.contains("restitution")) throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in (0, 1]");
-  c.restitution = read_bounded(j, p, "restitution", c.restitution, 1e-3, 1.0);
-  c.frics = read_number(j, p, "frics", c.frics, Sign::non_negative);
-  c.fricr = read_number(j, p, "fricr", c.fricr, Sign::non_negative);
-  c.fricd = c.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
-  c.dc = 0.0;
-  return c;
+void parse_hertz_contact(const json& j, CaseSpec& spec) {
+  require_known_keys(j, "contact", keys_with({"law"}, "contact", kHertz));
+  if (!j.contains("restitution"))
+    throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
+                             find_parameter("restitution")->valid.to_string());
+  read_parameter_fields(j, "contact", kHertz, spec);
+  spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
+  spec.contact.dc = 0.0;
 }
 
 // Hertz wall: its elastic material (default: the particle's) and friction; "fricr" is the
 // wall rolling friction (stored in WallContactParameters::fricd, its LS-DYNA place).
-WallContactSpec parse_hertz_wall(const json& j, WallContactSpec w, const MaterialSpec& particle, bool& as_particles) {
+void parse_hertz_wall(const json& j, CaseSpec& spec) {
   const char* p = "wall_contact";
-  require_known_keys(j, p, {"youngs_modulus", "poisson_ratio", "frics", "fricr", "friction_as_particles"});
-  w.youngs_modulus = read_number(j, p, "youngs_modulus", particle.youngs_modulus, Sign::positive);
-  w.poisson_ratio = read_bounded(j, p, "poisson_ratio", particle.poisson_ratio, -0.99, 0.499);
-  as_particles = read_bool(j, p, "friction_as_particles", false);
-  if (as_particles && (j.contains("frics") || j.contains("fricr")))
+  require_known_keys(j, p, keys_with({"youngs_modulus", "poisson_ratio", "friction_as_particles"}, p, kHertz));
+  WallContactSpec& w = spec.wall;
+  w.youngs_modulus = read_number(j, p, "youngs_modulus", spec.material.youngs_modulus, Sign::positive);
+  w.poisson_ratio = read_bounded(j, p, "poisson_ratio", spec.material.poisson_ratio, -0.99, 0.499);
+  spec.wall_friction_as_particles = read_bool(j, p, "friction_as_particles", false);
+  if (spec.wall_friction_as_particles && (j.contains("frics") || j.contains("fricr")))
     throw std::runtime_error("'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: remove one");
-  w.frics = read_number(j, p, "frics", w.frics, Sign::non_negative);
-  w.fricd = read_number(j, p, "fricr", w.fricd, Sign::non_negative);
+  read_parameter_fields(j, p, kHertz, spec);
   w.damp = 0.0;
   w.sfp = 1.0;
-  return w;
 }
 
 TimeStepSpec parse_time_step(const json& j, TimeStepSpec t) {
@@ -151,10 +136,10 @@ void parse_fill_amount(const json& j, DrumSpec& s) {
   s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
   if (j.contains("fill_volume_ml")) {
     s.fill_by = FillBy::fill_volume;
-    s.fill_volume_ml = read_number(j, p, "fill_volume_ml", 0.0, Sign::positive);
+    s.fill_volume_ml = read_parameter(j, p, "fill_volume_ml", 0.0);
   } else if (j.contains("particle_count")) {
     s.fill_by = FillBy::particle_count;
-    s.particle_count = read_integer(j, p, "particle_count", 0, 1);
+    s.particle_count = read_integer(j, p, "particle_count", 0, static_cast<long long>(find_parameter("particle_count")->valid.lower));
   } else if (j.contains("fill_mass")) {
     s.fill_by = FillBy::fill_mass;
     s.fill_mass = read_number(j, p, "fill_mass", 0.0, Sign::positive);
@@ -239,9 +224,8 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
     if (spec.kind != CaseKind::rotary_drum)
       throw std::runtime_error("'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
     spec.law = dem_core::ContactLawKind::hertz_mindlin;
-    spec.contact = parse_hertz_contact(contact, spec.contact);
-    spec.wall = parse_hertz_wall(child_object(document, "", "wall_contact"), spec.wall, spec.material,
-                                 spec.wall_friction_as_particles);
+    parse_hertz_contact(contact, spec);
+    parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
     if (spec.wall_friction_as_particles) {
       spec.wall.frics = spec.contact.frics;
       spec.wall.fricd = spec.contact.fricr;
@@ -251,8 +235,7 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   } else if (law == "lsdyna_linear") {
     json plain = contact;
     plain.erase("law");
-    spec.contact = parse_contact(plain, spec.contact);
-    spec.wall = parse_wall(child_object(document, "", "wall_contact"), spec.wall);
+    parse_lsdyna_contact(plain, child_object(document, "", "wall_contact"), spec);
   } else {
     throw std::runtime_error("'contact.law' must be \"lsdyna_linear\" or \"hertz_mindlin\" (got \"" + law + "\")");
   }
@@ -283,25 +266,20 @@ json to_json(const CaseSpec& s) {
                    {"radius_spread", s.material.radius_spread}};
   const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
   if (distribution) j["particle"].erase("radius");
-  const ContactSpec& c = s.contact;
+  // The identified parameters' fields come from the parameter table (write_parameter_fields).
   if (s.law == dem_core::ContactLawKind::hertz_mindlin) {
     j["particle"].erase("radius_spread");
-    j["contact"] = {{"law", to_string(s.law)}, {"restitution", c.restitution}, {"frics", c.frics}, {"fricr", c.fricr}};
+    j["contact"] = {{"law", to_string(s.law)}};
+    write_parameter_fields(j["contact"], "contact", s.law, s);
     j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-    if (s.wall_friction_as_particles) {
-      j["wall_contact"]["friction_as_particles"] = true;
-    } else {
-      j["wall_contact"]["frics"] = s.wall.frics;
-      j["wall_contact"]["fricr"] = s.wall.fricd;
-    }
+    if (s.wall_friction_as_particles) j["wall_contact"]["friction_as_particles"] = true;
+    else write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   } else {
     // lsdyna_linear: the text of a case file from before the law could be chosen.
-    j["contact"] = {{"normk", c.normk}, {"sheark", c.sheark}, {"ndamp", c.ndamp}, {"tdamp", c.tdamp},
-                    {"frics", c.frics}, {"fricd", c.fricd}, {"dc", c.dc}, {"fricr", c.fricr},
-                    {"unloading_stiffness_ratio", c.unloading_stiffness_ratio},
-                    {"surface_energy", c.surface_energy}, {"stiffness_exponent", c.stiffness_exponent}};
-    j["wall_contact"] = {{"frics", s.wall.frics}, {"fricd", s.wall.fricd}, {"damp", s.wall.damp},
-                         {"sfp", s.wall.sfp}};
+    j["contact"] = json::object();
+    write_parameter_fields(j["contact"], "contact", s.law, s);
+    j["wall_contact"] = json::object();
+    write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times},
@@ -337,13 +315,17 @@ json to_json(const CaseSpec& s) {
 
 json to_key_json(const CaseSpec& s) {
   json j = to_json(s);
-  if (s.material.radius_spread == 0.0) j["particle"].erase("radius_spread");
+  // Effects at their off values leave the key (the parameter table's effect rows).
+  for (const ParameterRow& row : parameter_table()) {
+    if (row.home != ParameterHome::effect || !(row.get(s) == row.off_value)) continue;
+    const std::string path = row.case_path;
+    const auto dot = path.find('.');
+    const std::string section = path.substr(0, dot);
+    if (j.contains(section)) j[section].erase(path.substr(dot + 1));
+  }
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());
-  if (s.contact.unloading_stiffness_ratio == 1.0) j["contact"].erase("unloading_stiffness_ratio");
-  if (s.contact.surface_energy == 0.0) j["contact"].erase("surface_energy");
-  if (s.contact.stiffness_exponent == 1.0) j["contact"].erase("stiffness_exponent");
   return j;
 }
 
@@ -353,26 +335,17 @@ json read_case_json(const std::string& path) {
 }
 
 const std::vector<std::string>& parameter_names() {
-  static const std::vector<std::string> names{"normk", "sheark", "ndamp", "tdamp", "frics", "fricd",
-                                              "dc", "fricr", "wall_frics", "wall_fricd",
-                                              "wall_damp", "wall_sfp",
-                                              // effects library (issue #6), off by default
-                                              "unloading_stiffness_ratio", "surface_energy",
-                                              "stiffness_exponent", "radius_spread",
-                                              // Hertz–Mindlin and the general drum (issues 12, 14)
-                                              "restitution", "particle_count", "fill_volume_ml"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ParameterRow& row : parameter_table()) out.emplace_back(row.name);
+    return out;
+  }();
   return names;
 }
 
 std::string parameter_path(const std::string& name) {
-  for (const std::string& n : parameter_names()) {
-    if (n != name) continue;
-    if (name.rfind("wall_", 0) == 0) return "wall_contact." + name.substr(5);
-    if (name == "radius_spread") return "particle.radius_spread";
-    if (name == "particle_count" || name == "fill_volume_ml") return "drum." + name;
-    return "contact." + name;
-  }
-  return "";
+  const ParameterRow* row = find_parameter(name);
+  return row ? row->case_path : "";
 }
 
 void apply_setting(json& document, const std::string& assignment) {
@@ -390,10 +363,12 @@ void apply_setting(json& document, const std::string& assignment) {
   }
   std::string path = parameter_path(name);
   if (path.empty()) path = name;
-  // Hertz files name the wall rolling friction "fricr" (its LS-DYNA card calls it FRICD).
-  if (path == "wall_contact.fricd" && document.contains("contact") && document["contact"].is_object() &&
+  // Hertz files may name a parameter's field differently (the wall rolling friction is "fricr"
+  // there; its LS-DYNA card calls it FRICD).
+  const ParameterRow* row = find_parameter(name);
+  if (row && row->hertz_path && document.contains("contact") && document["contact"].is_object() &&
       document["contact"].value("law", "") == "hertz_mindlin")
-    path = "wall_contact.fricr";
+    path = row->hertz_path;
   // A fill amount replaces the file's fill amount (exactly one may be given).
   for (const char* fill : {"drum.fill_fraction", "drum.fill_volume_ml", "drum.particle_count", "drum.fill_mass"}) {
     if (path != fill || !document.contains("drum") || !document["drum"].is_object()) continue;

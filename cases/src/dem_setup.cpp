@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "demfit/cases/parameter_table.hpp"
 #include "demfit/dem_core/snapshot.hpp"
 
 namespace demfit::cases::detail {
@@ -30,34 +31,32 @@ namespace {
 
 bool is_hertz(const CaseSpec& spec) { return spec.law == dem_core::ContactLawKind::hertz_mindlin; }
 
-// Parameters of the LS-DYNA law only: under Hertz–Mindlin they do not exist, so a value other
-// than the spec's own is an error (equal values come from default_parameters and are harmless).
-bool lsdyna_only(const std::string& name) {
-  for (const char* n : {"normk", "sheark", "ndamp", "tdamp", "fricd", "dc", "wall_damp", "wall_sfp",
-                        "unloading_stiffness_ratio", "surface_energy", "stiffness_exponent", "radius_spread"})
-    if (name == n) return true;
-  return false;
+std::string law_parameters_text(dem_core::ContactLawKind law) {
+  std::string text;
+  for (const ParameterRow& row : parameter_table())
+    if (row.applies_to(law) && row.home != ParameterHome::fill) text += (text.empty() ? "" : " ") + std::string(row.name);
+  return text;
 }
 
-double current_value(const CaseSpec& spec, const std::string& name) {
-  const identify::ParameterSet all = parameters_of(spec);
-  const auto it = all.find(name);
-  return it == all.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
-}
+// Whether `value` for `row` changes `base`: a value equal to the case's own (e.g. from
+// default_parameters or a study's fixed values) is skipped, even where the row does not apply.
+bool is_change(const ParameterRow& row, const CaseSpec& base, double value) { return !(value == row.get(base)); }
 
-void set_fill_amount(CaseSpec& spec, const std::string& name, double value) {
-  if (spec.kind != CaseKind::rotary_drum)
-    throw std::runtime_error("parameter '" + name + "' is a drum fill amount: it does not apply to a pellet_compression case");
-  if (name == "particle_count") {
-    const long long count = std::llround(value);
-    if (!(value >= 1.0) || count < 1) throw std::runtime_error("parameter 'particle_count' = " + std::to_string(value) + " must be >= 1");
-    spec.drum.fill_by = FillBy::particle_count;
-    spec.drum.particle_count = count;
-  } else {
-    if (!(value > 0.0)) throw std::runtime_error("parameter 'fill_volume_ml' = " + std::to_string(value) + " must be > 0 [mL]");
-    spec.drum.fill_by = FillBy::fill_volume;
-    spec.drum.fill_volume_ml = value;
+// Throws when `row` cannot be set on `base` (wrong law, pellet case, wall friction tied to the
+// particles' values).
+void check_applicable(const ParameterRow& row, const CaseSpec& base) {
+  const std::string name = row.name;
+  if (!row.applies_to(base.law)) {
+    const dem_core::ContactLawKind other = is_hertz(base) ? dem_core::ContactLawKind::lsdyna_linear
+                                                          : dem_core::ContactLawKind::hertz_mindlin;
+    throw std::runtime_error("parameter '" + name + "' belongs to contact law " + to_string(other) + "; this case uses " +
+                             to_string(base.law) + " (its parameters: " + law_parameters_text(base.law) + ")");
   }
+  if (row.drum_only && base.kind != CaseKind::rotary_drum)
+    throw std::runtime_error("parameter '" + name + "' is a drum fill amount: it does not apply to a pellet_compression case");
+  if (base.wall_friction_as_particles && row.home == ParameterHome::wall_contact)
+    throw std::runtime_error("parameter '" + name + "': the case's wall friction follows the particles "
+                             "(wall_contact.friction_as_particles); vary frics/fricr instead");
 }
 
 }  // namespace
@@ -65,50 +64,12 @@ void set_fill_amount(CaseSpec& spec, const std::string& name, double value) {
 CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters) {
   CaseSpec spec = base;
   for (const auto& [name, value] : parameters) {
-    if (is_hertz(base) && lsdyna_only(name)) {
-      if (value == current_value(base, name)) continue;
-      throw std::runtime_error("parameter '" + name + "' belongs to contact law lsdyna_linear; this case uses hertz_mindlin "
-                               "(its parameters: frics fricr restitution wall_frics wall_fricd)");
-    }
-    if (base.wall_friction_as_particles && (name == "wall_frics" || name == "wall_fricd")) {
-      if (value == current_value(base, name)) continue;
-      throw std::runtime_error("parameter '" + name + "': the case's wall friction follows the particles "
-                               "(wall_contact.friction_as_particles); vary frics/fricr instead");
-    }
-    if (name == "normk") spec.contact.normk = value;
-    else if (name == "sheark") spec.contact.sheark = value;
-    else if (name == "ndamp") spec.contact.ndamp = value;
-    else if (name == "tdamp") spec.contact.tdamp = value;
-    else if (name == "frics") spec.contact.frics = value;
-    else if (name == "fricd") spec.contact.fricd = value;
-    else if (name == "dc") spec.contact.dc = value;
-    else if (name == "fricr") spec.contact.fricr = value;
-    else if (name == "wall_frics") spec.wall.frics = value;
-    else if (name == "wall_fricd") spec.wall.fricd = value;
-    else if (name == "wall_damp") spec.wall.damp = value;
-    else if (name == "wall_sfp") spec.wall.sfp = value;
-    else if (name == "unloading_stiffness_ratio") spec.contact.unloading_stiffness_ratio = value;
-    else if (name == "surface_energy") spec.contact.surface_energy = value;
-    else if (name == "stiffness_exponent") spec.contact.stiffness_exponent = value;
-    else if (name == "radius_spread") {
-      // Same range as the case file (dem_core checks the contact effects itself).
-      if (!(value >= 0.0 && value <= 0.3))
-        throw std::runtime_error("parameter 'radius_spread' = " + std::to_string(value) + " must lie in [0, 0.3]");
-      spec.material.radius_spread = value;
-    }
-    else if (name == "restitution") {
-      if (!is_hertz(base)) {
-        if (value == base.contact.restitution) continue;
-        throw std::runtime_error("parameter 'restitution' belongs to contact law hertz_mindlin; this case uses lsdyna_linear (use ndamp/tdamp)");
-      }
-      if (!(value > 0.0 && value <= 1.0)) throw std::runtime_error("parameter 'restitution' = " + std::to_string(value) + " must lie in (0, 1]");
-      spec.contact.restitution = value;
-    }
-    else if (name == "particle_count" || name == "fill_volume_ml") {
-      if (value == current_value(base, name)) continue;
-      set_fill_amount(spec, name, value);
-    }
-    else throw std::runtime_error("parameter '" + name + "' is unknown (known: normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp wall_sfp unloading_stiffness_ratio surface_energy stiffness_exponent radius_spread restitution particle_count fill_volume_ml)");
+    const ParameterRow* row = find_parameter(name);
+    if (!row) throw std::runtime_error("parameter '" + name + "' is unknown (known: " + parameter_names_text() + ")");
+    if (!is_change(*row, base, value)) continue;
+    check_applicable(*row, base);
+    check_parameter_value(*row, value);
+    row->set(spec, value);
   }
   if (is_hertz(spec)) spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient
   if (spec.wall_friction_as_particles) {
@@ -120,24 +81,12 @@ CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& par
 
 identify::ParameterSet parameters_of(const CaseSpec& spec) {
   identify::ParameterSet out;
-  if (is_hertz(spec)) {
-    out = {{"frics", spec.contact.frics}, {"fricr", spec.contact.fricr}, {"restitution", spec.contact.restitution},
-           {"wall_frics", spec.wall.frics}, {"wall_fricd", spec.wall.fricd}};
-  } else {
-    out = {{"normk", spec.contact.normk}, {"sheark", spec.contact.sheark}, {"ndamp", spec.contact.ndamp},
-           {"tdamp", spec.contact.tdamp}, {"frics", spec.contact.frics}, {"fricd", spec.contact.fricd},
-           {"dc", spec.contact.dc}, {"fricr", spec.contact.fricr}, {"wall_frics", spec.wall.frics},
-           {"wall_fricd", spec.wall.fricd}, {"wall_damp", spec.wall.damp}, {"wall_sfp", spec.wall.sfp},
-           {"unloading_stiffness_ratio", spec.contact.unloading_stiffness_ratio},
-           {"surface_energy", spec.contact.surface_energy},
-           {"stiffness_exponent", spec.contact.stiffness_exponent},
-           {"radius_spread", spec.material.radius_spread}};
+  for (const ParameterRow& row : parameter_table()) {
+    if (!row.applies_to(spec.law) || (row.drum_only && spec.kind != CaseKind::rotary_drum)) continue;
+    const double value = row.get(spec);
+    // The fill amount is a parameter only in the form the case gives it (NaN otherwise).
+    if (!std::isnan(value)) out[row.name] = value;
   }
-  // The fill amount is a parameter only in the form the case gives it.
-  if (spec.kind == CaseKind::rotary_drum && spec.drum.fill_by == FillBy::particle_count)
-    out["particle_count"] = static_cast<double>(spec.drum.particle_count);
-  if (spec.kind == CaseKind::rotary_drum && spec.drum.fill_by == FillBy::fill_volume)
-    out["fill_volume_ml"] = spec.drum.fill_volume_ml;
   return out;
 }
 

@@ -23,8 +23,10 @@ dem_core::SimulationSettings simulation_settings(const CaseSpec& spec);
 // The particles of a settled simulation as a cacheable fill (positions [m], radii [m]).
 Fill fill_of(const dem_core::Simulation& simulation);
 
-// Copies `base` with the identified parameters in `parameters` applied (names as in
-// parameter_names()); unknown names are errors naming the parameter.
+// Copies `base` with the identified parameters in `parameters` applied (rows of the parameter
+// table). A value equal to the case's own is no change; otherwise an unknown name, a parameter of
+// the other contact law or of a drum in a pellet case, or a value outside the row's valid range
+// is an error naming the parameter.
 CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& parameters);
 
 // The identified-parameter values of a spec, by name: the parameters of its contact law, and the

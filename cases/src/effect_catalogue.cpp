@@ -9,6 +9,7 @@
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/cases/parameter_table.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -22,6 +23,16 @@ const char* const kDrum = "rotary_drum";
 // where the surface jumps rather than follows the parameter (docs/cases.md "Effects").
 constexpr double kPelletCohesionWeights = 5.0;
 constexpr double kDrumCohesionWeights = 1.0;
+
+// An effect parameter with the FITTING range [lower, upper]: unit and off value come from its
+// parameter-table row, and the range must lie inside the row's valid range (a logic error
+// otherwise). Every range below is narrower than the valid one, for the reason given there.
+EffectParameterInfo fitting(const char* name, double lower, double upper) {
+  const ParameterRow* row = find_parameter(name);
+  if (!row || !row->is_effect || !row->valid.contains_interval(lower, upper))
+    throw std::logic_error(std::string("effect catalogue: '") + name + "' is no effect row or its fitting range lies outside its valid range");
+  return {name, lower, upper, row->off_value, row->unit};
+}
 
 // Cohesion upper bound of a case, from the particle the simulation carries: the pellet's own,
 // the drum's coarse-grained one (SCG of scale s has radius s R0, so its bound is s^2 times the
@@ -41,7 +52,7 @@ EffectInfo cohesion(double upper) {
           "overlap; the contact breaks at zero overlap (upper bound: F_c of two equal simulated spheres = " +
               std::to_string(static_cast<int>(kPelletCohesionWeights)) + " particle weights in the pellet, " +
               std::to_string(static_cast<int>(kDrumCohesionWeights)) + " in the drum)",
-          {{"surface_energy", 0.0, upper, 0.0, "J/m^2"}},
+          {fitting("surface_energy", 0.0, upper)},
           {kPellet, kDrum},
           {}};
 }
@@ -53,31 +64,35 @@ std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_nam
                  "Walton-Braun hysteretic normal spring: unloading stiffness k2 = ratio k1, delta0 = delta_max (1 - k1/k2); "
                  "undamped restitution 1/sqrt(ratio). Shows mainly on unloading (pellet.unload = true, curve "
                  "pressure_volume_cycle); contacts that unload during rearrangement change the loading curve too",
-                 {{"unloading_stiffness_ratio", 1.0, 4.0, 1.0, "-"}},
+                 // Up to 4 (head-on restitution 0.5) of the valid 100: the pellet cycle resolves that range.
+                 {fitting("unloading_stiffness_ratio", 1.0, 4.0)},
                  {kPellet},
                  {}});
   all.push_back(cohesion(cohesion_upper));
   all.push_back({"hertz_stiffness",
                  "nonlinear normal spring F = k_n d_ref (delta/d_ref)^n, d_ref = 0.01 R* (equal to the linear law at "
                  "1 % of R*); n = 1.5 is the Hertzian shape",
-                 {{"stiffness_exponent", 1.0, 1.5, 1.0, "-"}},
+                 // Up to the Hertzian shape 1.5 of the valid 2.
+                 {fitting("stiffness_exponent", 1.0, 1.5)},
                  {kPellet, kDrum},
                  {}});
   all.push_back({"wall_friction",
                  "particle-wall sliding friction (wall FRICS): Janssen effect in the pellet cylinder (the bottom plate "
                  "carries less than the piston), drag of the bed by the drum wall",
-                 {{"wall_frics", 0.0, 0.6, 0.0, "-"}},
+                 // Friction coefficients of granular materials: up to 0.6 (valid: any >= 0).
+                 {fitting("wall_frics", 0.0, 0.6)},
                  {kPellet, kDrum},
                  {}});
   all.push_back({"rolling_resistance",
                  "constant-torque rolling friction between particles (FRICR; acts only with FRICS > 0)",
-                 {{"fricr", 0.0, 0.3, 0.0, "-"}},
+                 {fitting("fricr", 0.0, 0.3)},
                  {kPellet, kDrum},
                  {}});
   all.push_back({"polydispersity",
                  "radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (the drum's coarse-grained radius gets "
                  "the same relative spread); changes the fill, which is regenerated and cached per spread",
-                 {{"radius_spread", 0.0, 0.25, 0.0, "-"}},
+                 // Up to 0.25, inside the valid 0.3 (the drum lattice limit).
+                 {fitting("radius_spread", 0.0, 0.25)},
                  {kPellet, kDrum},
                  {}});
   std::erase_if(all, [&](const EffectInfo& e) { return std::find(e.cases.begin(), e.cases.end(), case_name) == e.cases.end(); });

@@ -13,16 +13,20 @@ std::string join_path(std::string_view path, std::string_view key) {
 
 void require_known_keys(const nlohmann::json& object, std::string_view path,
                         std::initializer_list<std::string_view> allowed) {
+  require_known_keys(object, path, std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void require_known_keys(const nlohmann::json& object, std::string_view path, const std::vector<std::string>& allowed) {
   if (!object.is_object()) {
     throw std::runtime_error("'" + (path.empty() ? std::string("<root>") : std::string(path)) +
                              "' must be a JSON object");
   }
   for (const auto& item : object.items()) {
     bool known = false;
-    for (std::string_view name : allowed) known = known || item.key() == name;
+    for (const std::string& name : allowed) known = known || item.key() == name;
     if (!known) {
       std::string list;
-      for (std::string_view name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+      for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
       throw std::runtime_error("unknown key '" + join_path(path, item.key()) +
                                "' (allowed here: " + list + ")");
     }

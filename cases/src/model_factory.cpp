@@ -10,6 +10,7 @@
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/json_fields.hpp"
+#include "demfit/cases/parameter_table.hpp"
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/experiments.hpp"
 
@@ -20,6 +21,7 @@ class DemCaseModel final : public identify::Model {
  public:
   explicit DemCaseModel(CaseSpec spec) : spec_(std::move(spec)) {}
   std::vector<std::string> parameter_names() const override { return cases::parameter_names(); }
+  std::vector<identify::ParameterDescriptor> parameters() const override { return parameter_descriptors(); }
   identify::ParameterSet default_parameters() const override { return detail::parameters_of(spec_); }
   // EvaluationContext::seed is not used: the fill seed is a case setting, so all evaluations of a
   // study share one settled bed (deterministic, cached).

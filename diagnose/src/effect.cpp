@@ -27,11 +27,11 @@ void validate_candidates(const std::vector<EffectCandidate>& candidates) {
 std::vector<EffectCandidate> analytic_effect_candidates() {
   return {
       {"toe_shift", "the response starts late: base curve shifted right by s (seating, initial gap)",
-       {{"toe_shift", 0.0, 0.2, 0.0}}, {"response"}},
+       {{"toe_shift", 0.0, 0.2, 0.0, "-"}}, {"response"}},
       {"stiffening", "progressive stiffening: extra term c x^2 (e.g. Hertzian-like hardening)",
-       {{"stiffening_coefficient", -1.0, 2.0, 0.0}}, {"response"}},
+       {{"stiffening_coefficient", -1.0, 2.0, 0.0, "-"}}, {"response"}},
       {"yield_drop", "softening past x = 0.7: -h (x-0.7)/0.3 (plastic yield of contacts)",
-       {{"yield_drop", -0.5, 0.5, 0.0}}, {"response"}},
+       {{"yield_drop", -0.5, 0.5, 0.0, "-"}}, {"response"}},
   };
 }
 

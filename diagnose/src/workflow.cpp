@@ -96,13 +96,18 @@ ResidualAnalysis analyse(const FitResult& fit, const std::vector<FitTarget>& tar
 }
 
 void check_model_accepts(const identify::Model& model, const std::vector<EffectCandidate>& candidates) {
-  const auto names = model.parameter_names();
-  const std::set<std::string> known(names.begin(), names.end());
+  const auto descriptors = model.parameters();
   for (const auto& c : candidates)
-    for (const auto& p : c.parameters)
-      if (!known.count(p.name))
+    for (const auto& p : c.parameters) {
+      const identify::ParameterDescriptor* d = identify::find_descriptor(descriptors, p.name);
+      if (!d)
         throw std::runtime_error("diagnose: effect '" + c.name + "': the model has no parameter '" + p.name +
                                  "'; remove the effect with --effects or use a model that implements it");
+      if (!d->valid.contains_interval(p.lower, p.upper))
+        throw std::runtime_error("diagnose: effect '" + c.name + "': parameter '" + p.name + "' range [" +
+                                 format("%g, %g", p.lower, p.upper) + "] lies outside the model's valid range " +
+                                 d->valid.to_string() + "; narrow it");
+    }
 }
 
 std::string summarise(const Diagnosis& d) {

@@ -27,6 +27,31 @@ std::vector<std::string> ExperimentSetModel::parameter_names() const {
   return {names.begin(), names.end()};
 }
 
+std::vector<ParameterDescriptor> ExperimentSetModel::parameters() const {
+  std::vector<ParameterDescriptor> out;
+  for (const auto& e : experiments_)
+    for (const ParameterDescriptor& d : e.model->parameters()) {
+      ParameterDescriptor* same = nullptr;
+      for (auto& o : out)
+        if (o.name == d.name) same = &o;
+      if (!same) {
+        out.push_back(d);
+        continue;
+      }
+      ParameterRange& r = same->valid;
+      if (d.valid.lower > r.lower || (d.valid.lower == r.lower && d.valid.lower_open)) {
+        r.lower = d.valid.lower;
+        r.lower_open = d.valid.lower_open;
+      }
+      if (d.valid.upper < r.upper || (d.valid.upper == r.upper && d.valid.upper_open)) {
+        r.upper = d.valid.upper;
+        r.upper_open = d.valid.upper_open;
+      }
+    }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  return out;
+}
+
 ParameterSet ExperimentSetModel::experiment_parameters(std::size_t experiment, const ParameterSet& parameters) const {
   const Experiment& e = experiments_.at(experiment);
   ParameterSet out = e.model->default_parameters();

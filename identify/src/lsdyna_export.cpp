@@ -36,15 +36,16 @@ std::string shorten_exponent(std::string text) {
   return mantissa + "e" + sign + exponent;
 }
 
-// demfit effect parameters (issue #6) with the value at which each effect is off. LS-DYNA's DES
-// contact has no equivalent of these (its CAP liquid bridge is a different cohesion model), so a
-// study that identified one gets a warning comment instead of a silently dropped value.
-const std::vector<std::pair<std::string, double>> kEffectsWithoutLsDynaField = {
-    {"unloading_stiffness_ratio", 1.0}, {"surface_energy", 0.0}, {"stiffness_exponent", 1.0}, {"radius_spread", 0.0}};
-
-std::string effect_warnings(const ParameterSet& given) {
+// Effect parameters the model declares without an LS-DYNA field (its descriptors: off value
+// set, lsdyna_field empty). LS-DYNA's DES contact has no equivalent of these (its CAP liquid
+// bridge is a different cohesion model), so a study that identified one gets a warning comment
+// instead of a silently dropped value.
+std::string effect_warnings(const ParameterSet& given, const std::vector<ParameterDescriptor>& model_parameters) {
   std::string text;
-  for (const auto& [name, off_value] : kEffectsWithoutLsDynaField) {
+  for (const ParameterDescriptor& d : model_parameters) {
+    if (!d.off_value || !d.lsdyna_field.empty()) continue;
+    const std::string& name = d.name;
+    const double off_value = *d.off_value;
     const auto it = given.find(name);
     if (it == given.end() || it->second == off_value) continue;
     char line[160];
@@ -117,15 +118,15 @@ std::string lsdyna_field(double value) {
 //   *DEFINE_DE_TO_SURFACE_COUPLING card 1: SLAVE MASTER STYPE MTYPE; card 2: FRICS FRICD DAMP BSORT ...
 // Checked against the field schema of the keyword classes generated from the manual (Ansys pydyna,
 // keyword_classes/auto: control_discrete_element, define_de_to_surface_coupling) on 2026-11-24.
-std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title,
-                            const std::vector<std::string>& comments) {
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<ParameterDescriptor>& model_parameters,
+                            const std::string& title, const std::vector<std::string>& comments) {
   const ParameterSet p = with_defaults(parameters);
   std::ostringstream out;
   out << "*KEYWORD\n" << comment_line("demfit export: " + title);
   for (const auto& c : comments) out << comment_line(c);
   out
       << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
-      << effect_warnings(parameters)
+      << effect_warnings(parameters, model_parameters)
       << "*CONTROL_DISCRETE_ELEMENT\n"
       << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
       << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),
@@ -145,9 +146,10 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& t
   return out.str();
 }
 
-void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title,
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters,
+                           const std::vector<ParameterDescriptor>& model_parameters, const std::string& title,
                            const std::vector<std::string>& comments) {
-  write_file_atomically(path, lsdyna_keywords(parameters, title, comments));
+  write_file_atomically(path, lsdyna_keywords(parameters, model_parameters, title, comments));
 }
 
 ParameterSet parse_lsdyna_keywords(const std::string& text) {

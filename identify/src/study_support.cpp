@@ -75,6 +75,30 @@ void check_parameter_names(const StudySpec& spec, const Model& model) {
     if (!known_name(name))
       throw std::runtime_error("study: model.fixed_parameters." + name + ": not a parameter of model '" +
                                spec.model_reference + "'; known: " + known);
+  check_parameter_bounds(spec, model);
+}
+
+void check_parameter_bounds(const StudySpec& spec, const Model& model) {
+  const std::vector<ParameterDescriptor> descriptors = model.parameters();
+  auto unit_of = [](const ParameterDescriptor& d) { return d.unit.empty() ? std::string() : " [" + d.unit + "]"; };
+  for (std::size_t j = 0; j < spec.variables.size(); ++j) {
+    const auto& v = spec.variables[j];
+    const ParameterDescriptor* d = find_descriptor(descriptors, v.name);
+    if (!d || d->valid.contains_interval(v.lower, v.upper)) continue;
+    char bounds[96];
+    std::snprintf(bounds, sizeof bounds, "[%g, %g]", v.lower, v.upper);
+    throw std::runtime_error("study: variables[" + std::to_string(j) + "] '" + v.name + "': bounds " + bounds +
+                             " leave the model's valid range " + d->valid.to_string() + unit_of(*d) +
+                             "; move the bounds inside it");
+  }
+  for (const auto& [name, value] : spec.fixed_parameters) {
+    const ParameterDescriptor* d = find_descriptor(descriptors, name);
+    if (!d || d->valid.contains(value)) continue;
+    char text[48];
+    std::snprintf(text, sizeof text, "%g", value);
+    throw std::runtime_error("study: model.fixed_parameters." + name + " = " + text + " lies outside the model's valid range " +
+                             d->valid.to_string() + unit_of(*d) + "; change it");
+  }
 }
 
 std::vector<std::string> experiment_names(const StudySpec& spec) {
@@ -99,10 +123,18 @@ void check_experiments(const StudySpec& spec, const Model& model) {
       throw std::runtime_error("study: experiments[" + std::to_string(e) + "]: model built for experiment '" +
                                set->name(e) + "', the study names '" + experiment.name + "'");
     const auto names = set->model(e).parameter_names();
-    for (const auto& [name, value] : experiment.fixed_parameters)
+    const auto descriptors = set->model(e).parameters();
+    for (const auto& [name, value] : experiment.fixed_parameters) {
+      const std::string field = "study: experiments[" + std::to_string(e) + "].model.fixed_parameters." + name;
       if (std::find(names.begin(), names.end(), name) == names.end())
-        throw std::runtime_error("study: experiments[" + std::to_string(e) + "].model.fixed_parameters." + name +
-                                 ": not a parameter of case '" + experiment.model_reference + "'");
+        throw std::runtime_error(field + ": not a parameter of case '" + experiment.model_reference + "'");
+      const ParameterDescriptor* d = find_descriptor(descriptors, name);
+      if (d && !d->valid.contains(value)) {
+        char text[48];
+        std::snprintf(text, sizeof text, "%g", value);
+        throw std::runtime_error(field + " = " + text + " lies outside the valid range " + d->valid.to_string() + "; change it");
+      }
+    }
   }
 }
 

@@ -33,6 +33,10 @@ Eigen::VectorXd unit_per_physical(const StudySpec& spec, const std::vector<rbf_s
 // Throws "study: variables[i].name: 'x' is not a parameter of model ..." for unknown names
 // (with several experiments: of no experiment's model).
 void check_parameter_names(const StudySpec& spec, const Model& model);
+// Throws (one line naming the variable, its bounds and the valid range) when a variable's bounds
+// or a fixed value leave the valid range of the model's parameter descriptors. Called by
+// check_parameter_names, so before any store exists.
+void check_parameter_bounds(const StudySpec& spec, const Model& model);
 // A study with experiments needs an ExperimentSetModel built for it (same experiment names) and
 // each experiment's fixed_parameters must be parameters of its model; a single-model study needs
 // a plain model. Throws one line naming the field.

@@ -48,7 +48,7 @@ std::vector<EffectCandidate> candidates_for(const std::string& case_name, const 
   for (const auto& e : cases::effects_for_case(case_name, overrides)) {
     if (std::find(without.begin(), without.end(), e.name) != without.end()) continue;
     EffectCandidate c{e.name, e.description, {}, e.curves};
-    for (const auto& p : e.parameters) c.parameters.push_back({p.name, p.lower, p.upper, p.off_value});
+    for (const auto& p : e.parameters) c.parameters.push_back(p);
     out.push_back(std::move(c));
   }
   return out;

@@ -2,6 +2,7 @@
 // curve of amplitude ~1.5): the workflow is not told which effect, or whether there is one.
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <random>
@@ -139,6 +140,43 @@ TEST_CASE("A given noise level replaces the estimate and inconsistent candidates
   auto unknown = analytic_effect_candidates();
   unknown[0].parameters[0].name = "cohesion_force";
   CHECK_THROWS_WITH(run_diagnosis(spec, model, unknown, options), Catch::Contains("no parameter 'cohesion_force'"));
+}
+
+// The analytic effects model declaring that its toe shift must lie in [0, 0.1]; it counts its
+// evaluations.
+class NarrowToeShiftModel final : public identify::Model {
+ public:
+  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<identify::ParameterDescriptor> parameters() const override {
+    auto out = identify::unbounded_descriptors(parameter_names());
+    for (auto& d : out)
+      if (d.name == "toe_shift") d.valid = {0.0, 0.1};
+    return out;
+  }
+  identify::ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext& c) const override {
+    ++evaluations;
+    return inner_.evaluate(p, c);
+  }
+  mutable std::atomic<int> evaluations{0};
+
+ private:
+  AnalyticEffectsModel inner_{101};
+};
+
+TEST_CASE("An effect candidate whose range leaves the model's valid range is refused before any evaluation") {
+  const identify::StudySpec spec = synthetic_study(base_truth(), 52);
+  const NarrowToeShiftModel model;
+  DiagnoseOptions options;
+  options.noise_sigma = kNoise;
+  // analytic_effect_candidates' toe_shift range is [0, 0.2].
+  CHECK_THROWS_WITH(run_diagnosis(spec, model, analytic_effect_candidates(), options),
+                    Catch::Contains("effect 'toe_shift'") && Catch::Contains("[0, 0.2]") && Catch::Contains("[0, 0.1]"));
+  CHECK(model.evaluations == 0);
+  auto narrowed = analytic_effect_candidates();
+  for (auto& c : narrowed)
+    if (c.name == "toe_shift") c.parameters[0].upper = 0.1;
+  CHECK_NOTHROW(run_diagnosis(spec, model, narrowed, options));
 }
 
 TEST_CASE("Over 20 noise seeds hidden effects are named correctly at least 85 percent of the time and never wrongly") {

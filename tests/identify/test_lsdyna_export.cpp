@@ -22,7 +22,7 @@ TEST_CASE("Exported keyword cards parse back to the identified and default value
                                 {"fricr", 0.088137162}, {"normk", 0.095010325}, {"sheark", 0.004870718},
                                 {"wall_frics", 0.398444369}, {"wall_fricd", 0.186624382}, {"wall_damp", 0.101806949}};
   const auto dir = test::fresh_dir("export");
-  write_lsdyna_keywords(dir / "out.k", identified, "Table 3 values");
+  write_lsdyna_keywords(dir / "out.k", identified, {}, "Table 3 values");
   std::ifstream in(dir / "out.k");
   std::stringstream text;
   text << in.rdbuf();
@@ -36,7 +36,7 @@ TEST_CASE("Exported keyword cards parse back to the identified and default value
   while (std::getline(lines, line))
     if (!line.empty() && line[0] != '$' && line[0] != '*') CHECK(line.size() <= 80);
   // Defaults for everything not given.
-  const ParameterSet defaults = parse_lsdyna_keywords(lsdyna_keywords({}, "defaults"));
+  const ParameterSet defaults = parse_lsdyna_keywords(lsdyna_keywords({}, {}, "defaults"));
   CHECK(defaults.at("normk") == Approx(0.01));
   CHECK(defaults.at("sheark") == Approx(2.0 / 7.0).epsilon(1e-6));
 }
@@ -47,7 +47,7 @@ TEST_CASE("Exported keyword cards parse back to the identified and default value
 TEST_CASE("Exported values sit in the manual's columns of each card", "[identify][export]") {
   const ParameterSet p{{"normk", 0.875046}, {"sheark", 0.299582}, {"frics", 0.3}, {"fricd", 0.25},
                        {"wall_damp", 0.101806949}};
-  std::istringstream in(lsdyna_keywords(p, "columns"));
+  std::istringstream in(lsdyna_keywords(p, {}, "columns"));
   std::vector<std::string> control, coupling;
   std::vector<std::string>* current = nullptr;
   std::string line;
@@ -67,10 +67,17 @@ TEST_CASE("Exported values sit in the manual's columns of each card", "[identify
   CHECK(column(coupling[1], 21) == Approx(0.101806949).epsilon(1e-6));
 }
 
+// The model's descriptors say which effects LS-DYNA cannot carry (off value, no LS-DYNA field).
+std::vector<ParameterDescriptor> plasticity_model() {
+  ParameterDescriptor normk{"normk", "-", {0.0, 1e300, true, true}, 0.01, std::nullopt, "*CONTROL_DISCRETE_ELEMENT NORMK"};
+  ParameterDescriptor ratio{"unloading_stiffness_ratio", "-", {1.0, 100.0}, 1.0, 1.0, ""};
+  return {normk, ratio};
+}
+
 TEST_CASE("An identified effect without an LS-DYNA field is named in a warning comment, not dropped silently", "[identify][export]") {
-  const std::string with_effect = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 2.5}}, "plastic");
+  const std::string with_effect = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 2.5}}, plasticity_model(), "plastic");
   CHECK(with_effect.find("$ WARNING: unloading_stiffness_ratio = 2.5 has no LS-DYNA DES field") != std::string::npos);
-  const std::string effect_off = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 1.0}}, "elastic");
+  const std::string effect_off = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 1.0}}, plasticity_model(), "elastic");
   CHECK(effect_off.find("WARNING") == std::string::npos);
   CHECK(parse_lsdyna_keywords(with_effect).at("normk") == Approx(0.5));
 }

@@ -129,9 +129,9 @@ struct CaseSpec {
 CaseSpec parse_case(const nlohmann::json& document, const std::filesystem::path& base_dir = {});
 nlohmann::json to_json(const CaseSpec& spec);
 
-// to_json without the effects-library fields that are at their off values
-// (particle.radius_spread = 0, contact.unloading_stiffness_ratio = 1, contact.surface_energy = 0,
-// contact.stiffness_exponent = 1): the text of a case without effects is the text it had before
+// to_json without the effects-library fields that are at their off values (the effect rows of
+// the parameter table, cases/parameter_table.hpp: particle.radius_spread = 0,
+// contact.unloading_stiffness_ratio = 1, contact.surface_energy = 0, contact.stiffness_exponent = 1): the text of a case without effects is the text it had before
 // the effects existed, so cache keys built from it (fills, results) stay valid.
 nlohmann::json to_key_json(const CaseSpec& spec);
 
@@ -139,20 +139,18 @@ nlohmann::json to_key_json(const CaseSpec& spec);
 nlohmann::json read_case_json(const std::string& path);
 
 // Applies "name=value" overrides to a case document before parsing. `name` is an identified
-// parameter (normk sheark ndamp tdamp frics fricd dc fricr wall_frics wall_fricd wall_damp
-// wall_sfp, and the effects unloading_stiffness_ratio surface_energy stiffness_exponent
-// radius_spread) or a dotted path ("pellet.piston_speed"); `value` is JSON (a number, true/false or a
+// parameter (a row of the parameter table, cases/parameter_table.hpp; docs/parameters.md) or a
+// dotted path ("pellet.piston_speed"); `value` is JSON (a number, true/false or a
 // quoted string; a bare word is taken as a string).
 void apply_setting(nlohmann::json& document, const std::string& assignment);
 
-// Dotted JSON path of an identified parameter name ("normk" -> "contact.normk",
-// "wall_damp" -> "wall_contact.damp", "radius_spread" -> "particle.radius_spread");
-// empty when the name is not a parameter.
+// Dotted JSON path of an identified parameter name in an lsdyna_linear case file (the row's
+// case_path: "normk" -> "contact.normk", "wall_damp" -> "wall_contact.damp"); empty when the
+// name is not a parameter.
 std::string parameter_path(const std::string& name);
 
-// The identified-parameter names, in a fixed order. Besides the contact values above:
-// restitution (Hertz), particle_count and fill_volume_ml (drum fill amount; they change the fill,
-// which is then made and cached per distinct value, as for radius_spread).
+// The identified-parameter names: the rows of the parameter table, in its order (contact, wall,
+// effects, Hertz restitution, drum fill amounts; see docs/parameters.md).
 const std::vector<std::string>& parameter_names();
 
 // "lsdyna_linear" / "hertz_mindlin".

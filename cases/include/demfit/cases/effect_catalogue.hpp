@@ -10,16 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/identify/parameter_descriptor.hpp"
 
 namespace demfit::cases {
 
-struct EffectParameterInfo {
-  std::string name;   // identified-parameter name (parameter_names())
-  double lower = 0.0;
-  double upper = 0.0;
-  double off_value = 0.0;  // value at which the effect is absent
-  std::string unit;        // "-" for dimensionless
-};
+// name, fitting range [lower, upper] (inside the parameter table's valid range), off value, unit:
+// the type diagnose's effect candidates use too.
+using EffectParameterInfo = identify::EffectParameter;
 
 struct EffectInfo {
   std::string name;

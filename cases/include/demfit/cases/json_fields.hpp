@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,7 @@ namespace demfit::cases {
 // `path` is the dotted location of `object` ("" for the root), used in messages.
 void require_known_keys(const nlohmann::json& object, std::string_view path,
                         std::initializer_list<std::string_view> allowed);
+void require_known_keys(const nlohmann::json& object, std::string_view path, const std::vector<std::string>& allowed);
 
 // Dotted child path: join_path("piston", "speed") == "piston.speed"; join_path("", "x") == "x".
 std::string join_path(std::string_view path, std::string_view key);

@@ -6,14 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "demfit/identify/parameter_descriptor.hpp"
+
 namespace demfit::diagnose {
 
-struct EffectParameter {
-  std::string name;        // model parameter name (e.g. "plasticity_ratio")
-  double lower = 0.0;      // bounds, model units
-  double upper = 1.0;
-  double off_value = 0.0;  // value at which the effect vanishes (inside [lower, upper])
-};
+// name, fitting bounds [lower, upper] in model units, off value (inside the bounds), unit: the
+// type of the cases' effect catalogue too (identify/parameter_descriptor.hpp).
+using EffectParameter = identify::EffectParameter;
 
 struct EffectCandidate {
   std::string name;                         // short name used in reports ("stiffening")

@@ -30,6 +30,8 @@ class ExperimentSetModel final : public Model {
 
   // Union of the experiments' parameter names (sorted).
   std::vector<std::string> parameter_names() const override;
+  // Their descriptors; a name several experiments accept gets the intersection of their ranges.
+  std::vector<ParameterDescriptor> parameters() const override;
   // Empty: every experiment brings its own defaults (experiment_parameters).
   ParameterSet default_parameters() const override { return {}; }
   // Runs the experiments one after the other; curves keyed "<experiment>/<curve>". Throws the

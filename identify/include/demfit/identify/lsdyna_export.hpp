@@ -26,10 +26,14 @@ namespace demfit::identify {
 // as fit (exponent shortened to e-5 style when needed). Throws if it cannot fit.
 std::string lsdyna_field(double value);
 // `title` and each of `comments` become "$ " comment lines; control characters in them are turned
-// into blanks, so no text can leave its comment line (issue #13).
-std::string lsdyna_keywords(const ParameterSet& parameters, const std::string& title,
-                            const std::vector<std::string>& comments = {});
-void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters, const std::string& title,
+// into blanks, so no text can leave its comment line (issue #13). `model_parameters`: the model's
+// descriptors (for the DEM cases: cases::parameter_descriptors()); every effect parameter among
+// them without an LS-DYNA field (off value set, lsdyna_field empty) that `parameters` holds at a
+// value other than its off value gets a "$ WARNING" comment: LS-DYNA cannot carry it.
+std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<ParameterDescriptor>& model_parameters,
+                            const std::string& title, const std::vector<std::string>& comments = {});
+void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters,
+                           const std::vector<ParameterDescriptor>& model_parameters, const std::string& title,
                            const std::vector<std::string>& comments = {});
 // Reads the cards written above back into parameter names (tests, round trips).
 ParameterSet parse_lsdyna_keywords(const std::string& text);

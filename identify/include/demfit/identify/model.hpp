@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "demfit/identify/parameter_descriptor.hpp"
+
 namespace demfit::identify {
 
 // One sampled response curve, e.g. pressure [MPa] against bed volume [cm3].
@@ -32,6 +34,9 @@ class Model {
   virtual ~Model() = default;
   // Names of the parameters evaluate() accepts (anything else is an error).
   virtual std::vector<std::string> parameter_names() const = 0;
+  // The same parameters with unit and valid range (study bounds are checked against them before
+  // a study starts). Models that declare no ranges keep this default: any value, unit unknown.
+  virtual std::vector<ParameterDescriptor> parameters() const { return unbounded_descriptors(parameter_names()); }
   // Values used for parameters a study does not vary.
   virtual ParameterSet default_parameters() const = 0;
   // Runs one evaluation. Must be safe to call concurrently from several threads on one object.

@@ -25,6 +25,7 @@ class RelativeAxisModel final : public Model {
  public:
   RelativeAxisModel(std::unique_ptr<Model> base, std::set<std::string> requested);
   std::vector<std::string> parameter_names() const override { return base_->parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override { return base_->parameters(); }
   ParameterSet default_parameters() const override { return base_->default_parameters(); }
   CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override;
 

@@ -1,0 +1,142 @@
+// A study's variable bounds are checked against the parameter descriptors of its model
+// (issue 12 item 1) before anything runs or is stored.
+#include <catch2/catch.hpp>
+
+#include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/experiments.hpp"
+#include "demfit/identify/study.hpp"
+#include "test_helpers.hpp"
+
+using namespace demfit::identify;
+
+namespace {
+
+// The analytic model declaring that its amplitude must lie in (0, amplitude_max] and its rate in
+// [1, 10], its slope in [0, 1].
+class BoundedAnalyticModel final : public Model {
+ public:
+  explicit BoundedAnalyticModel(double amplitude_max = 2.0) : amplitude_max_(amplitude_max) {}
+  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override {
+    return {{"amplitude", "-", {0.0, amplitude_max_, true, false}, 1.0, std::nullopt, ""},
+            {"rate", "1/s", {1.0, 10.0}, 3.0, std::nullopt, ""},
+            {"slope", "-", {0.0, 1.0}, 0.5, std::nullopt, ""}};
+  }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override { return inner_.evaluate(p, c); }
+
+ private:
+  double amplitude_max_;
+  AnalyticCurveModel inner_;
+};
+
+// The analytic study as two experiments "wide" and "narrow" on the same target.
+StudySpec two_experiment_study(const nlohmann::json& narrow_fixed = nlohmann::json::object()) {
+  nlohmann::json single = test::analytic_study(0.0, 1);
+  nlohmann::json study = single;
+  study.erase("model");
+  study.erase("targets");
+  nlohmann::json narrow = {{"name", "narrow"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}};
+  if (!narrow_fixed.empty()) narrow["model"]["fixed_parameters"] = narrow_fixed;
+  study["experiments"] = {{{"name", "wide"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}}, narrow};
+  return parse_study(study, ".");
+}
+
+ExperimentSetModel two_models(const StudySpec& spec) {
+  std::vector<std::unique_ptr<Model>> models;
+  models.push_back(std::make_unique<BoundedAnalyticModel>(3.0));
+  models.push_back(std::make_unique<BoundedAnalyticModel>(1.8));
+  return ExperimentSetModel(spec, std::move(models));
+}
+
+RunOptions quiet_options(const std::filesystem::path& dir) {
+  RunOptions options;
+  options.output_dir = dir;
+  options.plots = false;
+  options.progress = false;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("A study whose variable bounds leave the model's valid range is refused before the store is created",
+          "[identify][parameters]") {
+  const auto dir = test::fresh_dir("bounds_refused");
+  nlohmann::json study = test::analytic_study(0.0, 2);
+  study["variables"][0]["upper"] = 2.5;  // amplitude: valid (0, 2]
+  const StudySpec spec = parse_study(study, ".");
+  try {
+    run_study(spec, BoundedAnalyticModel(), quiet_options(dir));
+    FAIL("the study ran");
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    CHECK(message.find("'amplitude'") != std::string::npos);
+    CHECK(message.find("[0.5, 2.5]") != std::string::npos);
+    CHECK(message.find("(0, 2]") != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+TEST_CASE("A bound on an open end of the valid range is refused, one just inside it is accepted", "[identify][parameters]") {
+  nlohmann::json study = test::analytic_study(0.0, 1);
+  study["variables"][0]["lower"] = 0.0;  // amplitude's lower end 0 is open
+  study["variables"][0]["initial"] = 0.5;
+  CHECK_THROWS_WITH(run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_open"))),
+                    Catch::Contains("(0, 2]"));
+  study["variables"][0]["lower"] = 1e-9;
+  study["variables"][0]["upper"] = 2.0;  // the closed upper end itself is valid
+  CHECK_NOTHROW(run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_inside"))));
+}
+
+TEST_CASE("A fixed parameter value outside the model's valid range is refused naming it", "[identify][parameters]") {
+  nlohmann::json study = test::analytic_study(0.0, 1);
+  study["model"]["fixed_parameters"] = {{"slope", 0.5}};
+  CHECK_NOTHROW(run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("fixed_ok"))));
+  nlohmann::json bad = test::analytic_study(0.0, 1);
+  bad["variables"].erase(1);
+  bad["model"]["fixed_parameters"] = {{"rate", 20.0}};
+  const auto dir = test::fresh_dir("fixed_refused");
+  CHECK_THROWS_WITH(run_study(parse_study(bad, "."), BoundedAnalyticModel(), quiet_options(dir)),
+                    Catch::Contains("fixed_parameters.rate = 20") && Catch::Contains("[1, 10]"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+TEST_CASE("A parameter range says which values it contains and prints its open and closed ends", "[identify][parameters]") {
+  const ParameterRange damping{0.0, 1.0, false, true};
+  CHECK(damping.contains(0.0));
+  CHECK(damping.contains(0.999));
+  CHECK_FALSE(damping.contains(1.0));
+  CHECK_FALSE(damping.contains(-1e-12));
+  CHECK_FALSE(damping.contains(std::nan("")));
+  CHECK(damping.to_string() == "[0, 1)");
+  const ParameterRange positive{0.0, std::numeric_limits<double>::infinity(), true, true};
+  CHECK(positive.to_string() == "(0, inf)");
+  CHECK(positive.contains_interval(1e-3, 1e9));
+  CHECK_FALSE(positive.contains_interval(0.0, 1.0));
+  CHECK_FALSE(positive.contains_interval(2.0, 1.0));
+}
+
+TEST_CASE("Several experiments accept a variable only in the intersection of their models' valid ranges",
+          "[identify][parameters][experiments]") {
+  const StudySpec spec = two_experiment_study();
+  const ExperimentSetModel model = two_models(spec);
+  const ParameterDescriptor* amplitude = find_descriptor(model.parameters(), "amplitude");
+  REQUIRE(amplitude != nullptr);
+  CHECK(amplitude->valid.to_string() == "(0, 1.8]");
+  const auto dir = test::fresh_dir("bounds_experiments");
+  // The study's amplitude bounds [0.5, 2] lie inside "wide" (0, 3] but not inside "narrow" (0, 1.8].
+  CHECK_THROWS_WITH(run_study(spec, model, quiet_options(dir)), Catch::Contains("(0, 1.8]"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+TEST_CASE("An experiment's fixed parameter outside its model's valid range is refused naming the experiment",
+          "[identify][parameters][experiments]") {
+  StudySpec spec = two_experiment_study({{"slope", 1.5}});
+  spec.variables[0].upper = 1.5;  // amplitude inside both models
+  const ExperimentSetModel model = two_models(spec);
+  const auto dir = test::fresh_dir("bounds_experiment_fixed");
+  CHECK_THROWS_WITH(run_study(spec, model, quiet_options(dir)),
+                    Catch::Contains("experiments[1].model.fixed_parameters.slope = 1.5") && Catch::Contains("[0, 1]"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
