@@ -34,7 +34,10 @@ bool is_hertz(const CaseSpec& spec) { return spec.law == dem_core::ContactLawKin
 std::string law_parameters_text(dem_core::ContactLawKind law) {
   std::string text;
   for (const ParameterRow& row : parameter_table())
-    if (row.applies_to(law) && row.home != ParameterHome::fill) text += (text.empty() ? "" : " ") + std::string(row.name);
+    if (row.applies_to(law) && row.home != ParameterHome::fill) {
+      if (!text.empty()) text += ' ';  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+      text += row.name;
+    }
   return text;
 }
 

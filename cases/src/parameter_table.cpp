@@ -154,7 +154,10 @@ const ParameterRow* find_parameter_by_path(std::string_view path) {
 
 std::string parameter_names_text() {
   std::string text;
-  for (const ParameterRow& row : parameter_table()) text += (text.empty() ? "" : " ") + std::string(row.name);
+  for (const ParameterRow& row : parameter_table()) {
+    if (!text.empty()) text += ' ';  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+    text += row.name;
+  }
   return text;
 }
 

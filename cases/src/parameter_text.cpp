@@ -44,8 +44,14 @@ std::string default_text(const ParameterRow& row) {
 }
 
 std::string case_fields(const ParameterRow& row) {
-  std::string text = "`" + std::string(row.case_path) + "`";
-  if (row.hertz_path) text += " (hertz_mindlin: `" + std::string(row.hertz_path) + "`)";
+  std::string text = "`";  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+  text += row.case_path;
+  text += '`';
+  if (row.hertz_path) {
+    text += " (hertz_mindlin: `";
+    text += row.hertz_path;
+    text += "`)";
+  }
   return text;
 }
 

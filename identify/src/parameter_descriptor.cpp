@@ -30,7 +30,12 @@ bool ParameterRange::contains_interval(double lo, double hi) const {
 std::string ParameterRange::to_string() const {
   const bool open_lo = lower_open || std::isinf(lower);
   const bool open_hi = upper_open || std::isinf(upper);
-  return (open_lo ? "(" : "[") + number(lower) + ", " + number(upper) + (open_hi ? ")" : "]");
+  std::string text(1, open_lo ? '(' : '[');  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+  text += number(lower);
+  text += ", ";
+  text += number(upper);
+  text += open_hi ? ')' : ']';
+  return text;
 }
 
 const ParameterDescriptor* find_descriptor(const std::vector<ParameterDescriptor>& descriptors,

@@ -59,8 +59,8 @@ struct TargetSpec {
   double weight = 1.0;           // weight of this target in the composite objective
   double scale = 0.0;            // s_p of SPEC 3; 0 = max|G| of the target
   int mapping_points = 0;        // curve mapping: stations along the curve; 0 = target size
-  std::string experiment;        // experiment the target belongs to; "" in the single-model form
-  std::optional<ImageTargetSpec> image;  // where data came from when read from a photo
+  std::string experiment = {};   // experiment the target belongs to; "" in the single-model form
+  std::optional<ImageTargetSpec> image = {};  // where data came from when read from a photo
 };
 
 // One experiment of a study with several (issue 14 item 3): a model (case reference + its own
