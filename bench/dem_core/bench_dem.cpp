@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "bench_scenarios.hpp"
@@ -74,7 +75,8 @@ int usage() {
   std::printf("usage: bench_dem [--quick] [--only drum|scaling|throughput|cases] [--steps N (drum, 10000)]\n"
               "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
                             "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
-              "                 [--scaling-work PARTICLE_STEPS (1e7)] [--lattice-order]\n");
+              "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
+              "                 [--lattice-order]\n");
   return EXIT_FAILURE;
 }
 
@@ -99,6 +101,11 @@ int main(int argc, char** argv) {
     else if (arg == "--dir" && has_value) drum.dir = argv[++a];
     else if (arg == "--scaling-work" && has_value) scaling.work = std::stod(argv[++a]);
     else if (arg == "--lattice-order") scaling.shuffled = false;
+    else if (arg == "--scaling-sizes" && has_value) {
+      scaling.sizes.clear();
+      std::stringstream list(argv[++a]);
+      for (std::string n; std::getline(list, n, ',');) scaling.sizes.push_back(std::stoul(n));
+    }
     else if (arg == "--mesh" && a + 3 < argc) {
       drum.mesh.segments = std::stoi(argv[++a]);
       drum.mesh.shell_rings = std::stoi(argv[++a]);

@@ -1,11 +1,14 @@
 // The box: a face-centred cubic lattice of touching spheres (the drum's material, R = 1 mm,
 // Hertz–Mindlin), 10 layers high on a floor between four side planes, gravity -z; the base grows
-// with N so every size has the same contacts per particle (6 pairs in the half list). 50 warm-up
-// steps (lists built, first transients) precede the timed steps.
+// with N so every size has the same contacts per particle (6 pairs in the half list). 10..50
+// warm-up steps (lists built, first transients) precede the timed steps. Peak memory is the
+// child's ru_maxrss after the warm-up (before it copies the state for the reordering A/B).
 #include "scaling.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -64,7 +67,8 @@ struct ChildLine {
   bool ok = false;
   std::size_t particles = 0, pairs = 0;
   long steps = 0;
-  double rate1 = 0.0, rate2 = 0.0;
+  double rate[2][2] = {{0, 0}, {0, 0}};  // [reordered][threads - 1]
+  double peak_bytes = 0.0;
 };
 
 ChildLine parse_child(const std::filesystem::path& file) {
@@ -73,27 +77,40 @@ ChildLine parse_child(const std::filesystem::path& file) {
   ChildLine c;
   while (in >> word)
     if (word == "scaling-result") {
-      in >> c.particles >> c.pairs >> c.steps >> c.rate1 >> c.rate2;
+      in >> c.particles >> c.pairs >> c.steps >> c.rate[0][0] >> c.rate[0][1] >> c.rate[1][0] >> c.rate[1][1] >> c.peak_bytes;
       c.ok = static_cast<bool>(in);
     }
   return c;
 }
 
+double peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) * 1024.0;
+}
+
 }  // namespace
 
 int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled) {
-  Simulation sim = make_box(particles, shuffled);
-  sim.set_threads(2);
-  sim.run_steps(50);
-  std::vector<double> rate[2];
+  Simulation plain = make_box(particles, shuffled);
+  plain.set_threads(2);
+  plain.run_steps(static_cast<std::uint64_t>(std::clamp(steps, 10L, 50L)));  // warm-up: lists, first transients
+  const double peak = peak_rss_bytes();  // before the second copy below
+  // Lever A/B in this process: the same state with Morton reordering at list rebuilds (issue 16).
+  Simulation reordered = plain;
+  reordered.set_reorder_particles(true);
+  std::vector<double> rate[2][2];
   for (int r = 0; r < repeats; ++r)
-    for (int threads = 1; threads <= 2; ++threads) {
-      sim.set_threads(threads);
-      const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
-      rate[threads - 1].push_back(static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds);
-    }
-  std::printf("scaling-result %zu %zu %ld %.6g %.6g\n", sim.particle_count(), sim.neighbor_list().pair_count(), steps,
-              median(rate[0]), median(rate[1]));
+    for (int threads = 1; threads <= 2; ++threads)
+      for (int variant = 0; variant < 2; ++variant) {
+        Simulation& sim = variant == 0 ? plain : reordered;
+        sim.set_threads(threads);
+        const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
+        rate[variant][threads - 1].push_back(static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds);
+      }
+  std::printf("scaling-result %zu %zu %ld %.6g %.6g %.6g %.6g %.6g\n", plain.particle_count(),
+              plain.neighbor_list().pair_count(), steps, median(rate[0][0]), median(rate[0][1]), median(rate[1][0]),
+              median(rate[1][1]), peak);
   return 0;
 }
 
@@ -102,8 +119,9 @@ void print_scaling_table(const ScalingOptions& o) {
   const std::filesystem::path out = std::filesystem::temp_directory_path() / ("demfit_bench_scaling_" + std::to_string(getpid()) + ".txt");
   std::printf("scaling: fcc box of touching spheres (drum material), 10 layers, %s order, median of %d; each size in a "
               "child process\n", o.shuffled ? "shuffled" : "lattice", o.repeats);
-  std::printf("%9s %8s %6s %12s %12s %8s %12s %14s  %s\n", "N", "pairs/N", "steps", "1 thr M/s", "2 thr M/s", "speedup",
-              "peak B/part", "marginal B/part", "load");
+  std::printf("M particle-steps/s as stored / with reorder_particles (Morton order at list rebuilds, same run)\n");
+  std::printf("%9s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pairs/N", "steps", "1 thread", "2 threads",
+              "speedup", "peak B/part", "marg B/p", "load");
   double previous_rss = 0.0, previous_n = 0.0;
   for (const std::size_t n : o.sizes) {
     const long steps = std::max(10L, std::lround(o.work / static_cast<double>(n)));
@@ -116,11 +134,12 @@ void print_scaling_table(const ScalingOptions& o) {
     }
     const double pn = static_cast<double>(c.particles);
     char marginal[32] = "-";
-    if (previous_n > 0.0) std::snprintf(marginal, sizeof marginal, "%.0f", (child.max_rss_bytes - previous_rss) / (pn - previous_n));
-    std::printf("%9zu %8.2f %6ld %12.3g %12.3g %8.2f %12.0f %14s  [%s]\n", c.particles, static_cast<double>(c.pairs) / pn,
-                c.steps, c.rate1 / 1e6, c.rate2 / 1e6, c.rate2 / c.rate1, child.max_rss_bytes / pn, marginal,
+    if (previous_n > 0.0) std::snprintf(marginal, sizeof marginal, "%.0f", (c.peak_bytes - previous_rss) / (pn - previous_n));
+    std::printf("%9zu %7.2f %6ld %7.3g / %5.3g %7.3g / %5.3g %3.2f/%3.2f %11.0f %9s  [%s]\n", c.particles,
+                static_cast<double>(c.pairs) / pn, c.steps, c.rate[0][0] / 1e6, c.rate[1][0] / 1e6, c.rate[0][1] / 1e6,
+                c.rate[1][1] / 1e6, c.rate[0][1] / c.rate[0][0], c.rate[1][1] / c.rate[1][0], c.peak_bytes / pn, marginal,
                 load_average().c_str());
-    previous_rss = child.max_rss_bytes;
+    previous_rss = c.peak_bytes;
     previous_n = pn;
   }
   std::filesystem::remove(out);

@@ -181,6 +181,7 @@ void Simulation::ensure_neighbors(double moved) {
   rebuild_requested_ = false;
   wall_displacement_at_build_.resize(walls);
   for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
+  const std::vector<std::uint32_t> order = settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates();
   const NeighborList old = neighbors_;
   std::vector<ContactHistory> old_history;
@@ -190,30 +191,7 @@ void Simulation::ensure_neighbors(double moved) {
   std::vector<double> old_max_overlap;  // plasticity only; empty otherwise
   old_max_overlap.swap(pair_max_overlap_);
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
-  const std::size_t pairs = neighbors_.pair_count();
-  pair_history_.assign(pairs, ContactHistory{});
-  pair_force_.assign(pairs, Vec3{});
-  pair_torque_first_.assign(pairs, Vec3{});
-  pair_torque_second_.assign(pairs, Vec3{});
-  pair_energy_.assign(pairs, 0.0);
-  pair_touching_.assign(pairs, 0);
-  const bool plastic = !old_max_overlap.empty();
-  if (plastic) pair_max_overlap_.assign(pairs, 0.0);
-  if (old_history.empty() || old.particle_count() != particles_.size()) return;
-  // Carry contact history across the rebuild: look each new pair up in the old list.
-  const auto first = neighbors_.first();
-  const auto second = neighbors_.second();
-  const auto count = static_cast<std::int64_t>(pairs);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
-  for (std::int64_t kk = 0; kk < count; ++kk) {
-    const auto k = static_cast<std::size_t>(kk);
-    const std::size_t old_k = old.find(first[k], second[k]);
-    if (old_k != NeighborList::npos) {
-      pair_history_[k] = old_history[old_k];
-      pair_touching_[k] = old_touching[old_k];  // so the pair loop clears it if it has ended
-      if (plastic) pair_max_overlap_[k] = old_max_overlap[old_k];
-    }
-  }
+  carry_pair_histories(old, order, old_history, old_touching, old_max_overlap);
 }
 
 void Simulation::find_wall_candidates() {

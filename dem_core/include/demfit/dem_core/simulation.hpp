@@ -45,6 +45,12 @@ struct SimulationSettings {
   double time_step_factor = 0.15;
   /// Verlet skin [m]; <= 0 means 0.3 x the largest radius (set when the first step runs).
   double skin = 0.0;
+  /// Sort the particles along a Morton (space-filling) curve at every neighbour-list rebuild, so
+  /// that neighbours in space are neighbours in memory (issue 16: large mixed beds are otherwise
+  /// memory-bound). All per-particle arrays and contact histories follow the permutation; results
+  /// stay deterministic and identical for any thread count, but particle INDICES then change at
+  /// rebuilds: identify particles by ParticleState::id. Off by default (indices stay fixed).
+  bool reorder_particles = false;
 };
 
 class Simulation;
@@ -65,7 +71,7 @@ class Simulation {
   std::size_t add_particle(const Vec3& position, double radius, std::size_t material = 0,
                            const Vec3& velocity = {}, const Vec3& angular_velocity = {});
   /// Remove the particles whose flag is true (flags.size() == particle_count()); indices of the
-  /// remaining particles are compacted in order; contact histories are dropped.
+  /// remaining particles are compacted in order (their ids are kept); contact histories are dropped.
   void remove_particles(const std::vector<bool>& flags);
   /// Returns the wall index. Restarts the particle–wall contact histories (pair histories stay).
   std::size_t add_wall(const WallSpec& spec);
@@ -76,6 +82,8 @@ class Simulation {
   void set_wall_contact_parameters(std::size_t wall, const WallContactParameters& parameters);
   void set_time_step(double time_step);  ///< [s]; 0 = automatic
   void set_threads(int threads);
+  /// Switch SimulationSettings::reorder_particles; switching it on reorders at the next step.
+  void set_reorder_particles(bool reorder);
   void set_wall_motion(std::size_t wall, const WallMotion& motion);
   /// Velocity of a translating wall [m/s] (makes the wall translating if it was fixed).
   void set_wall_velocity(std::size_t wall, const Vec3& velocity);
@@ -134,6 +142,13 @@ class Simulation {
   /// same pass; `moved` = largest displacement since the list build if known (< 0: compute it).
   void compute_forces(double dt, double closing_kick, double moved);
   void ensure_neighbors(double moved);
+  /// With settings_.reorder_particles: permute every per-particle array into Morton order and
+  /// return order[new] = old (empty when nothing moved). Pair arrays are rebuilt by the caller.
+  std::vector<std::uint32_t> apply_spatial_order();
+  /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`).
+  void carry_pair_histories(const NeighborList& old, const std::vector<std::uint32_t>& order,
+                            std::vector<ContactHistory>& old_history, std::vector<std::uint8_t>& old_touching,
+                            std::vector<double>& old_max_overlap);
   double kick_and_drift(double dt);
   void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
   [[nodiscard]] double resolved_step() const;
@@ -164,6 +179,7 @@ class Simulation {
   std::vector<double> wall_max_overlap_{};
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
+  std::uint32_t next_id_ = 0;  // id of the next particle added
   mutable double elastic_energy_ = 0.0;
   mutable std::size_t contact_count_ = 0;
   mutable bool diagnostics_valid_ = false;
