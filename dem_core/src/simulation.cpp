@@ -68,9 +68,6 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   p.normal_compliance.push_back(0.0);
   p.shear_compliance.push_back(0.0);
   update_compliance(p.size() - 1);
-  const std::size_t walls = walls_.size();
-  wall_history_.resize(p.size() * walls);
-  if (!wall_max_overlap_.empty()) wall_max_overlap_.resize(p.size() * walls, 0.0);
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -105,9 +102,8 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
   // Contact histories are dropped (documented in the header).
   neighbors_ = NeighborList{};
   pair_history_.clear();
-  wall_history_.assign(kept * walls_.size(), ContactHistory{});
+  wall_slots_.clear();
   pair_max_overlap_.clear();
-  wall_max_overlap_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -117,8 +113,7 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
   walls_.push_back(make_wall(spec));
   rebuild_requested_ = true;  // wall candidate lists must be rebuilt
   // The (particle, wall) layout changes: wall histories restart.
-  wall_history_.assign(particles_.size() * walls_.size(), ContactHistory{});
-  wall_max_overlap_.clear();
+  wall_slots_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;

@@ -26,16 +26,7 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
   apply_order(p.id, order);
   apply_order(p.normal_compliance, order);
   apply_order(p.shear_compliance, order);
-  // Per-(particle, wall) state moves with its particle (candidates are recomputed by the caller).
-  const std::size_t walls = walls_.size();
-  apply_order(wall_history_, order, walls);
-  apply_order(wall_force_on_particle_, order, walls);
-  apply_order(wall_contact_point_, order, walls);
-  apply_order(wall_rolling_torque_, order, walls);
-  apply_order(wall_energy_, order, walls);
-  apply_order(wall_touching_, order, walls);
-  apply_order(wall_max_overlap_, order, walls);
-  return order;
+  return order;  // the wall slots are rebuilt next, through `order`
 }
 
 void Simulation::carry_pair_histories(const NeighborList& old, const std::vector<std::uint32_t>& order,
@@ -44,7 +35,6 @@ void Simulation::carry_pair_histories(const NeighborList& old, const std::vector
   const std::size_t pairs = neighbors_.pair_count();
   pair_history_.assign(pairs, ContactHistory{});
   pair_force_.assign(pairs, Vec3{});
-  pair_torque_first_.assign(pairs, Vec3{});
   pair_torque_second_.assign(pairs, Vec3{});
   pair_energy_.assign(pairs, 0.0);
   pair_touching_.assign(pairs, 0);
@@ -73,6 +63,63 @@ void Simulation::carry_pair_histories(const NeighborList& old, const std::vector
     if (swapped) pair_history_[k].tangential_displacement = -pair_history_[k].tangential_displacement;
     pair_touching_[k] = old_touching[old_k];  // so the pair loop clears it if it has ended
     if (plastic) pair_max_overlap_[k] = old_max_overlap[old_k];
+  }
+}
+
+}  // namespace demfit::dem_core
+
+namespace demfit::dem_core {
+
+void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
+  const std::size_t n = particles_.size(), walls = walls_.size();
+  const double margin = skin();
+  // Candidate flags per (particle, wall), in parallel; then the CSR rows in a fixed order.
+  std::vector<std::uint8_t> flag(n * walls);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::size_t w = 0; w < walls; ++w)
+      flag[i * walls + w] = wall_always_checked_[w] ||
+                            wall_may_touch(walls_[w].geometry, particles_.position[i], particles_.radius[i], margin);
+  }
+  WallSlots old;
+  std::swap(old, wall_slots_);
+  WallSlots& s = wall_slots_;
+  s.rows.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t c = 0;
+    for (std::size_t w = 0; w < walls; ++w) c += flag[i * walls + w];
+    s.rows[i + 1] = s.rows[i] + c;
+  }
+  const std::size_t slots = s.rows[n];
+  s.wall.resize(slots);
+  s.history.assign(slots, ContactHistory{});
+  s.force_on_particle.assign(slots, Vec3{});
+  s.contact_point.assign(slots, Vec3{});
+  s.rolling_torque.assign(slots, Vec3{});
+  s.energy.assign(slots, 0.0);
+  s.touching.assign(slots, 0);
+  const bool plastic = !old.max_overlap.empty();
+  if (plastic) s.max_overlap.assign(slots, 0.0);
+  const std::size_t old_particles = old.rows.empty() ? 0 : old.rows.size() - 1;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::uint32_t slot = s.rows[i];
+    for (std::size_t w = 0; w < walls; ++w)
+      if (flag[i * walls + w]) s.wall[slot++] = static_cast<std::uint32_t>(w);
+    // Contact state of walls that stay candidates is carried over (walls ascending in both).
+    const std::size_t o = order.empty() ? i : order[i];
+    if (o >= old_particles) continue;  // a new particle
+    std::uint32_t k = old.rows[o];
+    for (std::uint32_t j = s.rows[i]; j < s.rows[i + 1]; ++j) {
+      while (k < old.rows[o + 1] && old.wall[k] < s.wall[j]) ++k;
+      if (k == old.rows[o + 1] || old.wall[k] != s.wall[j]) continue;
+      s.history[j] = old.history[k];
+      s.touching[j] = old.touching[k];
+      if (plastic) s.max_overlap[j] = old.max_overlap[k];
+    }
   }
 }
 

@@ -24,6 +24,7 @@
 #include "demfit/dem_core/particle_state.hpp"
 #include "demfit/dem_core/vec3.hpp"
 #include "demfit/dem_core/wall.hpp"
+#include "demfit/dem_core/wall_slots.hpp"
 
 namespace demfit::dem_core {
 
@@ -137,7 +138,9 @@ class Simulation {
   void invalidate_forces() { forces_valid_ = false; }
   void update_compliances();
   void update_compliance(std::size_t particle);
-  void find_wall_candidates();
+  /// Rebuild the particle–wall slots, carrying contact state over from the old slots (particle
+  /// new index s was old index order[s] when `order` is not empty).
+  void find_wall_candidates(const std::vector<std::uint32_t>& order);
   /// Loads at the current state; `closing_kick` [s] > 0 applies the second Verlet half kick in the
   /// same pass; `moved` = largest displacement since the list build if known (< 0: compute it).
   void compute_forces(double dt, double closing_kick, double moved);
@@ -160,23 +163,17 @@ class Simulation {
   mutable std::vector<Wall> walls_{};
   std::vector<Vec3> wall_displacement_at_build_{};  // wall translation when the list was built
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
-  std::vector<std::uint8_t> wall_candidate_{};       // per (particle, wall): within R + skin at build
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices.
   std::vector<ContactHistory> pair_history_{};
-  std::vector<Vec3> pair_force_, pair_torque_first_, pair_torque_second_;
+  std::vector<Vec3> pair_force_, pair_torque_second_;  // the first member sums its share directly
   std::vector<double> pair_energy_{};
   std::vector<std::uint8_t> pair_touching_{};
-  // Particle–wall arrays, index particle * wall_count() + wall.
-  std::vector<ContactHistory> wall_history_{};
-  std::vector<Vec3> wall_force_on_particle_, wall_contact_point_, wall_rolling_torque_;
-  std::vector<double> wall_energy_{};
-  std::vector<std::uint8_t> wall_touching_{};
+  WallSlots wall_slots_{};  // particle–wall candidates and their contact state
   // Largest overlap per pair / per (particle, wall) contact, for the plasticity effect only:
   // empty unless plasticity is on (other effects and the plain law pay no memory for it), zero
   // for new contacts.
-  std::vector<double> pair_max_overlap_{};
-  std::vector<double> wall_max_overlap_{};
+  std::vector<double> pair_max_overlap_{};  // (the walls' is WallSlots::max_overlap)
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
   std::uint32_t next_id_ = 0;  // id of the next particle added
