@@ -4,6 +4,7 @@
 // switch per evaluation.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "demfit/dem_core/contact_law_hertz.hpp"
 #include "demfit/dem_core/contact_law_linear.hpp"
@@ -201,7 +202,8 @@ void Simulation::ensure_neighbors(double moved) {
   for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
   const std::vector<std::uint32_t> order = settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates(order);
-  const NeighborList old = neighbors_;
+  // Moved, not copied (peak memory at rebuilds); the counters stay with neighbors_.
+  const NeighborList old = std::move(neighbors_);
   std::vector<ContactHistory> old_history;
   old_history.swap(pair_history_);
   std::vector<std::uint8_t> old_touching;
