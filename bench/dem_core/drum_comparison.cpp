@@ -18,15 +18,16 @@ struct Series {
   [[nodiscard]] double median_rate() const { return median(rates); }
 };
 
-double time_demfit(const Simulation& prepared, int threads, long steps, Simulation* keep) {
+double time_demfit(const Simulation& prepared, int threads, long steps, Simulation* keep, bool reorder = false) {
   Simulation sim = prepared;
   sim.set_threads(threads);
+  sim.set_reorder_particles(reorder);
   const std::size_t builds = sim.neighbor_list().build_count();
   const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
   const double rate = static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds;
-  std::printf("  demfit   %d thread%s %8.3f s  %6.3g M particle-steps/s  (%zu list builds)  [%s]\n", threads,
+  std::printf("  demfit   %d thread%s %8.3f s  %6.3g M particle-steps/s  (%zu list builds)%s  [%s]\n", threads,
               threads > 1 ? "s" : " ", seconds, rate / 1e6, sim.neighbor_list().build_count() - builds,
-              load_average().c_str());
+              reorder ? " reordered" : "", load_average().c_str());
   if (keep != nullptr) *keep = std::move(sim);
   return rate;
 }
@@ -86,7 +87,7 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
   } else {
     std::printf("LIGGGHTS not on PATH: timing demfit only (install: scripts/setup --bench)\n");
   }
-  Series d1, d2, l1, l2, l1_bound;
+  Series d1, d2, l1, l2, l1_bound, d1_reordered, d2_reordered;
   Simulation demfit_end;
   LiggghtsRun liggghts_end;
   for (int r = 0; r < o.repeats; ++r) {
@@ -97,6 +98,8 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
       l1_bound.rates.push_back(liggghts_end.particle_steps_per_second_without_fixes());
     }
     d2.rates.push_back(time_demfit(bed, 2, o.steps, nullptr));
+    d1_reordered.rates.push_back(time_demfit(bed, 1, o.steps, nullptr, true));
+    d2_reordered.rates.push_back(time_demfit(bed, 2, o.steps, nullptr, true));
     if (have_liggghts) {
       const double a = time_liggghts(o.dir, 2, 1, 1, nullptr), b = time_liggghts(o.dir, 1, 2, 1, nullptr);
       l2.rates.push_back(std::max(a, b));
@@ -110,6 +113,9 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
   std::printf("  1 core, LIGGGHTS counting only its pair + neighbour + comm time (as if its mesh walls and integration\n"
               "         were free): %.3g -> ratio %.2f (a lower bound on demfit's lead without the mesh)\n",
               l1_bound.median_rate() / 1e6, have_liggghts ? d1.median_rate() / l1_bound.median_rate() : 0.0);
+  std::printf("  demfit with reorder_particles (Morton order at rebuilds): 1 thread %.3g (x%.2f), 2 threads %.3g (x%.2f)\n",
+              d1_reordered.median_rate() / 1e6, d1_reordered.median_rate() / d1.median_rate(),
+              d2_reordered.median_rate() / 1e6, d2_reordered.median_rate() / d2.median_rate());
   std::printf("  speed-up 1 -> 2 cores: demfit %.2f [target >= 1.85]  LIGGGHTS %.2f\n",
               d2.median_rate() / d1.median_rate(), have_liggghts ? l2.median_rate() / l1.median_rate() : 0.0);
   const dem_core::Vec3 c = centre_of_mass(demfit_end);
