@@ -14,6 +14,7 @@
 #include "bench_scenarios.hpp"
 #include "demfit/dem_core/dem_core.hpp"
 #include "drum_comparison.hpp"
+#include "roundoff.hpp"
 #include "scaling.hpp"
 
 using namespace demfit;
@@ -72,7 +73,7 @@ void ensure_passive_waiting(char** argv) {
 }
 
 int usage() {
-  std::printf("usage: bench_dem [--quick] [--only drum|scaling|throughput|cases] [--steps N (drum, 10000)]\n"
+  std::printf("usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
               "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
                             "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
               "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
@@ -118,6 +119,7 @@ int main(int argc, char** argv) {
   std::printf("bench_dem (dem_core)%s, OMP_WAIT_POLICY=%s\n", quick ? " --quick" : "", std::getenv("OMP_WAIT_POLICY"));
   if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
   if (wanted("scaling")) bench::print_scaling_table(scaling);
+  if (wanted("roundoff")) bench::print_reordering_roundoff(quick);
   if (wanted("throughput")) {
     const dem_core::Simulation drum_s1 = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
     throughput("drum s=1, 60 RPM", drum_s1, quick ? 100 : 400);
