@@ -64,7 +64,8 @@ void print_differences(std::size_t triangles) {
       "  - output: LIGGGHTS computes one thermo line at the first and last step (kinetic energy, centre of\n"
       "    mass); demfit none during the timed steps. Negligible.\n"
       "  - parallelism: demfit OpenMP threads (OMP_WAIT_POLICY=passive) vs LIGGGHTS MPI ranks (unbound,\n"
-      "    best of the splits 2 1 1 and 1 2 1, with ghost-atom exchange). Inherent to the codes.\n",
+      "    mpi_yield_when_idle 1, best of the splits 2 1 1 and 1 2 1, with ghost-atom exchange). Inherent\n"
+      "    to the codes; on a loaded machine MPI ranks suffer more from a preempted partner.\n",
       triangles);
 }
 
