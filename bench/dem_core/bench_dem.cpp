@@ -1,15 +1,21 @@
 // bench_dem: throughput of the DEM kernel (particle-steps per second) on the SPEC 2.2 drum and the
 // SPEC 2.1 pellet bed with 1 and 2 threads, peak memory per particle, the cost of one case
-// evaluation, and the ratio to LIGGGHTS on an equivalent problem. Prints numbers; asserts nothing.
+// evaluation; demfit vs LIGGGHTS on the same settled drum and a 10^3..10^6 scaling table.
+// Prints numbers; asserts nothing.
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "bench_scenarios.hpp"
 #include "demfit/dem_core/dem_core.hpp"
-#include "liggghts_compare.hpp"
+#include "drum_comparison.hpp"
+#include "roundoff.hpp"
+#include "scaling.hpp"
 
 using namespace demfit;
 
@@ -55,53 +61,73 @@ void cases(const dem_core::Simulation& bed) {
   }
 }
 
-void compare(bool quick) {
-  const bench::LiggghtsComparison cmp = bench::compare_with_liggghts(quick ? 3000 : 10000);
-  std::printf("box settle, Hertz-Mindlin, N=%ld, dt=%.3g s, %ld steps: demfit %.2f CPU-s (1 thread)\n",
-              cmp.particles, cmp.time_step, cmp.steps, cmp.demfit_seconds);
-  if (!cmp.ran) {
-    std::printf("LIGGGHTS comparison skipped: %s\n", cmp.note.c_str());
-    return;
-  }
-  std::printf("LIGGGHTS (%ld atoms): loop %.2f s wall, process %.2f CPU-s -> speed ratio demfit/LIGGGHTS = %.2f "
-              "(CPU, incl. LIGGGHTS setup) / %.2f (vs its loop wall time) [target >= 1.0] (%s)\n",
-              cmp.liggghts_particles, cmp.liggghts_seconds, cmp.liggghts_cpu_seconds,
-              cmp.liggghts_cpu_seconds / cmp.demfit_seconds, cmp.liggghts_seconds / cmp.demfit_seconds,
-              cmp.note.c_str());
-  std::printf("same physics check: kinetic energy at the end demfit %.4g J, LIGGGHTS %.4g J (translational)\n",
-              cmp.demfit_kinetic_energy, cmp.liggghts_kinetic_energy);
-}
-
 }  // namespace
 
+/// libgomp reads OMP_WAIT_POLICY when it loads, so the benchmark re-executes itself once with
+/// passive waiting (as the demfit CLI runs) unless the caller chose a policy.
+void ensure_passive_waiting(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
+  setenv("OMP_WAIT_POLICY", "passive", 0);
+  execv("/proc/self/exe", argv);
+  std::perror("bench_dem: re-executing with OMP_WAIT_POLICY=passive failed");
+}
+
+int usage() {
+  std::printf("usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
+              "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
+                            "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
+              "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
+              "                 [--lattice-order]\n");
+  return EXIT_FAILURE;
+}
+
 int main(int argc, char** argv) {
+  ensure_passive_waiting(argv);
+  if (argc == 6 && std::string(argv[1]) == "--scaling-child")
+    return bench::run_scaling_child(std::stoul(argv[2]), std::stol(argv[3]), std::stoi(argv[4]),
+                                    std::string(argv[5]) == "shuffled");
   bool quick = false;
   std::string only;
+  bench::DrumComparisonOptions drum;
+  drum.dir = std::filesystem::temp_directory_path() / ("demfit_bench_drum_" + std::to_string(getpid()));
+  bench::ScalingOptions scaling;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
+    const bool has_value = a + 1 < argc;
     if (arg == "--quick") quick = true;
-    else if (arg == "--only" && a + 1 < argc) only = argv[++a];
-    else {
-      std::printf("usage: bench_dem [--quick] [--only throughput|cases|liggghts]\n");
-      return EXIT_FAILURE;
+    else if (arg == "--only" && has_value) only = argv[++a];
+    else if (arg == "--steps" && has_value) drum.steps = std::stol(argv[++a]);
+    else if (arg == "--repeats" && has_value) drum.repeats = scaling.repeats = std::stoi(argv[++a]);
+    else if (arg == "--spin-up" && has_value) drum.spin_up_time = std::stod(argv[++a]);
+    else if (arg == "--dir" && has_value) drum.dir = argv[++a];
+    else if (arg == "--scaling-work" && has_value) scaling.work = std::stod(argv[++a]);
+    else if (arg == "--lattice-order") scaling.shuffled = false;
+    else if (arg == "--scaling-sizes" && has_value) {
+      scaling.sizes.clear();
+      std::stringstream list(argv[++a]);
+      for (std::string n; std::getline(list, n, ',');) scaling.sizes.push_back(std::stoul(n));
     }
+    else if (arg == "--mesh" && a + 3 < argc) {
+      drum.mesh.segments = std::stoi(argv[++a]);
+      drum.mesh.shell_rings = std::stoi(argv[++a]);
+      drum.mesh.cap_rings = std::stoi(argv[++a]);
+    }
+    else return usage();
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
   auto wanted = [&](const char* section) { return only.empty() || only == section; };
-  std::printf("bench_dem (dem_core)%s\n", quick ? " --quick" : "");
+  std::printf("bench_dem (dem_core)%s, OMP_WAIT_POLICY=%s\n", quick ? " --quick" : "", std::getenv("OMP_WAIT_POLICY"));
+  if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
+  if (wanted("scaling")) bench::print_scaling_table(scaling);
+  if (wanted("roundoff")) bench::print_reordering_roundoff(quick);
   if (wanted("throughput")) {
-    const dem_core::Simulation drum = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
-    throughput("drum s=1, 60 RPM", drum, quick ? 100 : 400);
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    std::printf("peak memory (maxrss) %.1f MB = %.0f bytes per drum particle (includes the process baseline)\n",
-                usage.ru_maxrss / 1024.0, usage.ru_maxrss * 1024.0 / static_cast<double>(drum.particle_count()));
+    const dem_core::Simulation drum_s1 = bench::make_drum(1.0, quick ? 0.02 : 0.1, 2);
+    throughput("drum s=1, 60 RPM", drum_s1, quick ? 100 : 400);
   }
   if (wanted("throughput") || wanted("cases")) {
     const dem_core::Simulation bed = bench::make_pellet_bed(0.01, 2.0 / 7.0, quick ? 0.3 : 1.0, 2);
     if (wanted("throughput")) throughput("pellet bed (settled)", bed, quick ? 200 : 1000);
     if (wanted("cases")) cases(bed);
   }
-  if (wanted("liggghts")) compare(quick);
   return EXIT_SUCCESS;
 }

@@ -64,12 +64,10 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   p.inverse_mass.push_back(1.0 / mass);
   p.inverse_inertia.push_back(1.0 / (0.4 * mass * radius * radius));
   p.material.push_back(material);
+  p.id.push_back(next_id_++);
   p.normal_compliance.push_back(0.0);
   p.shear_compliance.push_back(0.0);
   update_compliance(p.size() - 1);
-  const std::size_t walls = walls_.size();
-  wall_history_.resize(p.size() * walls);
-  if (!wall_max_overlap_.empty()) wall_max_overlap_.resize(p.size() * walls, 0.0);
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -92,20 +90,20 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
     p.inverse_mass[kept] = p.inverse_mass[i];
     p.inverse_inertia[kept] = p.inverse_inertia[i];
     p.material[kept] = p.material[i];
+    p.id[kept] = p.id[i];
     p.normal_compliance[kept] = p.normal_compliance[i];
     p.shear_compliance[kept] = p.shear_compliance[i];
     ++kept;
   }
   p.position.resize(kept); p.velocity.resize(kept); p.angular_velocity.resize(kept);
   p.force.resize(kept); p.torque.resize(kept); p.radius.resize(kept); p.mass.resize(kept);
-  p.inverse_mass.resize(kept); p.inverse_inertia.resize(kept); p.material.resize(kept);
+  p.inverse_mass.resize(kept); p.inverse_inertia.resize(kept); p.material.resize(kept); p.id.resize(kept);
   p.normal_compliance.resize(kept); p.shear_compliance.resize(kept);
   // Contact histories are dropped (documented in the header).
   neighbors_ = NeighborList{};
   pair_history_.clear();
-  wall_history_.assign(kept * walls_.size(), ContactHistory{});
+  wall_slots_.clear();
   pair_max_overlap_.clear();
-  wall_max_overlap_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -115,8 +113,7 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
   walls_.push_back(make_wall(spec));
   rebuild_requested_ = true;  // wall candidate lists must be rebuilt
   // The (particle, wall) layout changes: wall histories restart.
-  wall_history_.assign(particles_.size() * walls_.size(), ContactHistory{});
-  wall_max_overlap_.clear();
+  wall_slots_.clear();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -178,6 +175,11 @@ void Simulation::set_time_step(double time_step) {
 void Simulation::set_threads(int threads) {
   if (threads < 1) fail("threads", threads, "must be >= 1");
   settings_.threads = threads;
+}
+
+void Simulation::set_reorder_particles(bool reorder) {
+  if (reorder && !settings_.reorder_particles) rebuild_requested_ = true;
+  settings_.reorder_particles = reorder;
 }
 
 const Wall& Simulation::wall(std::size_t index) const {

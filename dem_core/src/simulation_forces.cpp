@@ -4,6 +4,7 @@
 // switch per evaluation.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "demfit/dem_core/contact_law_hertz.hpp"
 #include "demfit/dem_core/contact_law_linear.hpp"
@@ -13,83 +14,106 @@ namespace demfit::dem_core {
 namespace {
 
 struct PairOutputs {
-  Vec3* force;            // on the first particle
-  Vec3* torque_first;
-  Vec3* torque_second;
+  Vec3* force;            // on the first particle (the second particle gathers -force)
+  Vec3* torque_second;    // on the second particle (the first one sums its torque directly)
   double* energy;
   std::uint8_t* touching;
   double* max_overlap;    // per pair, with plasticity on, else null
 };
 
+/// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
+/// torque contributions (zero for a pair out of contact, added like the stored zeros were).
 template <class Law>
-void pair_loop(const Law& law, const ParticleState& p, const NeighborList& list, ContactHistory* history,
-               const PairOutputs& out, double dt, bool rotation, int threads) {
-  const auto first = list.first();
+void pair_contact(const Law& law, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
+                  ContactHistory* history, const PairOutputs& out, double dt, bool rotation, Vec3& force_i,
+                  Vec3& torque_i) {
+  const Vec3 d = p.position[j] - p.position[i];
+  const double r_sum = p.radius[i] + p.radius[j];
+  const double dist2 = norm2(d);
+  if (dist2 >= r_sum * r_sum) {
+    force_i = {};
+    torque_i = {};
+    if (!out.touching[k]) return;  // already cleared
+    history[k] = {};
+    if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[k] = 0.0;
+    out.force[k] = {}; out.torque_second[k] = {};
+    out.energy[k] = 0.0; out.touching[k] = 0;
+    return;
+  }
+  const double dist = std::sqrt(dist2);
+  ContactGeometry g;
+  g.normal = (1.0 / dist) * d;
+  g.overlap = r_sum - dist;
+  const double branch_i = p.radius[i] - 0.5 * g.overlap;
+  const double branch_j = p.radius[j] - 0.5 * g.overlap;
+  g.contact_velocity = p.velocity[i] - p.velocity[j];
+  if (rotation) {
+    g.contact_velocity += cross(p.angular_velocity[i], branch_i * g.normal) +
+                          cross(p.angular_velocity[j], branch_j * g.normal);
+    g.relative_angular_velocity = p.angular_velocity[i] - p.angular_velocity[j];
+  }
+  g.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
+  g.effective_radius = p.radius[i] * p.radius[j] / r_sum;
+  g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
+  g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
+  g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
+  ContactForce f;
+  if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap ? out.max_overlap + k : nullptr);
+  else f = law.force(g, history[k], dt);
+  out.force[k] = f.force;
+  force_i = f.force;
+  torque_i = {};
+  if (rotation) {
+    torque_i = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
+    out.torque_second[k] = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
+  }
+  out.energy[k] = f.elastic_energy;
+  out.touching[k] = 1;
+}
+
+/// Pair loads row by row (rows of the half list are contiguous pair ranges): the first member's
+/// force and torque are summed as the row is computed (gravity first, then ascending j: the fixed
+/// order of the gather), so only the second member's share is stored per pair.
+template <class Law>
+void pair_rows(const Law& law, ParticleState& p, const NeighborList& list, ContactHistory* history,
+               const PairOutputs& out, const Vec3& gravity, double dt, bool rotation, int threads) {
+  const auto rows = list.row_offsets();
   const auto second = list.second();
-  const auto pairs = static_cast<std::int64_t>(list.pair_count());
+  const auto n = static_cast<std::int64_t>(p.size());
 #pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
-  for (std::int64_t kk = 0; kk < pairs; ++kk) {
-    const auto k = static_cast<std::size_t>(kk);
-    const std::size_t i = first[k], j = second[k];
-    const Vec3 d = p.position[j] - p.position[i];
-    const double r_sum = p.radius[i] + p.radius[j];
-    const double dist2 = norm2(d);
-    if (dist2 >= r_sum * r_sum) {
-      if (!out.touching[k]) continue;  // already cleared
-      history[k] = {};
-      if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[k] = 0.0;
-      out.force[k] = {}; out.torque_first[k] = {}; out.torque_second[k] = {};
-      out.energy[k] = 0.0; out.touching[k] = 0;
-      continue;
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Vec3 f = p.mass[i] * gravity;
+    Vec3 t{};
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      Vec3 force_i, torque_i;
+      pair_contact(law, p, k, i, second[k], history, out, dt, rotation, force_i, torque_i);
+      f += force_i;
+      t += torque_i;
     }
-    const double dist = std::sqrt(dist2);
-    ContactGeometry g;
-    g.normal = (1.0 / dist) * d;
-    g.overlap = r_sum - dist;
-    const double branch_i = p.radius[i] - 0.5 * g.overlap;
-    const double branch_j = p.radius[j] - 0.5 * g.overlap;
-    g.contact_velocity = p.velocity[i] - p.velocity[j];
-    if (rotation) {
-      g.contact_velocity += cross(p.angular_velocity[i], branch_i * g.normal) +
-                            cross(p.angular_velocity[j], branch_j * g.normal);
-      g.relative_angular_velocity = p.angular_velocity[i] - p.angular_velocity[j];
-    }
-    g.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
-    g.effective_radius = p.radius[i] * p.radius[j] / r_sum;
-    g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
-    g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
-    g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
-    ContactForce f;
-    if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap ? out.max_overlap + k : nullptr);
-    else f = law.force(g, history[k], dt);
-    out.force[k] = f.force;
-    if (rotation) {
-      out.torque_first[k] = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
-      out.torque_second[k] = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
-    }
-    out.energy[k] = f.elastic_energy;
-    out.touching[k] = 1;
+    p.force[i] = f;
+    p.torque[i] = t;
   }
 }
 
 struct WallOutputs {
-  Vec3* force;           // on the particle, index i * walls + w
+  const std::uint32_t* rows;   // slots of particle i: [rows[i], rows[i+1])
+  const std::uint32_t* wall;   // wall of each slot
+  Vec3* force;           // on the particle, per slot
   Vec3* contact_point;
   Vec3* rolling_torque;  // on the particle
   double* energy;
   std::uint8_t* touching;
-  double* max_overlap;   // index i * walls + w, with plasticity on, else null
+  double* max_overlap;   // per slot, with plasticity on, else null
 };
 
-/// Loads of all walls on particle i, accumulated into the particle's force/torque in wall order.
+/// Loads of the candidate walls on particle i (the others cannot touch it before the next
+/// rebuild), accumulated into the particle's force/torque in wall order.
 template <class Law>
-void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::vector<Wall>& walls,
-                      const std::uint8_t* candidate, const std::uint8_t* always_checked, ParticleState& p,
+void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::vector<Wall>& walls, ParticleState& p,
                       ContactHistory* history, const WallOutputs& out, double dt, bool rotation) {
-  const std::size_t count = walls.size();
-  for (std::size_t w = 0; w < count; ++w) {
-    const std::size_t slot = i * count + w;
-    if (!candidate[slot] && !always_checked[w]) continue;  // cannot touch before the next rebuild
+  for (std::uint32_t slot = out.rows[i]; slot < out.rows[i + 1]; ++slot) {
+    const std::size_t w = out.wall[slot];
     const WallProximity prox = wall_proximity(walls[w].geometry, p.position[i], p.radius[i]);
     if (!prox.touching) {
       history[slot] = {};
@@ -127,25 +151,20 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
 
 template <class Law, class WallLaw>
 void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, const std::vector<Wall>& walls,
-                const std::uint8_t* candidate, const std::uint8_t* always_checked, ParticleState& p, const NeighborList& list, ContactHistory* pair_history,
+                ParticleState& p, const NeighborList& list, ContactHistory* pair_history,
                 const PairOutputs& pair_out, ContactHistory* wall_history, const WallOutputs& wall_out,
                 const Vec3& gravity, double dt, double closing_kick, bool rotation, int threads) {
-  pair_loop(pair_law, p, list, pair_history, pair_out, dt, rotation, threads);
-  const auto rows = list.row_offsets();
+  pair_rows(pair_law, p, list, pair_history, pair_out, gravity, dt, rotation, threads);
   const auto columns = list.column_offsets();
   const auto column_pairs = list.column_pairs();
   const auto n = static_cast<std::int64_t>(p.size());
 #pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    // Fixed order: gravity, pairs where i is first (ascending j), pairs where i is second
-    // (ascending first member), then walls in index order.
-    Vec3 f = p.mass[i] * gravity;
-    Vec3 t{};
-    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
-      f += pair_out.force[k];
-      t += pair_out.torque_first[k];
-    }
+    // Fixed order: gravity and pairs where i is first (ascending j, summed by pair_rows), pairs
+    // where i is second (ascending first member), then walls in index order.
+    Vec3 f = p.force[i];
+    Vec3 t = p.torque[i];
     for (std::uint32_t c = columns[i]; c < columns[i + 1]; ++c) {
       const std::uint32_t k = column_pairs[c];
       f -= pair_out.force[k];
@@ -153,7 +172,7 @@ void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, cons
     }
     p.force[i] = f;
     p.torque[i] = t;
-    wall_contacts_of(i, wall_laws, walls, candidate, always_checked, p, wall_history, wall_out, dt, rotation);
+    wall_contacts_of(i, wall_laws, walls, p, wall_history, wall_out, dt, rotation);
     // Second velocity-Verlet half kick with the complete new loads (fused: one pass).
     p.velocity[i] += (closing_kick * p.inverse_mass[i]) * p.force[i];
     if (rotation) p.angular_velocity[i] += (closing_kick * p.inverse_inertia[i]) * p.torque[i];
@@ -173,7 +192,7 @@ void Simulation::ensure_neighbors(double moved) {
     if (wall_layout_ok) wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
   }
   const bool stale = rebuild_requested_ || !wall_layout_ok || neighbors_.skin() != skin_now ||
-                     neighbors_.particle_count() != particles_.size();
+                     neighbors_.particle_count() != particles_.size() || !wall_slots_.built_for(particles_.size());
   // Particle pairs and particle-wall candidates stay valid while the relative motion of any two
   // bodies is below half the skin.
   if (!stale && moved < 0.0) moved = neighbors_.max_displacement(particles_.position, settings_.threads);
@@ -181,8 +200,10 @@ void Simulation::ensure_neighbors(double moved) {
   rebuild_requested_ = false;
   wall_displacement_at_build_.resize(walls);
   for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
-  find_wall_candidates();
-  const NeighborList old = neighbors_;
+  const std::vector<std::uint32_t> order = settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
+  find_wall_candidates(order);
+  // Moved, not copied (peak memory at rebuilds); the counters stay with neighbors_.
+  const NeighborList old = std::move(neighbors_);
   std::vector<ContactHistory> old_history;
   old_history.swap(pair_history_);
   std::vector<std::uint8_t> old_touching;
@@ -190,64 +211,13 @@ void Simulation::ensure_neighbors(double moved) {
   std::vector<double> old_max_overlap;  // plasticity only; empty otherwise
   old_max_overlap.swap(pair_max_overlap_);
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
-  const std::size_t pairs = neighbors_.pair_count();
-  pair_history_.assign(pairs, ContactHistory{});
-  pair_force_.assign(pairs, Vec3{});
-  pair_torque_first_.assign(pairs, Vec3{});
-  pair_torque_second_.assign(pairs, Vec3{});
-  pair_energy_.assign(pairs, 0.0);
-  pair_touching_.assign(pairs, 0);
-  const bool plastic = !old_max_overlap.empty();
-  if (plastic) pair_max_overlap_.assign(pairs, 0.0);
-  if (old_history.empty() || old.particle_count() != particles_.size()) return;
-  // Carry contact history across the rebuild: look each new pair up in the old list.
-  const auto first = neighbors_.first();
-  const auto second = neighbors_.second();
-  const auto count = static_cast<std::int64_t>(pairs);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
-  for (std::int64_t kk = 0; kk < count; ++kk) {
-    const auto k = static_cast<std::size_t>(kk);
-    const std::size_t old_k = old.find(first[k], second[k]);
-    if (old_k != NeighborList::npos) {
-      pair_history_[k] = old_history[old_k];
-      pair_touching_[k] = old_touching[old_k];  // so the pair loop clears it if it has ended
-      if (plastic) pair_max_overlap_[k] = old_max_overlap[old_k];
-    }
-  }
-}
-
-void Simulation::find_wall_candidates() {
-  const std::size_t walls = walls_.size();
-  const double margin = skin();
-  wall_candidate_.resize(particles_.size() * walls);
-  const auto n = static_cast<std::int64_t>(particles_.size());
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    for (std::size_t w = 0; w < walls; ++w) {
-      const std::size_t slot = i * walls + w;
-      wall_candidate_[slot] = wall_may_touch(walls_[w].geometry, particles_.position[i], particles_.radius[i], margin) ? 1 : 0;
-      if (!wall_candidate_[slot] && slot < wall_touching_.size()) {
-        wall_touching_[slot] = 0;
-        wall_history_[slot] = {};
-        if (slot < wall_max_overlap_.size()) wall_max_overlap_[slot] = 0.0;
-      }
-    }
-  }
+  carry_pair_histories(old, order, old_history, old_touching, old_max_overlap);
 }
 
 void Simulation::compute_forces(double dt, double closing_kick, double moved) {
   ParticleState& p = particles_;
-  const std::size_t walls = walls_.size();
-  if (wall_history_.size() != p.size() * walls) wall_history_.assign(p.size() * walls, ContactHistory{});
-  if (wall_touching_.size() != p.size() * walls) {  // layout (particles x walls) changed
-    wall_force_on_particle_.assign(p.size() * walls, Vec3{});
-    wall_contact_point_.assign(p.size() * walls, Vec3{});
-    wall_rolling_torque_.assign(p.size() * walls, Vec3{});
-    wall_energy_.assign(p.size() * walls, 0.0);
-    wall_touching_.assign(p.size() * walls, 0);
-  }
-  ensure_neighbors(moved);
+  ensure_neighbors(moved);  // (re)builds the wall slots too
+  WallSlots& slots = wall_slots_;
   const ContactParameters& c = settings_.contact;
   // One switch per evaluation picks the law type; the effects law only when an effect is on.
   const bool linear = settings_.law == ContactLawKind::lsdyna_linear;  // fixed for a simulation
@@ -257,16 +227,16 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
   const bool plastic = effects && c.unloading_stiffness_ratio != 1.0;
   if (plastic) {
     if (pair_max_overlap_.size() != neighbors_.pair_count()) pair_max_overlap_.assign(neighbors_.pair_count(), 0.0);
-    if (wall_max_overlap_.size() != p.size() * walls) wall_max_overlap_.assign(p.size() * walls, 0.0);
-  } else if (!pair_max_overlap_.empty() || !wall_max_overlap_.empty()) {  // plasticity switched off
+    if (slots.max_overlap.size() != slots.size()) slots.max_overlap.assign(slots.size(), 0.0);
+  } else if (!pair_max_overlap_.empty() || !slots.max_overlap.empty()) {  // plasticity switched off
     pair_max_overlap_.clear();
-    wall_max_overlap_.clear();
+    slots.max_overlap.clear();
   }
-  const PairOutputs pair_out{pair_force_.data(), pair_torque_first_.data(), pair_torque_second_.data(),
+  const PairOutputs pair_out{pair_force_.data(), pair_torque_second_.data(),
                              pair_energy_.data(), pair_touching_.data(), plastic ? pair_max_overlap_.data() : nullptr};
-  const WallOutputs wall_out{wall_force_on_particle_.data(), wall_contact_point_.data(),
-                             wall_rolling_torque_.data(), wall_energy_.data(), wall_touching_.data(),
-                             plastic ? wall_max_overlap_.data() : nullptr};
+  const WallOutputs wall_out{slots.rows.data(), slots.wall.data(), slots.force_on_particle.data(),
+                             slots.contact_point.data(), slots.rolling_torque.data(), slots.energy.data(),
+                             slots.touching.data(), plastic ? slots.max_overlap.data() : nullptr};
   const bool rotation = settings_.contact.rotation_enabled();
   if (!wall_laws_valid_) {
     linear_wall_laws_.clear();
@@ -280,14 +250,14 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
     wall_laws_valid_ = true;
   }
   if (effects) {
-    all_forces(make_effects_pair_law(c), effects_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
-               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
+    all_forces(make_effects_pair_law(c), effects_wall_laws_, walls_, p, neighbors_, pair_history_.data(), pair_out,
+               slots.history.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   } else if (linear) {
-    all_forces(make_linear_pair_law(c), linear_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
-               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
+    all_forces(make_linear_pair_law(c), linear_wall_laws_, walls_, p, neighbors_, pair_history_.data(), pair_out,
+               slots.history.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   } else {
-    all_forces(make_hertz_pair_law(c), hertz_wall_laws_, walls_, wall_candidate_.data(), wall_always_checked_.data(), p, neighbors_, pair_history_.data(), pair_out,
-               wall_history_.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
+    all_forces(make_hertz_pair_law(c), hertz_wall_laws_, walls_, p, neighbors_, pair_history_.data(), pair_out,
+               slots.history.data(), wall_out, settings_.gravity, dt, closing_kick, rotation, settings_.threads);
   }
   diagnostics_valid_ = false;
   forces_valid_ = true;
@@ -296,24 +266,23 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
 void Simulation::reduce_diagnostics() const {
   if (diagnostics_valid_) return;
   // Serial, fixed-order sums: wall loads and energies are identical for any thread count.
-  const std::size_t walls = walls_.size();
   for (Wall& w : walls_) { w.force = {}; w.moment = {}; w.torque = 0.0; w.contact_count = 0; }
   elastic_energy_ = 0.0;
   contact_count_ = 0;
-  if (!forces_valid_ || wall_touching_.size() != particles_.size() * walls) return;  // nothing evaluated yet
+  const WallSlots& slots = wall_slots_;
+  if (!forces_valid_ || !slots.built_for(particles_.size())) return;  // nothing evaluated yet
   diagnostics_valid_ = true;
   double energy = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    for (std::size_t w = 0; w < walls; ++w) {
-      const std::size_t slot = i * walls + w;
-      if (!wall_touching_[slot]) continue;
-      Wall& wall = walls_[w];
+    for (std::uint32_t slot = slots.rows[i]; slot < slots.rows[i + 1]; ++slot) {  // walls ascending
+      if (!slots.touching[slot]) continue;
+      Wall& wall = walls_[slots.wall[slot]];
       // The wall receives -F at the contact point and the couple -M_r.
-      const Vec3 f = -wall_force_on_particle_[slot];
+      const Vec3 f = -slots.force_on_particle[slot];
       wall.force += f;
-      wall.moment += cross(wall_contact_point_[slot] - wall.torque_axis.point, f) - wall_rolling_torque_[slot];
+      wall.moment += cross(slots.contact_point[slot] - wall.torque_axis.point, f) - slots.rolling_torque[slot];
       ++wall.contact_count;
-      energy += wall_energy_[slot];
+      energy += slots.energy[slot];
     }
   }
   for (Wall& w : walls_) w.torque = dot(w.moment, w.torque_axis.direction);

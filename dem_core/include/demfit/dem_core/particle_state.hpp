@@ -2,6 +2,7 @@
 // Particle state as a structure of arrays: one contiguous array per quantity, indexed by the
 // particle index (the layout of the hot loops). Solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "demfit/dem_core/vec3.hpp"
@@ -22,6 +23,9 @@ struct ParticleState {
   std::vector<double> inverse_mass{};      ///< [1/kg]
   std::vector<double> inverse_inertia{};   ///< 1/I [1/(kg m^2)], I = 2/5 m R^2
   std::vector<std::size_t> material{};     ///< index into Simulation's material table
+  /// Identity: the n-th particle ever added has id n. Equal to the index unless particles were
+  /// removed or SimulationSettings::reorder_particles moved them.
+  std::vector<std::uint32_t> id{};
   /// Normal compliance of the particle's own "half" of a contact; a pair's stiffness is the
   /// inverse of the sum of both compliances (springs in series). Linear law: 1/(NORMK K R) [m/N];
   /// Hertz: (1-nu^2)/E [1/Pa].

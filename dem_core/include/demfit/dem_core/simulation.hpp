@@ -24,6 +24,7 @@
 #include "demfit/dem_core/particle_state.hpp"
 #include "demfit/dem_core/vec3.hpp"
 #include "demfit/dem_core/wall.hpp"
+#include "demfit/dem_core/wall_slots.hpp"
 
 namespace demfit::dem_core {
 
@@ -45,6 +46,12 @@ struct SimulationSettings {
   double time_step_factor = 0.15;
   /// Verlet skin [m]; <= 0 means 0.3 x the largest radius (set when the first step runs).
   double skin = 0.0;
+  /// Sort the particles along a Morton (space-filling) curve at every neighbour-list rebuild, so
+  /// that neighbours in space are neighbours in memory (issue 16: large mixed beds are otherwise
+  /// memory-bound). All per-particle arrays and contact histories follow the permutation; results
+  /// stay deterministic and identical for any thread count, but particle INDICES then change at
+  /// rebuilds: identify particles by ParticleState::id. Off by default (indices stay fixed).
+  bool reorder_particles = false;
 };
 
 class Simulation;
@@ -65,7 +72,7 @@ class Simulation {
   std::size_t add_particle(const Vec3& position, double radius, std::size_t material = 0,
                            const Vec3& velocity = {}, const Vec3& angular_velocity = {});
   /// Remove the particles whose flag is true (flags.size() == particle_count()); indices of the
-  /// remaining particles are compacted in order; contact histories are dropped.
+  /// remaining particles are compacted in order (their ids are kept); contact histories are dropped.
   void remove_particles(const std::vector<bool>& flags);
   /// Returns the wall index. Restarts the particle–wall contact histories (pair histories stay).
   std::size_t add_wall(const WallSpec& spec);
@@ -76,6 +83,8 @@ class Simulation {
   void set_wall_contact_parameters(std::size_t wall, const WallContactParameters& parameters);
   void set_time_step(double time_step);  ///< [s]; 0 = automatic
   void set_threads(int threads);
+  /// Switch SimulationSettings::reorder_particles; switching it on reorders at the next step.
+  void set_reorder_particles(bool reorder);
   void set_wall_motion(std::size_t wall, const WallMotion& motion);
   /// Velocity of a translating wall [m/s] (makes the wall translating if it was fixed).
   void set_wall_velocity(std::size_t wall, const Vec3& velocity);
@@ -129,11 +138,20 @@ class Simulation {
   void invalidate_forces() { forces_valid_ = false; }
   void update_compliances();
   void update_compliance(std::size_t particle);
-  void find_wall_candidates();
+  /// Rebuild the particle–wall slots, carrying contact state over from the old slots (particle
+  /// new index s was old index order[s] when `order` is not empty).
+  void find_wall_candidates(const std::vector<std::uint32_t>& order);
   /// Loads at the current state; `closing_kick` [s] > 0 applies the second Verlet half kick in the
   /// same pass; `moved` = largest displacement since the list build if known (< 0: compute it).
   void compute_forces(double dt, double closing_kick, double moved);
   void ensure_neighbors(double moved);
+  /// With settings_.reorder_particles: permute every per-particle array into Morton order and
+  /// return order[new] = old (empty when nothing moved). Pair arrays are rebuilt by the caller.
+  std::vector<std::uint32_t> apply_spatial_order();
+  /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`).
+  void carry_pair_histories(const NeighborList& old, const std::vector<std::uint32_t>& order,
+                            std::vector<ContactHistory>& old_history, std::vector<std::uint8_t>& old_touching,
+                            std::vector<double>& old_max_overlap);
   double kick_and_drift(double dt);
   void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
   [[nodiscard]] double resolved_step() const;
@@ -145,25 +163,20 @@ class Simulation {
   mutable std::vector<Wall> walls_{};
   std::vector<Vec3> wall_displacement_at_build_{};  // wall translation when the list was built
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
-  std::vector<std::uint8_t> wall_candidate_{};       // per (particle, wall): within R + skin at build
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices.
   std::vector<ContactHistory> pair_history_{};
-  std::vector<Vec3> pair_force_, pair_torque_first_, pair_torque_second_;
+  std::vector<Vec3> pair_force_, pair_torque_second_;  // the first member sums its share directly
   std::vector<double> pair_energy_{};
   std::vector<std::uint8_t> pair_touching_{};
-  // Particle–wall arrays, index particle * wall_count() + wall.
-  std::vector<ContactHistory> wall_history_{};
-  std::vector<Vec3> wall_force_on_particle_, wall_contact_point_, wall_rolling_torque_;
-  std::vector<double> wall_energy_{};
-  std::vector<std::uint8_t> wall_touching_{};
+  WallSlots wall_slots_{};  // particle–wall candidates and their contact state
   // Largest overlap per pair / per (particle, wall) contact, for the plasticity effect only:
   // empty unless plasticity is on (other effects and the plain law pay no memory for it), zero
   // for new contacts.
-  std::vector<double> pair_max_overlap_{};
-  std::vector<double> wall_max_overlap_{};
+  std::vector<double> pair_max_overlap_{};  // (the walls' is WallSlots::max_overlap)
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
+  std::uint32_t next_id_ = 0;  // id of the next particle added
   mutable double elastic_energy_ = 0.0;
   mutable std::size_t contact_count_ = 0;
   mutable bool diagnostics_valid_ = false;

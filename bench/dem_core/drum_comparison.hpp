@@ -1,0 +1,22 @@
+#pragma once
+// demfit vs LIGGGHTS on the issue-16 drum from the same settled, flowing bed: particle-steps/s of
+// each code on 1 core (1 thread vs 1 rank) and 2 cores (2 threads vs the best 2-rank split),
+// median of `repeats` interleaved repeats, each printed with the load average.
+#include <filesystem>
+
+#include "liggghts_drum.hpp"
+
+namespace demfit::bench {
+
+struct DrumComparisonOptions {
+  long steps = 10000;         ///< timed steps per run
+  int repeats = 3;
+  double settle_time = 0.3;   ///< [s] drum at rest
+  double spin_up_time = 1.0;  ///< [s] turning before the timed runs (steady flow)
+  std::filesystem::path dir;  ///< where the LIGGGHTS files go
+  DrumMeshShape mesh{};       ///< LIGGGHTS' drum mesh
+};
+
+void compare_drum_with_liggghts(const DrumComparisonOptions& options);
+
+}  // namespace demfit::bench

@@ -1,0 +1,31 @@
+#pragma once
+// Spatial ordering of particles along a Morton (Z-order) curve, so that particles close in space
+// are close in memory: the pair loop and the per-particle gather then touch few cache lines even
+// when the bed has mixed (issue 16: past the last-level cache the kernel was memory-bound).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "demfit/dem_core/vec3.hpp"
+
+namespace demfit::dem_core {
+
+/// Permutation order[new] = old that sorts the particles by the Morton code of their cell (edge
+/// `cell` [m] > 0, grid anchored at the lowest corner); particles of one cell keep ascending old
+/// index, so the result depends on the positions only (deterministic, any thread count).
+/// Returns an empty vector when the current order already is that order.
+std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double cell);
+
+/// v[new] = old v[order[new]], applied to blocks of `block` consecutive elements
+/// (per-(particle, wall) arrays have `walls` elements per particle). Empty vectors stay empty.
+template <class T>
+void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::size_t block = 1) {
+  if (v.empty() || block == 0) return;
+  std::vector<T> moved(v.size());
+  for (std::size_t s = 0; s < order.size(); ++s)
+    for (std::size_t b = 0; b < block; ++b) moved[s * block + b] = v[order[s] * block + b];
+  v.swap(moved);
+}
+
+}  // namespace demfit::dem_core
