@@ -121,7 +121,8 @@ TEST_CASE("Several experiments accept a variable only in the intersection of the
           "[identify][parameters][experiments]") {
   const StudySpec spec = two_experiment_study();
   const ExperimentSetModel model = two_models(spec);
-  const ParameterDescriptor* amplitude = find_descriptor(model.parameters(), "amplitude");
+  const std::vector<ParameterDescriptor> descriptors = model.parameters();
+  const ParameterDescriptor* amplitude = find_descriptor(descriptors, "amplitude");
   REQUIRE(amplitude != nullptr);
   CHECK(amplitude->valid.to_string() == "(0, 1.8]");
   const auto dir = test::fresh_dir("bounds_experiments");

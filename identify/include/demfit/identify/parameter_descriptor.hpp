@@ -47,6 +47,8 @@ struct EffectParameter {
 // The descriptor named `name` in `descriptors`, or nullptr.
 const ParameterDescriptor* find_descriptor(const std::vector<ParameterDescriptor>& descriptors,
                                            const std::string& name);
+// Not on a temporary (e.g. model.parameters()): the pointer would dangle (found by AddressSanitizer).
+const ParameterDescriptor* find_descriptor(std::vector<ParameterDescriptor>&& descriptors, const std::string& name) = delete;
 
 // Descriptors for bare names: unit unknown, any value accepted (models that declare no ranges).
 std::vector<ParameterDescriptor> unbounded_descriptors(const std::vector<std::string>& names);
