@@ -8,19 +8,28 @@
 namespace demfit::bench {
 using namespace dem_core;
 
-Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time, int threads) {
+SimulationSettings hertz_settings(const HertzDrumSpec& spec, int threads) {
   SimulationSettings settings;
   settings.law = ContactLawKind::hertz_mindlin;
   settings.threads = threads;
-  settings.gravity = {0.0, -spec.gravity, 0.0};
   settings.contact.restitution = spec.restitution;
   settings.contact.frics = spec.sliding_friction;
   settings.contact.fricr = spec.rolling_friction;
   settings.time_step = spec.time_step;
   settings.skin = spec.skin;
-  Simulation sim(settings);
+  return settings;
+}
+
+void add_hertz_material(Simulation& sim, const HertzDrumSpec& spec) {
   // Material takes K; E = 3 K (1 - 2 nu).
   sim.add_material({spec.youngs_modulus / (3.0 * (1.0 - 2.0 * spec.poisson_ratio)), spec.density, spec.poisson_ratio});
+}
+
+Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time, int threads) {
+  SimulationSettings settings = hertz_settings(spec, threads);
+  settings.gravity = {0.0, -spec.gravity, 0.0};
+  Simulation sim(settings);
+  add_hertz_material(sim, spec);
   WallContactParameters wall;
   wall.frics = spec.sliding_friction;
   wall.fricd = spec.rolling_friction;  // FRICD on a wall = rolling friction

@@ -27,6 +27,11 @@ struct HertzDrumSpec {
   double skin = 0.5e-3;                 ///< [m]
 };
 
+/// The spec's contact law, friction, time step and skin (gravity left at its default), and the
+/// spec's material added to a simulation: shared by the drum and the scaling box.
+dem_core::SimulationSettings hertz_settings(const HertzDrumSpec& spec, int threads);
+void add_hertz_material(dem_core::Simulation& sim, const HertzDrumSpec& spec);
+
 /// The drum filled (seeded lattice packing in the lower part), settled for `settle_time` [s] with
 /// the drum at rest, then turned at the spec's speed for `spin_up_time` [s] so that the flow is
 /// steady. Walls: 0 = shell, 1 = front disk (z = 0), 2 = back disk (z = depth), all rotating.

@@ -28,15 +28,8 @@ using namespace dem_core;
 
 Simulation make_box(std::size_t target, bool shuffled) {
   const HertzDrumSpec spec;  // same material, law, step and skin as the drum
-  SimulationSettings s;
-  s.law = ContactLawKind::hertz_mindlin;
-  s.contact.restitution = spec.restitution;
-  s.contact.frics = spec.sliding_friction;
-  s.contact.fricr = spec.rolling_friction;
-  s.time_step = spec.time_step;
-  s.skin = spec.skin;
-  Simulation sim(s);
-  sim.add_material({spec.youngs_modulus / (3.0 * (1.0 - 2.0 * spec.poisson_ratio)), spec.density, spec.poisson_ratio});
+  Simulation sim(hertz_settings(spec, SimulationSettings{}.threads));
+  add_hertz_material(sim, spec);
   const double r = spec.radius, a = 2.0 * std::sqrt(2.0) * r;  // fcc cell: nearest distance 2R
   const long cells_z = 5, side = std::max<long>(1, std::lround(std::sqrt(static_cast<double>(target) / (4.0 * cells_z))));
   std::vector<Vec3> sites;

@@ -77,28 +77,14 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
 void Simulation::remove_particles(const std::vector<bool>& flags) {
   if (flags.size() != particles_.size()) fail("remove_particles flags size", static_cast<double>(flags.size()), "must equal particle_count()");
   ParticleState& p = particles_;
+  const std::size_t count = p.size();
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (flags[i]) continue;
-    p.position[kept] = p.position[i];
-    p.velocity[kept] = p.velocity[i];
-    p.angular_velocity[kept] = p.angular_velocity[i];
-    p.force[kept] = p.force[i];
-    p.torque[kept] = p.torque[i];
-    p.radius[kept] = p.radius[i];
-    p.mass[kept] = p.mass[i];
-    p.inverse_mass[kept] = p.inverse_mass[i];
-    p.inverse_inertia[kept] = p.inverse_inertia[i];
-    p.material[kept] = p.material[i];
-    p.id[kept] = p.id[i];
-    p.normal_compliance[kept] = p.normal_compliance[i];
-    p.shear_compliance[kept] = p.shear_compliance[i];
-    ++kept;
-  }
-  p.position.resize(kept); p.velocity.resize(kept); p.angular_velocity.resize(kept);
-  p.force.resize(kept); p.torque.resize(kept); p.radius.resize(kept); p.mass.resize(kept);
-  p.inverse_mass.resize(kept); p.inverse_inertia.resize(kept); p.material.resize(kept); p.id.resize(kept);
-  p.normal_compliance.resize(kept); p.shear_compliance.resize(kept);
+  p.for_each_array([&](auto& values) {
+    kept = 0;
+    for (std::size_t i = 0; i < count; ++i)
+      if (!flags[i]) values[kept++] = values[i];
+    values.resize(kept);
+  });
   // Contact histories are dropped (documented in the header).
   neighbors_ = NeighborList{};
   pair_history_.clear();

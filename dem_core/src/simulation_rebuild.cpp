@@ -13,19 +13,7 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
   const double r_max = *std::max_element(p.radius.begin(), p.radius.end());
   std::vector<std::uint32_t> order = morton_order(p.position, 2.0 * r_max + skin());
   if (order.empty()) return order;
-  apply_order(p.position, order);
-  apply_order(p.velocity, order);
-  apply_order(p.angular_velocity, order);
-  apply_order(p.force, order);
-  apply_order(p.torque, order);
-  apply_order(p.radius, order);
-  apply_order(p.mass, order);
-  apply_order(p.inverse_mass, order);
-  apply_order(p.inverse_inertia, order);
-  apply_order(p.material, order);
-  apply_order(p.id, order);
-  apply_order(p.normal_compliance, order);
-  apply_order(p.shear_compliance, order);
+  p.for_each_array([&](auto& values) { apply_order(values, order); });
   return order;  // the wall slots are rebuilt next, through `order`
 }
 

@@ -100,3 +100,27 @@ TEST_CASE("Reordering a settled, turning bed changes it only at round-off level:
   for (std::size_t i = 0; i < reordered.particle_count(); ++i) moved = moved || reordered.particles().id[i] != i;
   CHECK(moved);
 }
+
+TEST_CASE("Removing particles compacts every per-particle array in order and keeps their ids", "[dem_core]") {
+  Simulation sim{SimulationSettings{}};
+  sim.add_material({1.0e8, 1000.0, 0.3});
+  for (int i = 0; i < 5; ++i)
+    sim.add_particle({0.01 * i, 0.0, 0.0}, 1.0e-3 * (1 + i), 0, {0.1 * i, 0.0, 0.0}, {0.0, 0.0, 0.01 * i});
+  sim.remove_particles({false, true, false, true, false});
+  const ParticleState& p = sim.particles();
+  REQUIRE(p.size() == 3);
+  const int survivors[3] = {0, 2, 4};
+  for (int k = 0; k < 3; ++k) {
+    const int i = survivors[k];
+    CHECK(p.id[k] == static_cast<std::uint32_t>(i));
+    CHECK(p.position[k].x == 0.01 * i);
+    CHECK(p.radius[k] == 1.0e-3 * (1 + i));
+    CHECK(p.velocity[k].x == 0.1 * i);
+    // Mass follows the radius: rho 4/3 pi R^3 (independent of the compaction).
+    CHECK(p.mass[k] == Approx(1000.0 * 4.0 / 3.0 * 3.141592653589793 * std::pow(p.radius[k], 3)).epsilon(1e-12));
+    CHECK(p.inverse_mass[k] == Approx(1.0 / p.mass[k]).epsilon(1e-12));
+  }
+  CHECK(p.force.size() == 3);
+  CHECK(p.shear_compliance.size() == 3);
+  CHECK(p.material.size() == 3);
+}

@@ -34,6 +34,15 @@ struct ParticleState {
   std::vector<double> shear_compliance{};
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
+
+  /// Calls `f(array)` for every per-particle array: the one list that removal, reordering and
+  /// any other whole-state operation use, so a new array cannot be forgotten by one of them.
+  template <class F>
+  void for_each_array(F&& f) {
+    f(position), f(velocity), f(angular_velocity), f(force), f(torque);
+    f(radius), f(mass), f(inverse_mass), f(inverse_inertia), f(material), f(id);
+    f(normal_compliance), f(shear_compliance);
+  }
 };
 
 }  // namespace demfit::dem_core
