@@ -8,8 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
+#include <mutex>
 #include <stdexcept>
 
+#include "demfit/identify/curve_io.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
@@ -45,6 +48,8 @@ const identify::Curve& curve_for(const identify::CurveSet& curves, const identif
   if (found == curves.end()) throw std::runtime_error("granudrum report: no simulated curve '" + target.curve + "'");
   return found->second;
 }
+
+std::string scale_label(double scale) { return fmt("%g", scale); }
 
 std::string experiment_of(const identify::TargetSpec& t) { return t.experiment.empty() ? t.name : t.experiment; }
 
@@ -137,9 +142,28 @@ std::vector<std::string> write_surface_pictures(const identify::StudySpec& spec,
   return files;
 }
 
+// The published parameters at every resolution run: each run's wall time, and how far each
+// coarse-grained surface lies from the s = 1 one (the measurement behind the studies' choice of s).
+std::string anchor_section(const AnchorResult& published) {
+  std::string t = "\nPublished parameters run in demfit (" + fmt("%.0f", published.wall_seconds) +
+                  " s wall time in all; the speeds side by side, one thread per run):\n\n"
+                  "| experiment | s | run wall time [s] | threads |\n|---|---|---|---|\n";
+  for (const auto& r : published.runs)
+    t += "| " + r.experiment + " | " + scale_label(r.scale) + " | " + fmt("%.0f", r.seconds) + " | " + std::to_string(r.threads) + " |\n";
+  if (published.resolution.empty()) return t;
+  t += "\nResolution: the same parameters at coarse-graining factor s (time step s x the case's), "
+       "surface against the s = 1 surface and against the photo:\n\n"
+       "| target | s | vs s = 1: RMS [mm] | area [mm²] | vs photo: RMS [mm] | area [mm²] |\n|---|---|---|---|---|---|\n";
+  for (const auto& r : published.resolution)
+    t += "| " + r.target + " | " + scale_label(r.scale) + " | " + fmt("%.2f", r.rms_vs_full_mm) + " | " + fmt("%.0f", r.area_vs_full_mm2) +
+         " | " + fmt("%.2f", r.rms_vs_photo_mm) + " | " + fmt("%.0f", r.area_vs_photo_mm2) + " |\n";
+  return t;
+}
+
 std::string granudrum_report(const identify::StudySpec& spec, const identify::StudyResult& r,
-                             const std::vector<SurfaceError>& calibrated, const std::vector<SurfaceError>& anchor,
-                             const std::vector<std::string>& pictures, double anchor_seconds) {
+                             const std::vector<SurfaceError>& calibrated, const AnchorResult& published,
+                             const std::vector<std::string>& pictures) {
+  const std::vector<SurfaceError>& anchor = published.errors;
   std::string t = "## GranuDrum MCC: calibration on the 15 and 45 rpm photos (" + spec.name + ")\n\n";
   t += "| variable | identified (best run) | 95 % interval | least-squares estimate | note |\n|---|---|---|---|---|\n";
   for (const auto& v : spec.variables) {
@@ -162,32 +186,97 @@ std::string granudrum_report(const identify::StudySpec& spec, const identify::St
     if (i < anchor.size()) t += " | " + error_row(anchor[i]);
     t += " |\n";
   }
-  if (!anchor.empty()) t += "\nAnchor runs (s = 1, both speeds): " + fmt("%.0f", anchor_seconds) + " s wall time.\n";
+  if (!anchor.empty()) t += anchor_section(published);
   t += "\nPictures (photo with its surface in red, compared circle in blue; simulated surface in green):\n\n";
   for (const auto& p : pictures) t += "![" + p + "](" + p + ")\n";
   return t;
 }
 
-std::vector<SurfaceError> run_anchor(const identify::StudySpec& spec, const GranudrumOptions& options,
-                                     double* wall_seconds) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// The published parameters through one experiment's case at coarse-graining factor `scale`
+// (1 = the original particles with the case's own time step, the source's 1e-5 s; s > 1 with
+// s times that step, the studies' rule: the Hertz stable step grows with the radius).
+identify::CurveSet run_published(const identify::StudySpec& spec, const identify::ExperimentSpec& experiment,
+                                 const GranudrumOptions& options, double scale, const ProgressCallback& progress) {
   const identify::ParameterSet published{{"frics", 0.561}, {"fricr", 0.293}, {"particle_count", 29185.0}};
-  identify::CurveSet curves;
-  for (const auto& experiment : spec.experiments) {
-    nlohmann::json overrides = experiment.model_overrides;
-    // s = 1 with the case's own time step (the source's 1e-5 s): a study's larger coarse-grained
-    // step would exceed the stable limit of the original particles.
-    if (overrides.is_object()) overrides.erase("time_step");
-    overrides.merge_patch({{"drum", {{"scale_factor", 1.0}}}});
-    overrides.merge_patch(options.anchor_overrides);
-    const CaseSpec anchor_case = resolve_case(experiment.model_reference, overrides, spec.base_dir);
-    CaseRunOptions run;
-    run.threads = std::max(1, options.base.jobs * options.base.threads_per_job);  // one run at a time
-    run.progress = options.base.progress;
-    for (auto& [name, curve] : run_case(anchor_case, published, run).curves) curves[experiment.name + "/" + name] = curve;
+  nlohmann::json overrides = experiment.model_overrides;
+  if (overrides.is_object()) overrides.erase("time_step");  // a study's coarse step would be unstable at s = 1
+  overrides.merge_patch({{"drum", {{"scale_factor", 1.0}}}});
+  overrides.merge_patch(options.anchor_overrides);
+  CaseSpec run_case_spec = resolve_case(experiment.model_reference, overrides, spec.base_dir);
+  if (scale != 1.0) {
+    overrides.merge_patch({{"drum", {{"scale_factor", scale}}}, {"time_step", {{"value", scale * run_case_spec.time_step.value}}}});
+    run_case_spec = resolve_case(experiment.model_reference, overrides, spec.base_dir);
   }
-  if (wall_seconds) *wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return surface_errors(spec, curves);
+  CaseRunOptions run;
+  run.threads = std::max(1, options.base.threads_per_job);
+  run.progress = progress;
+  identify::CurveSet curves;
+  for (auto& [name, curve] : run_case(run_case_spec, published, run).curves) curves[experiment.name + "/" + name] = curve;
+  return curves;
+}
+
+}  // namespace
+
+AnchorResult run_anchor(const identify::StudySpec& spec, const GranudrumOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> scales = options.resolution_scales;
+  scales.push_back(1.0);  // the anchor itself last: the cheap coarse runs report first
+  struct Job { std::size_t experiment; double scale; identify::CurveSet curves; double seconds = 0.0; };
+  std::vector<std::vector<Job>> jobs(spec.experiments.size());
+  for (std::size_t e = 0; e < spec.experiments.size(); ++e)
+    for (const double s : scales) jobs[e].push_back({e, s, {}, 0.0});
+  std::mutex progress_mutex;  // experiments report from their own threads
+  const ProgressCallback progress = options.base.progress ? ProgressCallback([&](const std::string& stage, double done, double end) {
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    options.base.progress(stage, done, end);
+  }) : ProgressCallback{};
+  auto run_experiment = [&](std::vector<Job>& list) {
+    for (Job& job : list) {
+      const auto t0 = std::chrono::steady_clock::now();
+      job.curves = run_published(spec, spec.experiments[job.experiment], options, job.scale, progress);
+      job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+  };
+  // The experiments run side by side (one thread each) when --jobs allows; each run is
+  // deterministic at its thread count, so the order does not change any curve.
+  if (options.base.jobs >= 2 && jobs.size() >= 2) {
+    std::vector<std::future<void>> running;
+    for (auto& list : jobs) running.push_back(std::async(std::launch::async, run_experiment, std::ref(list)));
+    for (auto& f : running) f.get();
+  } else {
+    for (auto& list : jobs) run_experiment(list);
+  }
+  AnchorResult result;
+  identify::CurveSet full;
+  for (const auto& list : jobs)
+    for (const Job& job : list)
+      if (job.scale == 1.0) full.insert(job.curves.begin(), job.curves.end());
+  result.errors = surface_errors(spec, full);
+  for (const auto& list : jobs)
+    for (const Job& job : list) {
+      const std::string& experiment = spec.experiments[job.experiment].name;
+      for (const auto& [name, curve] : job.curves)
+        identify::write_curve_csv(options.base.out_dir / ("published_" + experiment + "_s" + scale_label(job.scale) + "_" +
+                                                          name.substr(name.find('/') + 1) + ".csv"), curve);
+      result.runs.push_back({experiment, job.scale, job.seconds, options.base.threads_per_job});
+      if (job.scale == 1.0) continue;
+      for (const auto& target : spec.targets) {
+        if (!target.image || experiment_of(target) != experiment) continue;
+        const double radius = (1.0 - target.image->margin) * 0.5 * target.image->diameter;
+        const auto coarse = profile_of(curve_for(job.curves, target), radius);
+        const auto reference = profile_of(curve_for(full, target), radius);
+        const auto photo = profile_of(target.data, radius);
+        result.resolution.push_back({target.name, job.scale,
+                                     1e3 * imaging::profile_rms_distance(coarse, reference),
+                                     1e6 * imaging::profile_differing_area(coarse, reference),
+                                     1e3 * imaging::profile_rms_distance(coarse, photo),
+                                     1e6 * imaging::profile_differing_area(coarse, photo)});
+      }
+    }
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 std::string reproduce_granudrum(const GranudrumOptions& options) {
@@ -204,10 +293,8 @@ std::string reproduce_granudrum(const GranudrumOptions& options) {
   const identify::StudyResult result = identify::run_study(spec, *model, run);
   const auto calibrated = surface_errors(spec, result.best_curves);
   const auto pictures = write_surface_pictures(spec, result.best_curves, o.out_dir);
-  double anchor_seconds = 0.0;
-  const std::vector<SurfaceError> anchor = options.anchor ? run_anchor(spec, options, &anchor_seconds)
-                                                          : std::vector<SurfaceError>{};
-  const std::string text = granudrum_report(spec, result, calibrated, anchor, pictures, anchor_seconds);
+  const AnchorResult anchor = options.anchor ? run_anchor(spec, options) : AnchorResult{};
+  const std::string text = granudrum_report(spec, result, calibrated, anchor, pictures);
   identify::write_file_atomically(o.out_dir / "granudrum.md", text);
   return text;
 }

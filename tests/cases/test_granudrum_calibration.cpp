@@ -102,12 +102,19 @@ TEST_CASE("The granudrum report writes side-by-side and overlay pictures per spe
   result.runs = 7;
   result.wall_seconds = 123;
   const auto errors = cases::surface_errors(spec, best);
-  const std::string text = cases::granudrum_report(spec, result, errors, errors, files, 10.0);
+  cases::AnchorResult anchor;
+  anchor.errors = errors;
+  anchor.runs = {{"rpm15", 1.0, 1234.0, 1}, {"rpm15", 3.0, 56.0, 1}};
+  anchor.resolution = {{"rpm15.surface", 3.0, 1.25, 50.0, 4.5, 180.0}};
+  anchor.wall_seconds = 1300.0;
+  const std::string text = cases::granudrum_report(spec, result, errors, anchor, files);
   CHECK(text.find("| rpm15.surface | 3.00 |") != std::string::npos);
   CHECK(text.find("| rpm45.surface | 3.00 |") != std::string::npos);
   CHECK(text.find("| frics | 0.6 | [0.55, 0.66] (posterior) |") != std::string::npos);
   CHECK(text.find("7 evaluations") != std::string::npos);
   CHECK(text.find("granudrum_rpm45_overlay.png") != std::string::npos);
+  CHECK(text.find("| rpm15 | 1 | 1234 | 1 |") != std::string::npos);
+  CHECK(text.find("| rpm15.surface | 3 | 1.25 | 50 | 4.50 | 180 |") != std::string::npos);
 }
 
 namespace {
@@ -145,6 +152,7 @@ TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and 
   options.base.jobs = 2;
   options.study_file = tiny_study(dir);
   options.anchor = true;
+  options.resolution_scales = {6.0};  // one coarser run per speed beside the (tiny) anchor
   options.anchor_overrides = {{"drum", {{"scale_factor", 5.0}, {"duration", 0.15}, {"surface_window", 0.05},
                                         {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
   const std::string text = cases::reproduce_granudrum(options);
@@ -152,4 +160,7 @@ TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and 
     CHECK(fs::exists(options.base.out_dir / f));
   CHECK(text.find("source's parameters at s = 1") != std::string::npos);
   CHECK(text.find("| rpm45.surface | ") != std::string::npos);
+  CHECK(text.find("| rpm45.surface | 6 | ") != std::string::npos);
+  CHECK(fs::exists(options.base.out_dir / "published_rpm15_s1_free_surface_image.csv"));
+  CHECK(fs::exists(options.base.out_dir / "published_rpm45_s6_free_surface_image.csv"));
 }
