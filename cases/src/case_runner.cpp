@@ -2,6 +2,7 @@
 #include "demfit/cases/case_runner.hpp"
 
 #include <cstdlib>
+#include <stdexcept>
 
 #include "dem_setup.hpp"
 #include "drum_case.hpp"
@@ -30,10 +31,11 @@ CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& paramete
   fill.drum.fill_by = evaluated.drum.fill_by;
   fill.drum.particle_count = evaluated.drum.particle_count;
   fill.drum.fill_volume_ml = evaluated.drum.fill_volume_ml;
-  if (spec.kind == CaseKind::pellet_compression) {
-    return detail::run_pellet_compression(fill, evaluated, resolved);
+  switch (spec.kind) {  // exhaustive (case_registry.hpp)
+    case CaseKind::pellet_compression: return detail::run_pellet_compression(fill, evaluated, resolved);
+    case CaseKind::rotary_drum: return detail::run_rotary_drum(fill, evaluated, resolved);
   }
-  return detail::run_rotary_drum(fill, evaluated, resolved);
+  throw std::logic_error("run_case: a CaseKind without a runner");
 }
 
 }  // namespace demfit::cases

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/json_fields.hpp"
 #include "demfit/cases/parameter_table.hpp"
 
@@ -199,29 +200,64 @@ std::string to_string(dem_core::ContactLawKind law) {
   return law == dem_core::ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "lsdyna_linear";
 }
 
+namespace {
+
+json pellet_json(const PelletSpec& p) {
+  return {{"container_diameter", p.container_diameter}, {"container_height", p.container_height},
+          {"particle_count", p.particle_count}, {"fill_seed", p.fill_seed},
+          {"fill_normk", p.fill_normk}, {"settle_time", p.settle_time},
+          {"piston_speed", p.piston_speed}, {"max_pressure", p.max_pressure},
+          {"max_travel", p.max_travel}, {"unload", p.unload}, {"curve_points", p.curve_points}};
+}
+
+json drum_json(const DrumSpec& d) {
+  json j = {{"diameter", d.diameter}, {"length", d.length}, {"rpm", d.rpm},
+            {"duration", d.duration}, {"fill_fraction", d.fill_fraction},
+            {"volume_fraction", d.volume_fraction},
+            {"coarse_graining", to_string(d.coarse_graining)}, {"scale_factor", d.scale_factor},
+            {"fill_seed", d.fill_seed}, {"densify_time", d.densify_time},
+            {"torque_interval", d.torque_interval}, {"surface_window", d.surface_window},
+            {"surface_snapshots", d.surface_snapshots}, {"surface_points", d.surface_points}};
+  // General-drum options appear only when used, so a paper drum keeps its old text.
+  if (d.fill_by != FillBy::fill_fraction) j.erase("fill_fraction");
+  if (d.fill_by == FillBy::fill_volume) j["fill_volume_ml"] = d.fill_volume_ml;
+  if (d.fill_by == FillBy::particle_count) j["particle_count"] = d.particle_count;
+  if (d.fill_by == FillBy::fill_mass) j["fill_mass"] = d.fill_mass;
+  if (d.size_distribution.enabled()) j["size_distribution"] = to_json(d.size_distribution);
+  if (d.image.enabled) j["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
+  return j;
+}
+
+// Kinds whose case files may select the Hertz-Mindlin law (its fill and stiffness set-up exist
+// for the drum only).
+bool hertz_supported(CaseKind kind) {
+  switch (kind) {
+    case CaseKind::pellet_compression: return false;
+    case CaseKind::rotary_drum: return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir) {
   require_known_keys(document, "", {"case", "description", "particle", "contact", "wall_contact",
                                     "time_step", "output", "pellet", "drum"});
   CaseSpec spec;
-  if (!document.contains("case")) {
-    throw std::runtime_error("'case' is missing: set \"case\": \"pellet_compression\" or \"rotary_drum\"");
-  }
+  if (!document.contains("case")) throw std::runtime_error("'case' is missing: set \"case\": " + case_kind_names());
   const std::string kind = read_string(document, "", "case", "");
-  if (kind == "pellet_compression") {
-    spec.kind = CaseKind::pellet_compression;
-    if (document.contains("drum")) throw std::runtime_error("'drum' is not allowed in a pellet_compression case");
-  } else if (kind == "rotary_drum") {
-    spec.kind = CaseKind::rotary_drum;
-    if (document.contains("pellet")) throw std::runtime_error("'pellet' is not allowed in a rotary_drum case");
-  } else {
-    throw std::runtime_error("'case' must be \"pellet_compression\" or \"rotary_drum\" (got \"" + kind + "\")");
-  }
+  const CaseKindRow* row = find_case_kind(kind);
+  if (!row) throw std::runtime_error("'case' must be " + case_kind_names() + " (got \"" + kind + "\")");
+  spec.kind = row->kind;
+  for (const CaseKindRow& other : case_kind_table())
+    if (other.kind != row->kind && document.contains(other.section))
+      throw std::runtime_error("'" + std::string(other.section) + "' is not allowed in a " + row->name + " case");
   spec.description = read_string(document, "", "description", "");
   spec.material = parse_material(child_object(document, "", "particle"), spec.material);
   const json& contact = child_object(document, "", "contact");
   const std::string law = read_string(contact, "contact", "law", "lsdyna_linear");
   if (law == "hertz_mindlin") {
-    if (spec.kind != CaseKind::rotary_drum)
+    if (!hertz_supported(spec.kind))
       throw std::runtime_error("'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
     spec.law = dem_core::ContactLawKind::hertz_mindlin;
     parse_hertz_contact(contact, spec);
@@ -241,24 +277,27 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   }
   spec.time_step = parse_time_step(child_object(document, "", "time_step"), spec.time_step);
   spec.output = parse_output(child_object(document, "", "output"), spec.output);
-  if (spec.kind == CaseKind::pellet_compression) {
-    spec.pellet = parse_pellet(child_object(document, "", "pellet"), spec.pellet);
-  } else {
-    spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum, base_dir);
-    if (spec.drum.size_distribution.enabled()) {
-      if (child_object(document, "", "particle").contains("radius"))
-        throw std::runtime_error("'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
-      if (spec.material.radius_spread != 0.0)
-        throw std::runtime_error("'particle.radius_spread' cannot be combined with 'drum.size_distribution'");
-      spec.material.radius = 0.5 * spec.drum.size_distribution.min_diameter();  // smallest size (time-step checks)
-    }
+  switch (spec.kind) {
+    case CaseKind::pellet_compression:
+      spec.pellet = parse_pellet(child_object(document, "", "pellet"), spec.pellet);
+      break;
+    case CaseKind::rotary_drum:
+      spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum, base_dir);
+      if (spec.drum.size_distribution.enabled()) {
+        if (child_object(document, "", "particle").contains("radius"))
+          throw std::runtime_error("'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
+        if (spec.material.radius_spread != 0.0)
+          throw std::runtime_error("'particle.radius_spread' cannot be combined with 'drum.size_distribution'");
+        spec.material.radius = 0.5 * spec.drum.size_distribution.min_diameter();  // smallest size (time-step checks)
+      }
+      break;
   }
   return spec;
 }
 
 json to_json(const CaseSpec& s) {
   json j;
-  j["case"] = s.kind == CaseKind::pellet_compression ? "pellet_compression" : "rotary_drum";
+  j["case"] = case_kind_row(s.kind).name;
   j["description"] = s.description;
   j["particle"] = {{"radius", s.material.radius}, {"density", s.material.density},
                    {"youngs_modulus", s.material.youngs_modulus},
@@ -284,31 +323,9 @@ json to_json(const CaseSpec& s) {
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times},
                  {"progress_interval", s.output.progress_interval}};
-  if (s.kind == CaseKind::pellet_compression) {
-    const PelletSpec& p = s.pellet;
-    j["pellet"] = {{"container_diameter", p.container_diameter}, {"container_height", p.container_height},
-                   {"particle_count", p.particle_count}, {"fill_seed", p.fill_seed},
-                   {"fill_normk", p.fill_normk}, {"settle_time", p.settle_time},
-                   {"piston_speed", p.piston_speed}, {"max_pressure", p.max_pressure},
-                   {"max_travel", p.max_travel}, {"unload", p.unload}, {"curve_points", p.curve_points}};
-  } else {
-    const DrumSpec& d = s.drum;
-    j["drum"] = {{"diameter", d.diameter}, {"length", d.length}, {"rpm", d.rpm},
-                 {"duration", d.duration}, {"fill_fraction", d.fill_fraction},
-                 {"volume_fraction", d.volume_fraction},
-                 {"coarse_graining", to_string(d.coarse_graining)}, {"scale_factor", d.scale_factor},
-                 {"fill_seed", d.fill_seed}, {"densify_time", d.densify_time},
-                 {"torque_interval", d.torque_interval}, {"surface_window", d.surface_window},
-                 {"surface_snapshots", d.surface_snapshots}, {"surface_points", d.surface_points}};
-    // General-drum options appear only when used, so a paper drum keeps its old text.
-    if (d.fill_by != FillBy::fill_fraction) j["drum"].erase("fill_fraction");
-    if (d.fill_by == FillBy::fill_volume) j["drum"]["fill_volume_ml"] = d.fill_volume_ml;
-    if (d.fill_by == FillBy::particle_count) j["drum"]["particle_count"] = d.particle_count;
-    if (d.fill_by == FillBy::fill_mass) j["drum"]["fill_mass"] = d.fill_mass;
-    if (d.size_distribution.enabled()) j["drum"]["size_distribution"] = to_json(d.size_distribution);
-    if (d.image.enabled) {
-      j["drum"]["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
-    }
+  switch (s.kind) {
+    case CaseKind::pellet_compression: j["pellet"] = pellet_json(s.pellet); break;
+    case CaseKind::rotary_drum: j["drum"] = drum_json(s.drum); break;
   }
   return j;
 }

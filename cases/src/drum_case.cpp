@@ -4,6 +4,7 @@
 // Frame: drum axis = z (end walls at z = 0 and z = length), gravity -y.
 #include "drum_case.hpp"
 
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/drum_fill.hpp"
 
 #include <algorithm>
@@ -410,8 +411,12 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   const RotationRun run = rotate(spec, powder, fill, options);
   const double rotate_seconds = std::chrono::duration<double>(Clock::now() - rotate_start).count();
   CaseResult result;
-  result.curves["torque"] = identify::Curve{"time_s", "torque_Nm", run.times, run.torques};
-  identify::Curve surface{"x_mm", "height_mm", {}, {}};
+  constexpr CaseKind kind = CaseKind::rotary_drum;  // curve names and labels: case_registry.cpp
+  identify::Curve torque = empty_curve(kind, "torque");
+  torque.x = run.times;
+  torque.y = run.torques;
+  result.curves["torque"] = torque;
+  identify::Curve surface = empty_curve(kind, "free_surface");
   for (std::size_t k = 0; k < run.surface.x.size(); ++k) {
     if (!std::isfinite(run.surface.height[k])) continue;
     surface.x.push_back(run.surface.x[k] * 1e3);
@@ -420,7 +425,7 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   if (surface.x.size() < 2) throw std::runtime_error("drum: free surface not found (fewer than 2 points)");
   result.curves["free_surface"] = surface;
   if (run.image_surface) {
-    identify::Curve image{"x_mm", "z_mm", {}, {}};
+    identify::Curve image = empty_curve(kind, "free_surface_image");
     for (std::size_t k = 0; k < run.image_surface->x.size(); ++k) {
       image.x.push_back(run.image_surface->x[k] * 1e3);
       image.y.push_back(run.image_surface->z[k] * 1e3);

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/model_factory.hpp"
@@ -14,8 +15,9 @@
 namespace demfit::cases {
 namespace {
 
-const char* const kPellet = "pellet_compression";
-const char* const kDrum = "rotary_drum";
+// Case-kind names from the registry (case_registry.cpp).
+const char* const kPellet = case_kind_row(CaseKind::pellet_compression).name;
+const char* const kDrum = case_kind_row(CaseKind::rotary_drum).name;
 
 // Pull-off force at the cohesion bound, in weights of the simulated particle. Pellet: five.
 // Drum: one — above it the bed stops flowing and slumps as a cohesive block (s = 4 drum at
@@ -38,12 +40,16 @@ EffectParameterInfo fitting(const char* name, double lower, double upper) {
 // the drum's coarse-grained one (SCG of scale s has radius s R0, so its bound is s^2 times the
 // original's: the same range of cohesion-to-weight ratio at every scale).
 double case_cohesion_bound(const CaseSpec& spec) {
-  if (spec.kind == CaseKind::rotary_drum) {
-    const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor, spec.drum.volume_fraction,
-                                          {spec.material.radius, spec.material.density});
-    return cohesion_surface_energy_bound(p.radius, p.density, kDrumCohesionWeights);
+  switch (spec.kind) {
+    case CaseKind::rotary_drum: {
+      const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor, spec.drum.volume_fraction,
+                                            {spec.material.radius, spec.material.density});
+      return cohesion_surface_energy_bound(p.radius, p.density, kDrumCohesionWeights);
+    }
+    case CaseKind::pellet_compression:
+      return cohesion_surface_energy_bound(spec.material.radius, spec.material.density, kPelletCohesionWeights);
   }
-  return cohesion_surface_energy_bound(spec.material.radius, spec.material.density, kPelletCohesionWeights);
+  throw std::logic_error("effect catalogue: a CaseKind without a cohesion bound");
 }
 
 EffectInfo cohesion(double upper) {
@@ -109,14 +115,13 @@ double cohesion_surface_energy_bound(double radius, double density, double weigh
 }
 
 std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides) {
-  if (case_name != kPellet && case_name != kDrum)
-    throw std::runtime_error("effects_for_case: case '" + case_name +
-                             "' is unknown: use \"pellet_compression\" or \"rotary_drum\"");
+  if (!find_case_kind(case_name))
+    throw std::runtime_error("effects_for_case: case '" + case_name + "' is unknown: use " + case_kind_names());
   return effects_for_case(resolve_case(case_name, overrides, {}));
 }
 
 std::vector<EffectInfo> effects_for_case(const CaseSpec& spec) {
-  return build(case_cohesion_bound(spec), spec.kind == CaseKind::rotary_drum ? kDrum : kPellet);
+  return build(case_cohesion_bound(spec), case_kind_row(spec.kind).name);
 }
 
 }  // namespace demfit::cases

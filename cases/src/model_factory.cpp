@@ -3,6 +3,8 @@
 // and is cached, so every evaluation of a study starts from the same settled bed.
 #include "demfit/cases/model_factory.hpp"
 
+#include "demfit/cases/case_registry.hpp"
+
 #include <stdexcept>
 
 #include "builtin_cases.hpp"
@@ -23,6 +25,7 @@ class DemCaseModel final : public identify::Model {
   std::vector<std::string> parameter_names() const override { return cases::parameter_names(); }
   std::vector<identify::ParameterDescriptor> parameters() const override { return parameter_descriptors(); }
   identify::ParameterSet default_parameters() const override { return detail::parameters_of(spec_); }
+  std::vector<identify::CurveDescriptor> curves() const override { return produced_curves(spec_); }
   // EvaluationContext::seed is not used: the fill seed is a case setting, so all evaluations of a
   // study share one settled bed (deterministic, cached).
   identify::CurveSet evaluate(const identify::ParameterSet& parameters,
@@ -36,9 +39,13 @@ class DemCaseModel final : public identify::Model {
   CaseSpec spec_;
 };
 
-nlohmann::json builtin_document(const std::string& name) {
-  if (name == "pellet_compression") return nlohmann::json::parse(detail::kBuiltinPelletCompression);
-  return nlohmann::json::parse(detail::kBuiltinRotaryDrum);
+// The shipped case file of each kind, compiled in (a reference by kind name resolves to it).
+nlohmann::json builtin_document(CaseKind kind) {
+  switch (kind) {
+    case CaseKind::pellet_compression: return nlohmann::json::parse(detail::kBuiltinPelletCompression);
+    case CaseKind::rotary_drum: return nlohmann::json::parse(detail::kBuiltinRotaryDrum);
+  }
+  throw std::logic_error("a CaseKind without a built-in case file");
 }
 
 }  // namespace
@@ -79,8 +86,8 @@ CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overri
                              "command needs a single-model study (\"model\" + \"targets\")");
   nlohmann::json document;
   std::filesystem::path case_dir = base_dir;  // relative files in the case (size CSV) start here
-  if (reference == "pellet_compression" || reference == "rotary_drum") {
-    document = builtin_document(reference);
+  if (const CaseKindRow* kind = find_case_kind(reference)) {
+    document = builtin_document(kind->kind);
   } else {
     std::filesystem::path path(reference);
     if (path.is_relative()) path = base_dir / path;

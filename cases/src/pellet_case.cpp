@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "dem_setup.hpp"
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/dem_core/packing.hpp"
@@ -119,7 +120,7 @@ struct CompressionRun {
 CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOptions& options);
 
 identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end, long long points,
-                                   double Sample::*y_field, const std::string& y_label);
+                                   double Sample::*y_field, const identify::CurveDescriptor& labels);
 
 }  // namespace
 
@@ -137,12 +138,13 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
 
   CaseResult result;
   const long long points = spec.pellet.curve_points;
-  result.curves["pressure_volume"] =
-      resample_by_volume(run.samples, run.loading_end, points, &Sample::pressure_mpa, "pressure_MPa");
-  result.curves["bottom_force_volume"] =
-      resample_by_volume(run.samples, run.loading_end, points, &Sample::bottom_force, "bottom_force_N");
+  constexpr CaseKind kind = CaseKind::pellet_compression;  // curve names and labels: case_registry.cpp
+  result.curves["pressure_volume"] = resample_by_volume(run.samples, run.loading_end, points, &Sample::pressure_mpa,
+                                                        case_curve(kind, "pressure_volume"));
+  result.curves["bottom_force_volume"] = resample_by_volume(run.samples, run.loading_end, points, &Sample::bottom_force,
+                                                            case_curve(kind, "bottom_force_volume"));
   if (spec.pellet.unload) {
-    identify::Curve cycle{"volume_cm3", "pressure_MPa", {}, {}};
+    identify::Curve cycle = empty_curve(kind, "pressure_volume_cycle");
     for (const Sample& s : run.samples) {
       cycle.x.push_back(s.volume_cm3);
       cycle.y.push_back(s.pressure_mpa);
@@ -157,7 +159,7 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
   // SPEC 2.1: the compression is quasi-static while the bed's kinetic energy stays below 1 % of
   // its elastic energy. The study warns when a run crosses it (identify::kQuasiStaticCurve).
   constexpr double quasi_static_limit = 0.01;
-  identify::Curve quasi_static{"volume_cm3", "kinetic_over_elastic_energy_per_limit", {}, {}};
+  identify::Curve quasi_static = empty_curve(kind, identify::kQuasiStaticCurve);
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const Sample& s = run.samples[i];
     const double values[8] = {s.time, s.travel * 1e3, s.volume_cm3, s.pressure_mpa, s.piston_force,
@@ -267,8 +269,8 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
 // `points` values at equal volume spacing along the loading branch, interpolated linearly
 // between samples (the piston moves at constant speed, so volume is monotone).
 identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end, long long points,
-                                   double Sample::*y_field, const std::string& y_label) {
-  identify::Curve curve{"volume_cm3", y_label, {}, {}};
+                                   double Sample::*y_field, const identify::CurveDescriptor& labels) {
+  identify::Curve curve{labels.x_label, labels.y_label, {}, {}};
   end = std::clamp<std::size_t>(end, 2, s.size());
   const double v0 = s.front().volume_cm3;
   const double v1 = s[end - 1].volume_cm3;

@@ -11,6 +11,10 @@ AnalyticCurveModel::AnalyticCurveModel(int points) : points_(points) {
 
 std::vector<std::string> AnalyticCurveModel::parameter_names() const { return {"amplitude", "rate", "slope"}; }
 
+std::vector<CurveDescriptor> AnalyticCurveModel::curves() const {
+  return {{"response", "x_1", "y_1"}, {"loop", "x_1", "y_1"}};
+}
+
 ParameterSet AnalyticCurveModel::default_parameters() const {
   return {{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}};
 }

@@ -52,6 +52,16 @@ std::vector<ParameterDescriptor> ExperimentSetModel::parameters() const {
   return out;
 }
 
+std::vector<CurveDescriptor> ExperimentSetModel::curves() const {
+  std::vector<CurveDescriptor> out;
+  for (const auto& e : experiments_) {
+    const auto declared = e.model->curves();
+    if (declared.empty()) return {};
+    for (const CurveDescriptor& c : declared) out.push_back({e.name + "/" + c.name, c.x_label, c.y_label});
+  }
+  return out;
+}
+
 ParameterSet ExperimentSetModel::experiment_parameters(std::size_t experiment, const ParameterSet& parameters) const {
   const Experiment& e = experiments_.at(experiment);
   ParameterSet out = e.model->default_parameters();

@@ -420,6 +420,7 @@ StudyResult StudyLoop::run() {
 
 StudyResult run_study(const StudySpec& spec, const Model& model, const RunOptions& options) {
   detail::check_parameter_names(spec, model);
+  detail::check_declared_curves(spec, model);
   detail::check_experiments(spec, model);
   StudyLoop loop(spec, model, options);
   // The resolved input beside the results (targets inline, defaults filled in).

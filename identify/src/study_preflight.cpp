@@ -26,6 +26,7 @@ void convert(std::vector<double>& values, double factor) {
 StudySpec checked_against(const StudySpec& spec, const Model& model,
                           const std::function<CurveSet(const ParameterSet&)>& evaluate) {
   detail::check_parameter_names(spec, model);  // names first: the evaluation would fail less clearly
+  detail::check_declared_curves(spec, model);
   ParameterSet parameters = model.default_parameters();
   for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
   for (const auto& v : spec.variables) parameters[v.name] = v.initial;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/experiments.hpp"
+#include "demfit/identify/units.hpp"
 
 namespace demfit::identify::detail {
 
@@ -76,6 +77,29 @@ void check_parameter_names(const StudySpec& spec, const Model& model) {
       throw std::runtime_error("study: model.fixed_parameters." + name + ": not a parameter of model '" +
                                spec.model_reference + "'; known: " + known);
   check_parameter_bounds(spec, model);
+}
+
+void check_declared_curves(const StudySpec& spec, const Model& model) {
+  const std::vector<CurveDescriptor> declared = model.curves();
+  if (declared.empty()) return;
+  for (std::size_t i = 0; i < spec.targets.size(); ++i) {
+    const TargetSpec& t = spec.targets[i];
+    const std::string field = "study: targets[" + std::to_string(i) + "]";
+    const auto found = std::find_if(declared.begin(), declared.end(), [&](const CurveDescriptor& c) { return c.name == t.curve; });
+    if (found == declared.end()) {
+      std::vector<std::string> names;
+      for (const auto& c : declared) names.push_back(c.name);
+      std::sort(names.begin(), names.end());
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+      // The same words as the initial-point check (study_preflight.cpp), now before any run.
+      throw std::runtime_error(field + ".curve: '" + t.curve + "' is not a curve of model '" + spec.model_reference +
+                               "'; it produces: " + known);
+    }
+    // unit_factor throws, naming the column, when the target's unit cannot convert to the curve's.
+    unit_factor(t.data.x_label, found->x_label, field + ".x_column");
+    unit_factor(t.data.y_label, found->y_label, field + ".y_column");
+  }
 }
 
 void check_parameter_bounds(const StudySpec& spec, const Model& model) {

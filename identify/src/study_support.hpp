@@ -33,6 +33,9 @@ Eigen::VectorXd unit_per_physical(const StudySpec& spec, const std::vector<rbf_s
 // Throws "study: variables[i].name: 'x' is not a parameter of model ..." for unknown names
 // (with several experiments: of no experiment's model).
 void check_parameter_names(const StudySpec& spec, const Model& model);
+// Every target names a curve the model declares (Model::curves), with units that convert to the
+// curve's; nothing to check when the model declares none.
+void check_declared_curves(const StudySpec& spec, const Model& model);
 // Throws (one line naming the variable, its bounds and the valid range) when a variable's bounds
 // or a fixed value leave the valid range of the model's parameter descriptors. Called by
 // check_parameter_names, so before any store exists.

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "case_test_options.hpp"
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/coarse_graining.hpp"
@@ -33,11 +34,28 @@ CaseSpec small_pellet_case() {
   return parse_case(document);
 }
 
+// The curves of a run are the ones its case kind declares before any run (case_registry.hpp),
+// with the same labels; each declared curve is returned (the quasi-static check only once the bed
+// carries load, so it may be absent).
+void check_curves_as_declared(const CaseSpec& spec, const CaseResult& result) {
+  const auto declared = produced_curves(spec);
+  for (const auto& [name, curve] : result.curves) {
+    INFO(name);
+    const auto found = std::find_if(declared.begin(), declared.end(), [&](const auto& d) { return d.name == name; });
+    REQUIRE(found != declared.end());
+    CHECK(curve.x_label == found->x_label);
+    CHECK(curve.y_label == found->y_label);
+  }
+  for (const auto& d : declared)
+    if (d.name != "quasi_static_check") CHECK(result.curves.count(d.name) == 1);
+}
+
 }  // namespace
 
 TEST_CASE("A small pellet compression runs and, with frictionless walls, the bottom plate carries piston force plus weight") {
   const CaseSpec spec = small_pellet_case();
   const CaseResult result = run_case(spec, {}, test_options());
+  check_curves_as_declared(spec, result);
   const CurveTable& history = result.tables.at("history");
   REQUIRE(history.columns.at(5) == "bottom_force_N");
   const double mass = 120 * spec.material.density * sphere_volume(spec.material.radius);
@@ -84,8 +102,10 @@ TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and rad
   document["drum"]["densify_time"] = 0.6;
   document["drum"]["surface_window"] = 0.05;
   document["drum"]["torque_interval"] = 0.05;
+  document["drum"]["image"] = {{"pixels", 120}};
   const CaseSpec spec = parse_case(document);
   const CaseResult result = run_case(spec, {}, test_options());
+  check_curves_as_declared(spec, result);
   // Expected count from Table 2: phi M0 / (s^3 m0), M0 = rho0 phi V_fill.
   const double drum_volume = std::numbers::pi * 0.05 * 0.05 * 0.025;
   const double m0 = 2500.0 * sphere_volume(0.001);

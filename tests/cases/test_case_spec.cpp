@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/case_spec.hpp"
 
 using namespace demfit::cases;
@@ -68,4 +69,43 @@ TEST_CASE("Setting overrides address identified parameters by name and other fie
   CHECK(spec.drum.coarse_graining == CoarseGraining::cvf);
   CHECK(spec.drum.scale_factor == 4.0);
   CHECK_THROWS(apply_setting(document, "normk"));
+}
+
+TEST_CASE("Every case kind has one registry row, found by its case-file name, and an unknown kind names them all") {
+  const auto& table = case_kind_table();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    CHECK(&case_kind_row(table[i].kind) == &table[i]);
+    REQUIRE(find_case_kind(table[i].name) == &table[i]);
+    CHECK(parse_case({{"case", table[i].name}}).kind == table[i].kind);
+    for (std::size_t j = 0; j < table.size(); ++j)
+      if (j != i) CHECK(std::string(table[i].section) != table[j].section);
+  }
+  CHECK(find_case_kind("ball_mill") == nullptr);
+  const std::string message = message_of({{"case", "ball_mill"}});
+  for (const auto& row : table) CHECK(message.find(std::string("\"") + row.name + "\"") != std::string::npos);
+  CHECK(message.find("ball_mill") != std::string::npos);
+}
+
+TEST_CASE("A case file carrying another kind's section is refused naming the section") {
+  CHECK(message_of({{"case", "pellet_compression"}, {"drum", json::object()}}) == "'drum' is not allowed in a pellet_compression case");
+  CHECK(message_of({{"case", "rotary_drum"}, {"pellet", json::object()}}) == "'pellet' is not allowed in a rotary_drum case");
+}
+
+TEST_CASE("The curves a case declares follow its options: the pellet cycle with unload, the image surface with drum.image") {
+  auto names = [](const CaseSpec& spec) {
+    std::vector<std::string> out;
+    for (const auto& c : produced_curves(spec)) out.push_back(c.name);
+    return out;
+  };
+  json pellet = {{"case", "pellet_compression"}};
+  CHECK(names(parse_case(pellet)) == std::vector<std::string>{"pressure_volume", "bottom_force_volume", "quasi_static_check"});
+  pellet["pellet"] = {{"unload", true}};
+  CHECK(names(parse_case(pellet)) ==
+        std::vector<std::string>{"pressure_volume", "bottom_force_volume", "pressure_volume_cycle", "quasi_static_check"});
+  json drum = {{"case", "rotary_drum"}};
+  CHECK(names(parse_case(drum)) == std::vector<std::string>{"torque", "free_surface"});
+  drum["drum"] = {{"image", {{"pixels", 200}}}};
+  CHECK(names(parse_case(drum)) == std::vector<std::string>{"torque", "free_surface", "free_surface_image"});
+  CHECK(case_curve(CaseKind::rotary_drum, "torque").y_label == "torque_Nm");
+  CHECK_THROWS_AS(case_curve(CaseKind::rotary_drum, "pressure_volume"), std::logic_error);
 }

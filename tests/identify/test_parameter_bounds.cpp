@@ -2,6 +2,8 @@
 // (issue 12 item 1) before anything runs or is stored.
 #include <catch2/catch.hpp>
 
+#include <atomic>
+
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/experiments.hpp"
 #include "demfit/identify/study.hpp"
@@ -140,4 +142,75 @@ TEST_CASE("An experiment's fixed parameter outside its model's valid range is re
   CHECK_THROWS_WITH(run_study(spec, model, quiet_options(dir)),
                     Catch::Contains("experiments[1].model.fixed_parameters.slope = 1.5") && Catch::Contains("[0, 1]"));
   CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+namespace {
+
+// The analytic model counting its evaluations (to show a check ran before any of them).
+class CountingAnalyticModel final : public Model {
+ public:
+  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<CurveDescriptor> curves() const override { return inner_.curves(); }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
+    ++evaluations;
+    return inner_.evaluate(p, c);
+  }
+  mutable std::atomic<int> evaluations{0};
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+}  // namespace
+
+TEST_CASE("A target naming a curve the model does not declare is refused when the study is loaded, before any run",
+          "[identify][curves]") {
+  nlohmann::json study = test::analytic_study(0.0, 1);
+  study["targets"][0]["curve"] = "respnse";
+  const auto dir = test::fresh_dir("curve_undeclared");
+  const CountingAnalyticModel model;
+  CHECK_THROWS_WITH(run_study(parse_study(study, "."), model, quiet_options(dir)),
+                    Catch::Contains("targets[0].curve: 'respnse'") && Catch::Contains("it produces: loop, response"));
+  CHECK(model.evaluations == 0);
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+}
+
+// The analytic curves with units on "response" (the analytic model's own are dimensionless,
+// "x_1", which convert from anything).
+class AnalyticModelWithUnits final : public Model {
+ public:
+  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<CurveDescriptor> curves() const override { return {{"response", "volume_cm3", "pressure_MPa"}, {"loop", "x_1", "y_1"}}; }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override { return inner_.evaluate(p, c); }
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+TEST_CASE("A target whose column unit is of another quantity than the declared curve's is refused at load",
+          "[identify][curves]") {
+  StudySpec spec = parse_study(test::analytic_study(0.0, 1), ".");
+  spec.targets[0].data.x_label = "time_s";
+  const auto dir = test::fresh_dir("curve_units");
+  CHECK_THROWS_WITH(run_study(spec, AnalyticModelWithUnits(), quiet_options(dir)),
+                    Catch::Contains("targets[0].x_column") && Catch::Contains("time"));
+  CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
+  spec.targets[0].data.x_label = "volume_mm3";  // same quantity: accepted (converted later)
+  CHECK_NOTHROW(run_study(spec, AnalyticModelWithUnits(), quiet_options(test::fresh_dir("curve_units_ok"))));
+}
+
+TEST_CASE("Several experiments declare their curves under the experiment's name", "[identify][curves][experiments]") {
+  const StudySpec spec = two_experiment_study();
+  const ExperimentSetModel model = two_models(spec);
+  // BoundedAnalyticModel declares none, so the set declares none (checked at the initial point).
+  CHECK(model.curves().empty());
+  std::vector<std::unique_ptr<Model>> declaring;
+  declaring.push_back(std::make_unique<AnalyticCurveModel>());
+  declaring.push_back(std::make_unique<AnalyticCurveModel>());
+  const ExperimentSetModel set(spec, std::move(declaring));
+  std::vector<std::string> names;
+  for (const auto& c : set.curves()) names.push_back(c.name);
+  CHECK(names == std::vector<std::string>{"wide/response", "wide/loop", "narrow/response", "narrow/loop"});
 }

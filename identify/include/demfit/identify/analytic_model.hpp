@@ -16,6 +16,7 @@ class AnalyticCurveModel final : public Model {
   explicit AnalyticCurveModel(int points = 41);
   std::vector<std::string> parameter_names() const override;
   ParameterSet default_parameters() const override;
+  std::vector<CurveDescriptor> curves() const override;
   CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override;
 
  private:

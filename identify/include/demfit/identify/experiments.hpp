@@ -32,6 +32,8 @@ class ExperimentSetModel final : public Model {
   std::vector<std::string> parameter_names() const override;
   // Their descriptors; a name several experiments accept gets the intersection of their ranges.
   std::vector<ParameterDescriptor> parameters() const override;
+  // "<experiment>/<curve>" for every experiment's declared curve; empty when one declares none.
+  std::vector<CurveDescriptor> curves() const override;
   // Empty: every experiment brings its own defaults (experiment_parameters).
   ParameterSet default_parameters() const override { return {}; }
   // Runs the experiments one after the other; curves keyed "<experiment>/<curve>". Throws the

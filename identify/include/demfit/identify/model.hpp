@@ -18,6 +18,14 @@ struct Curve {
   std::vector<double> y;
 };
 
+// A curve a model declares before any run: its name and its column labels (with units), so a
+// study's targets are checked when it is loaded, not after the first simulation.
+struct CurveDescriptor {
+  std::string name;
+  std::string x_label;
+  std::string y_label;
+};
+
 // Parameter values by name, in the units the model declares (SI unless the name says otherwise).
 using ParameterSet = std::map<std::string, double>;
 
@@ -37,6 +45,9 @@ class Model {
   // The same parameters with unit and valid range (study bounds are checked against them before
   // a study starts). Models that declare no ranges keep this default: any value, unit unknown.
   virtual std::vector<ParameterDescriptor> parameters() const { return unbounded_descriptors(parameter_names()); }
+  // Every curve evaluate() can return, with its labels. Empty = not declared (the study's targets
+  // are then checked only at the initial point).
+  virtual std::vector<CurveDescriptor> curves() const { return {}; }
   // Values used for parameters a study does not vary.
   virtual ParameterSet default_parameters() const = 0;
   // Runs one evaluation. Must be safe to call concurrently from several threads on one object.
