@@ -11,14 +11,14 @@ const std::vector<CaseKindRow>& case_kind_table() {
        "pellets poured into a cylinder and compressed by a piston (SPEC 2.1)",
        {{{"pressure_volume", "volume_cm3", "pressure_MPa"}},
         {{"bottom_force_volume", "volume_cm3", "bottom_force_N"}},
-        {{"pressure_volume_cycle", "volume_cm3", "pressure_MPa"}, "pellet.unload"},
+        {{"pressure_volume_cycle", "volume_cm3", "pressure_MPa"}, CurveCondition::pellet_unload},
         // SPEC 2.1's quasi-static check (identify::kQuasiStaticCurve), once the bed carries load.
         {{"quasi_static_check", "volume_cm3", "kinetic_over_elastic_energy_per_limit"}}}},
       {CaseKind::rotary_drum, "rotary_drum", "drum",
        "powder turning in a closed drum (SPEC 2.2; the GranuDrum, data/granudrum_mcc)",
        {{{"torque", "time_s", "torque_Nm"}},
         {{"free_surface", "x_mm", "height_mm"}},
-        {{"free_surface_image", "x_mm", "z_mm"}, "drum.image"}}},
+        {{"free_surface_image", "x_mm", "z_mm"}, CurveCondition::drum_image}}},
   };
   return table;
 }
@@ -45,12 +45,14 @@ std::string case_kind_names() {
 
 namespace {
 
-// Whether the option a curve depends on is on in `spec`.
-bool option_on(const CaseSpec& spec, std::string_view produced) {
-  if (produced == "always") return true;
-  if (produced == "pellet.unload") return spec.pellet.unload;
-  if (produced == "drum.image") return spec.drum.image.enabled;
-  throw std::logic_error("case registry: unknown curve option " + std::string(produced));
+// Whether the case-file option a curve depends on is on in `spec` (exhaustive: -Werror=switch).
+bool option_on(const CaseSpec& spec, CurveCondition produced) {
+  switch (produced) {
+    case CurveCondition::always: return true;
+    case CurveCondition::pellet_unload: return spec.pellet.unload;
+    case CurveCondition::drum_image: return spec.drum.image.enabled;
+  }
+  throw std::logic_error("case registry: a CurveCondition without its option");
 }
 
 }  // namespace

@@ -49,6 +49,12 @@ const identify::Curve& curve_for(const identify::CurveSet& curves, const identif
   return found->second;
 }
 
+// The source's calibrated values (data/granudrum_mcc/README.md): one definition for the runs and the report.
+const identify::ParameterSet& published_parameters() {
+  static const identify::ParameterSet values{{"frics", 0.561}, {"fricr", 0.293}, {"particle_count", 29185.0}};
+  return values;
+}
+
 std::string scale_label(double scale) { return fmt("%g", scale); }
 
 std::string experiment_of(const identify::TargetSpec& t) { return t.experiment.empty() ? t.name : t.experiment; }
@@ -176,7 +182,9 @@ std::string granudrum_report(const identify::StudySpec& spec, const identify::St
          (known ? identify::interval_text(interval->second) : std::string("n/a")) + " | " +
          (ls != r.least_squares_estimate.end() ? fmt("%.6g", ls->second) : "n/a") + " | " + note + " |\n";
   }
-  t += "\nSource's published values: frics 0.561, fricr 0.293, particle_count 29,185 (50 mL).\n\n";
+  t += "\nSource's published values:";
+  for (const auto& [name, value] : published_parameters()) t += " " + name + " " + fmt("%g", value);
+  t += " (50 mL).\n\n";
   t += "Runs: " + std::to_string(r.runs) + " evaluations (each = both speeds; " + std::to_string(r.failed_runs) +
        " failed), " + std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) + " s.\n\n";
   t += "| target | demfit calibrated RMS [mm] | differing area [mm²] |";
@@ -199,7 +207,6 @@ namespace {
 // s times that step, the studies' rule: the Hertz stable step grows with the radius).
 identify::CurveSet run_published(const identify::StudySpec& spec, const identify::ExperimentSpec& experiment,
                                  const GranudrumOptions& options, double scale, const ProgressCallback& progress) {
-  const identify::ParameterSet published{{"frics", 0.561}, {"fricr", 0.293}, {"particle_count", 29185.0}};
   nlohmann::json overrides = experiment.model_overrides;
   if (overrides.is_object()) overrides.erase("time_step");  // a study's coarse step would be unstable at s = 1
   overrides.merge_patch({{"drum", {{"scale_factor", 1.0}}}});
@@ -213,7 +220,7 @@ identify::CurveSet run_published(const identify::StudySpec& spec, const identify
   run.threads = std::max(1, options.base.threads_per_job);
   run.progress = progress;
   identify::CurveSet curves;
-  for (auto& [name, curve] : run_case(run_case_spec, published, run).curves) curves[experiment.name + "/" + name] = curve;
+  for (auto& [name, curve] : run_case(run_case_spec, published_parameters(), run).curves) curves[experiment.name + "/" + name] = curve;
   return curves;
 }
 

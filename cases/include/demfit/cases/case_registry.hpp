@@ -12,10 +12,13 @@
 
 namespace demfit::cases {
 
+// When a kind produces a curve: always, or only with a case-file option on.
+enum class CurveCondition { always, pellet_unload, drum_image };
+
 // A curve of a case kind and when the kind produces it.
 struct CaseCurve {
   identify::CurveDescriptor curve;
-  const char* produced = "always";  // or the case-file option that switches it on
+  CurveCondition produced = CurveCondition::always;
 };
 
 struct CaseKindRow {
