@@ -47,10 +47,37 @@ const std::vector<std::string> kSeeds = {
     "\xEF\xBB\xBFvolume_cm3,pressure_MPa,extra\n\"20.0\",0.0,a\n19.5,+1e-3,b\n19.0,2.5e+00,c\n",
 };
 
-const std::vector<std::string> kTokens = {"[", "]", "{", "}", "\"", ",", ":", "\n", "\\", "\\u0000", "1e999", "-0",
-                                          "nan", "null", "true", "\"name\":", "\"x\":[", "\xEF\xBB\xBF", "#", "\r",
-                                          "18446744073709551616", "-9223372036854775809", "1e-400", "\"\":",
-                                          "x_1", "y_1", ",,,,", "\x00", "\xff\xfe", "[[[[[[[[[[[[", "]]]]]]]]"};
+const std::vector<std::string> kTokens = {"[",
+                                          "]",
+                                          "{",
+                                          "}",
+                                          "\"",
+                                          ",",
+                                          ":",
+                                          "\n",
+                                          "\\",
+                                          "\\u0000",
+                                          "1e999",
+                                          "-0",
+                                          "nan",
+                                          "null",
+                                          "true",
+                                          "\"name\":",
+                                          "\"x\":[",
+                                          "\xEF\xBB\xBF",
+                                          "#",
+                                          "\r",
+                                          "18446744073709551616",
+                                          "-9223372036854775809",
+                                          "1e-400",
+                                          "\"\":",
+                                          "x_1",
+                                          "y_1",
+                                          ",,,,",
+                                          "\x00",
+                                          "\xff\xfe",
+                                          "[[[[[[[[[[[[",
+                                          "]]]]]]]]"};
 
 std::string mutate(std::string text, std::mt19937_64& rng) {
   auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n); };
@@ -61,14 +88,20 @@ std::string mutate(std::string text, std::mt19937_64& rng) {
       case 0:
         if (!text.empty()) text[pick(text.size())] ^= static_cast<char>(1u << (rng() % 8));
         break;
-      case 1: text.insert(at, kTokens[pick(kTokens.size())]); break;
-      case 2: text.erase(at, pick(16)); break;
+      case 1:
+        text.insert(at, kTokens[pick(kTokens.size())]);
+        break;
+      case 2:
+        text.erase(at, pick(16));
+        break;
       case 3: {
         const std::size_t from = pick(text.size() + 1);
         text.insert(at, text.substr(from, pick(64)));
         break;
       }
-      case 4: text.insert(at, 1, static_cast<char>(rng() & 0xff)); break;
+      case 4:
+        text.insert(at, 1, static_cast<char>(rng() & 0xff));
+        break;
       default:
         if (!text.empty()) text.resize(pick(text.size()));
         break;
@@ -85,22 +118,16 @@ std::string execute(const std::string& text) {
       const nlohmann::json json = demfit::identify::parse_json_document(text, "fuzz input");
       try {
         demfit::identify::parse_study(json, "/nonexistent-fuzz-folder");
-      } catch (const std::runtime_error&) {
-      }
+      } catch (const std::runtime_error&) {}
       try {
         demfit::cases::parse_case(json);
-      } catch (const std::runtime_error&) {
-      }
-    } catch (const std::runtime_error&) {
-    }
+      } catch (const std::runtime_error&) {}
+    } catch (const std::runtime_error&) {}
     try {
       std::istringstream in(text);
       demfit::identify::parse_curve_csv(in, "fuzz.csv", "x_1", "y_1");
-    } catch (const std::runtime_error&) {
-    }
-  } catch (const std::exception& e) {
-    return std::string("unexpected exception: ") + e.what();
-  }
+    } catch (const std::runtime_error&) {}
+  } catch (const std::exception& e) { return std::string("unexpected exception: ") + e.what(); }
   return {};
 }
 

@@ -26,7 +26,8 @@ void require_finite(double value, const std::string& option) {
   if (!std::isfinite(value)) throw std::runtime_error(option + ": must be a finite number");
 }
 
-std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec, const std::filesystem::path& study_file) {
+std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
+                                                const std::filesystem::path& study_file) {
   std::vector<std::filesystem::path> inputs{study_file};
   for (const auto& t : spec.targets)
     if (!t.csv.empty()) inputs.push_back(t.csv.is_absolute() ? t.csv : spec.base_dir / t.csv);

@@ -15,7 +15,8 @@ int capped_threads(int requested, const std::string& option);
 // Throws "<option>: must be a finite number" for NaN or infinity.
 void require_finite(double value, const std::string& option);
 // The study file, its target CSV files and its case file (when it is a file).
-std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec, const std::filesystem::path& study_file);
+std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
+                                                const std::filesystem::path& study_file);
 // Removes "<parent>/.<name>.partial-<pid>" staging folders of processes that no longer run.
 void remove_stale_staging(const std::filesystem::path& target);
 

@@ -27,8 +27,8 @@ namespace {
 
 struct DiagnoseCliOptions {
   std::string study_file;
-  std::string effects;          // comma-separated candidate names; empty = all for the model
-  double noise = 0.0;           // y units; 0 = estimate from the data
+  std::string effects;  // comma-separated candidate names; empty = all for the model
+  double noise = 0.0;   // y units; 0 = estimate from the data
   std::string out;
   int jobs = 1;
   double alpha = 0.01;
@@ -50,7 +50,8 @@ bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& param
 // or already differs from its off value in the model (`values`: the effect is then part of the
 // base model, not a candidate). `experiment` non-empty: the effect's curves are qualified
 // "<experiment>/<curve>" as an experiments study keys them.
-std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& case_spec, const identify::ParameterSet& values,
+std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& case_spec,
+                                                      const identify::ParameterSet& values,
                                                       const std::vector<identify::VariableSpec>& variables,
                                                       const std::string& experiment) {
   std::vector<diagnose::EffectCandidate> out;
@@ -67,8 +68,8 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& cas
         if (v.name == p.name) reason = "'" + p.name + "' is a study variable";
       const auto found = values.find(p.name);
       if (reason.empty() && found != values.end() && found->second != p.off_value)
-        reason = "the model already has " + p.name + " = " + std::to_string(found->second) + " (off: " +
-                 std::to_string(p.off_value) + ")";
+        reason = "the model already has " + p.name + " = " + std::to_string(found->second) +
+                 " (off: " + std::to_string(p.off_value) + ")";
     }
     if (reason.empty()) {
       out.push_back(std::move(c));
@@ -104,7 +105,8 @@ identify::StudySpec with_pointwise_metrics(identify::StudySpec spec) {
   for (auto& t : spec.targets) {
     if (t.metric != identify::CurveMetric::profile_area) continue;
     t.metric = identify::CurveMetric::mse;
-    std::fprintf(stderr, "demfit: note: target '%s': profile_area is fitted as mse at the target's points\n", t.name.c_str());
+    std::fprintf(stderr, "demfit: note: target '%s': profile_area is fitted as mse at the target's points\n",
+                 t.name.c_str());
   }
   return spec;
 }
@@ -133,7 +135,8 @@ std::unique_ptr<identify::Model> one_model(const std::string& reference, const n
   auto model = cases::make_model(reference, overrides, spec.base_dir);
   identify::ParameterSet values = model->default_parameters();
   for (const auto& [name, value] : fixed) values[name] = value;
-  candidates = dem_candidates(cases::resolve_case(reference, overrides, spec.base_dir), values, spec.variables, experiment);
+  candidates =
+      dem_candidates(cases::resolve_case(reference, overrides, spec.base_dir), values, spec.variables, experiment);
   return model;
 }
 
@@ -167,7 +170,8 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   require_finite(o.noise, "--noise");
   require_finite(o.alpha, "--alpha");
   require_finite(o.bic_threshold, "--bic-threshold");
-  if (o.noise < 0.0) throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
+  if (o.noise < 0.0)
+    throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
   if (!(o.alpha > 0.0 && o.alpha < 1.0)) throw std::runtime_error("--alpha: must be in (0, 1), e.g. 0.01");
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
   const identify::StudySpec spec = with_pointwise_metrics(identify::load_study_file(o.study_file));
@@ -210,23 +214,34 @@ void register_diagnose(CLI::App& app) {
       "residual is noise (runs, lag-1 autocorrelation, variance vs the noise level, smooth-structure projection) "
       "and, if not, screen candidate effects by a score test, re-fit the best few and name one only if BIC improves "
       "by more than the threshold AND the residual becomes noise (tests at 5 %); otherwise report an unexplained "
-      "or ambiguous residual. See docs/diagnose.md. Writes report.md, diagnosis.json, diagnosis_<target>.png. Candidates: "
-      "for pellet_compression / rotary_drum studies the effects of the cases catalogue that apply to the case (plasticity, "
-      "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is left "
-      "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of each "
-      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch by branch; "
-      "profile_area targets are fitted as mse at their points). A study with \"experiments\" is diagnosed as one model over all "
+      "or ambiguous residual. See docs/diagnose.md. Writes report.md, diagnosis.json, diagnosis_<target>.png. "
+      "Candidates: "
+      "for pellet_compression / rotary_drum studies the effects of the cases catalogue that apply to the case "
+      "(plasticity, "
+      "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is "
+      "left "
+      "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of "
+      "each "
+      "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch "
+      "by branch; "
+      "profile_area targets are fitted as mse at their points). A study with \"experiments\" is diagnosed as one model "
+      "over all "
       "experiments, with the union of their candidates.");
-  cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--effects", o->effects, "Comma-separated candidate effects to consider (default: all that apply to the model or case)");
+  cmd->add_option("study", o->study_file, "Study file (JSON, docs/study_format.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--effects", o->effects,
+                  "Comma-separated candidate effects to consider (default: all that apply to the model or case)");
   cmd->add_option("--noise", o->noise,
                   "Noise standard deviation of the target y values, in the targets' y units (default: estimated "
                   "from successive differences of each target)");
   cmd->add_option("--out", o->out, "Output folder (default: <study file stem>_diagnosis)");
   cmd->add_option("--jobs", o->jobs, "Model evaluations at once (default 1); results do not depend on it");
-  cmd->add_option("--alpha", o->alpha, "Family-wise level of the tests that call the base residual structural (default 0.01)");
+  cmd->add_option("--alpha", o->alpha,
+                  "Family-wise level of the tests that call the base residual structural (default 0.01)");
   cmd->add_option("--bic-threshold", o->bic_threshold, "BIC improvement needed to name an effect (default 10)");
-  cmd->add_option("--refit-best", o->refit_best, "Candidates re-identified after screening: at least this many (default 2), plus every one scoring at "
+  cmd->add_option("--refit-best", o->refit_best,
+                  "Candidates re-identified after screening: at least this many (default 2), plus every one scoring at "
                   "least 1/4 of the best (DEM models) or all of them (analytic model)");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });

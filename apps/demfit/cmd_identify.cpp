@@ -56,7 +56,8 @@ std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
   return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
 }
 
-void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result, const std::filesystem::path& out) {
+void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result,
+                   const std::filesystem::path& out) {
   std::printf("best objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective, result.runs,
               result.failed_runs, result.iterations, result.converged ? "converged" : "iteration limit reached");
   // The same interval as report.md, best_parameters.json and the export (reported_interval.hpp).
@@ -158,15 +159,17 @@ void run_identify(const IdentifyOptions& o) {
   options.threads_per_job = capped_threads(o.threads_per_job, "--threads-per-job");
   options.resume = o.resume;
   options.plots = !o.no_plots;
-  options.output_dir = o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_results")
-                                     : std::filesystem::path(o.out);
+  options.output_dir = o.out.empty()
+                           ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_results")
+                           : std::filesystem::path(o.out);
   if (o.mpi) {
 #if defined(DEMFIT_HAVE_SCALEOUT)
     run_identify_mpi(o, options);
     return;
 #else
-    throw std::runtime_error("--mpi: this demfit was built without MPI; apt-get install libopenmpi-dev openmpi-bin "
-                             "and rebuild (scripts/build)");
+    throw std::runtime_error(
+        "--mpi: this demfit was built without MPI; apt-get install libopenmpi-dev openmpi-bin "
+        "and rebuild (scripts/build)");
 #endif
   }
   // Every configuration error before anything is created (issue #13): the study, the output
@@ -198,8 +201,9 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
     const std::string name = v.value("name", std::string("?"));
     std::string line = "variable " + name + ": bounds [" + identify::json_excerpt(v.value("lower", nlohmann::json())) +
                        ", " + identify::json_excerpt(v.value("upper", nlohmann::json())) + "]";
-    const nlohmann::json value = result ? result->value("best_parameters", nlohmann::json::object()).value(name, nlohmann::json())
-                                        : nlohmann::json();
+    const nlohmann::json value =
+        result ? result->value("best_parameters", nlohmann::json::object()).value(name, nlohmann::json())
+               : nlohmann::json();
     if (uncertainty.is_object() && value.is_number()) {
       // The same interval as report.md and best_parameters.json (reported_interval.hpp).
       const identify::ReportedInterval interval = identify::reported_interval(uncertainty, name, value.get<double>());
@@ -212,9 +216,9 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
   }
   try {
     const auto& model = study.at("model");
-    const cases::CaseSpec c = cases::resolve_case(model.at("case").get<std::string>(),
-                                                  model.value("overrides", nlohmann::json::object()),
-                                                  std::filesystem::absolute(db).parent_path());
+    const cases::CaseSpec c =
+        cases::resolve_case(model.at("case").get<std::string>(), model.value("overrides", nlohmann::json::object()),
+                            std::filesystem::absolute(db).parent_path());
     char text[240];
     std::snprintf(text, sizeof text,
                   "material context: E = %.6g Pa, nu = %.4g, K = E/(3(1-2nu)) = %.6g Pa, radius = %.6g m, "
@@ -234,12 +238,14 @@ void run_export(const std::string& db, const std::string& keyword_file) {
   const nlohmann::json study = store.study_json();
   const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
   if (model == "analytic")
-    throw std::runtime_error("export: study store '" + db + "' identifies the \"analytic\" test model, not a DEM case; "
+    throw std::runtime_error("export: study store '" + db +
+                             "' identifies the \"analytic\" test model, not a DEM case; "
                              "LS-DYNA DEM cards need a pellet_compression or rotary_drum study");
   // Runs of a study with experiments store only the variables (each experiment has its own case
   // values): there is no single full parameter set to write.
   if (study.contains("experiments"))
-    throw std::runtime_error("export: study store '" + db + "' is a study with several experiments; export needs a "
+    throw std::runtime_error("export: study store '" + db +
+                             "' is a study with several experiments; export needs a "
                              "single-model study (one case, one full parameter set)");
   std::error_code error;
   if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
@@ -289,7 +295,8 @@ void register_identify(CLI::App& app) {
   auto report_db = std::make_shared<std::string>();
   auto report_out = std::make_shared<std::string>();
   auto report_no_plots = std::make_shared<bool>(false);
-  auto* report = app.add_subcommand("report", "Rebuild the result files and report.md of a study from its study.db alone");
+  auto* report =
+      app.add_subcommand("report", "Rebuild the result files and report.md of a study from its study.db alone");
   report->add_option("store", *report_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
   report->add_option("--out", *report_out, "Output folder (default: the store's folder)");
   report->add_flag("--no-plots", *report_no_plots, "Do not call gnuplot");
@@ -300,15 +307,17 @@ void register_identify(CLI::App& app) {
     identify::prepare_output_folder(out, {*report_db}, "--out");
     const auto summary = identify::write_report(store, out, !*report_no_plots);
     if (!summary.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", summary.plot_warning.c_str());
-    for (const auto& w : identify::study_diagnostics(store).warnings) std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
+    for (const auto& w : identify::study_diagnostics(store).warnings)
+      std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
     std::printf("%d files written to %s\n", summary.files_written, out.string().c_str());
   });
 
   auto export_db = std::make_shared<std::string>();
   auto export_k = std::make_shared<std::string>();
   auto* exporter = app.add_subcommand(
-      "export", "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
-                "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
+      "export",
+      "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
+      "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
   exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
   exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
   exporter->callback([export_db, export_k] { run_export(*export_db, *export_k); });

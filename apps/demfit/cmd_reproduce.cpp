@@ -37,7 +37,8 @@ std::filesystem::path find_data_dir(const ReproduceArgs& a) {
   std::error_code error;
   const std::filesystem::path here("data");
   if (std::filesystem::exists(here / "pellet_pressure_volume_synthetic.csv", error)) return here;
-  std::filesystem::path tree = std::filesystem::read_symlink("/proc/self/exe", error).parent_path().parent_path().parent_path();
+  std::filesystem::path tree =
+      std::filesystem::read_symlink("/proc/self/exe", error).parent_path().parent_path().parent_path();
   tree /= "data";
   if (std::filesystem::exists(tree / "pellet_pressure_volume_synthetic.csv", error)) return tree;
   return "data";
@@ -74,10 +75,11 @@ void run_one(const ReproduceArgs& a, const char* name, Step step) {
 void run_all(const ReproduceArgs& a) {
   const cases::ReproduceOptions o = options_of(a);
   const auto start = std::chrono::steady_clock::now();
-  std::string report = "# demfit reproduce all" + std::string(a.quick ? " --quick" : "") +
-                       "\n\nThe paper's studies reproduced end to end (SPEC section 2). Quick mode uses fewer runs and a "
-                       "cheaper drum (12.5 mm instead of 25 mm long, 0.25 s densification, 1 s of rotation); "
-                       "see docs/reproduce.md for the measured full-mode results and times.\n\n";
+  std::string report =
+      "# demfit reproduce all" + std::string(a.quick ? " --quick" : "") +
+      "\n\nThe paper's studies reproduced end to end (SPEC section 2). Quick mode uses fewer runs and a "
+      "cheaper drum (12.5 mm instead of 25 mm long, 0.25 s densification, 1 s of rotation); "
+      "see docs/reproduce.md for the measured full-mode results and times.\n\n";
   const std::pair<const char*, Step> steps[] = {{"table2", cases::reproduce_table2},
                                                 {"table1", cases::reproduce_table1},
                                                 {"figures", cases::reproduce_figures},
@@ -88,9 +90,7 @@ void run_all(const ReproduceArgs& a) {
     std::string text;
     try {
       text = step(o);
-    } catch (const std::exception& e) {
-      text = std::string("**") + name + " failed:** " + e.what() + "\n";
-    }
+    } catch (const std::exception& e) { text = std::string("**") + name + " failed:** " + e.what() + "\n"; }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cout << text << '\n';
     char timing[96];
@@ -132,12 +132,20 @@ void register_reproduce(CLI::App& app) {
                   "(minutes instead of an hour)");
     sub->add_flag("--resume", args->resume, "continue identification studies found in --out");
   };
-  struct Entry { const char* name; const char* help; Step step; };
+  struct Entry {
+    const char* name;
+    const char* help;
+    Step step;
+  };
   const Entry entries[] = {
-      {"table1", "Table 1: K_bulk, and NORMK/SHEARK identified from the synthetic pellet curve", cases::reproduce_table1},
-      {"table2", "Table 2: SCG and CVF coarse-graining rows for s = 1, 2, 4 (with the CVF radius note)", cases::reproduce_table2},
-      {"figures", "Figs. 4-5: drum particle pictures at the end time and torque histories, s = 1, 2, 4, SCG and CVF", cases::reproduce_figures},
-      {"table3", "Table 3: 9 drum parameters of SCG s = 4 identified against the s = 1 free surface", cases::reproduce_table3}};
+      {"table1", "Table 1: K_bulk, and NORMK/SHEARK identified from the synthetic pellet curve",
+       cases::reproduce_table1},
+      {"table2", "Table 2: SCG and CVF coarse-graining rows for s = 1, 2, 4 (with the CVF radius note)",
+       cases::reproduce_table2},
+      {"figures", "Figs. 4-5: drum particle pictures at the end time and torque histories, s = 1, 2, 4, SCG and CVF",
+       cases::reproduce_figures},
+      {"table3", "Table 3: 9 drum parameters of SCG s = 4 identified against the s = 1 free surface",
+       cases::reproduce_table3}};
   for (const Entry& e : entries) {
     auto* sub = cmd->add_subcommand(e.name, e.help);
     add_common(sub);

@@ -52,9 +52,9 @@ void run_simulate(const SimulateOptions& o) {
   if (o.threads < 1) throw std::runtime_error("--threads must be >= 1");
   if (!(o.noise >= 0.0) || !std::isfinite(o.noise))
     throw std::runtime_error("--noise must be a finite number >= 0 (relative to max|y| of each curve)");
-  const std::filesystem::path out =
-      o.out.empty() ? std::filesystem::path("results") / std::filesystem::path(o.case_file).stem()
-                    : std::filesystem::path(o.out);
+  const std::filesystem::path out = o.out.empty()
+                                        ? std::filesystem::path("results") / std::filesystem::path(o.case_file).stem()
+                                        : std::filesystem::path(o.out);
   // The output folder replaces an existing one only if demfit made it (issue #13): never the
   // working folder, a parent of it, a folder holding the case file, a plain file or a user folder.
   identify::check_replaceable_folder(out, {o.case_file}, "--out");
@@ -86,14 +86,16 @@ void run_simulate(const SimulateOptions& o) {
     }
   }
   nlohmann::json resolved = cases::to_json(spec);
-  resolved["description"] = spec.description +
-                            (parameters.empty() ? "" : " [run with --set parameters: see summary.txt; the fill uses the values below, except radius_spread, "
-                                                       "which is applied to the fill too]");
+  resolved["description"] =
+      spec.description +
+      (parameters.empty()
+           ? ""
+           : " [run with --set parameters: see summary.txt; the fill uses the values below, except radius_spread, "
+             "which is applied to the fill too]");
   cases::write_case_result(staged.path(), result, resolved, evaluated, {o.noise, o.seed});
   identify::mark_output_folder(staged.path(), "demfit simulate");
   staged.commit();
-  std::cout << "demfit simulate: " << o.case_file << " -> " << out.string() << '\n'
-            << cases::format_summary(result);
+  std::cout << "demfit simulate: " << o.case_file << " -> " << out.string() << '\n' << cases::format_summary(result);
   if (o.noise > 0.0) std::cout << "\ncurves are SYNTHETIC: noise " << o.noise << " x max|y|, seed " << o.seed << '\n';
 }
 
@@ -119,8 +121,10 @@ void register_simulate(CLI::App& app) {
                   "law) act on the measured stage; those marked \"changes the fill\" make a new fill, cached per "
                   "value; any other dotted case field (e.g. pellet.piston_speed=0.1 [m/s]) edits the case")
       ->take_all();
-  cmd->add_option("--out", options->out, "output folder (default: results/<case file stem>); replaced if it exists and demfit created it "
-                  "(marker file .demfit-output); never the working folder, a parent of it, or a folder holding the case");
+  cmd->add_option(
+      "--out", options->out,
+      "output folder (default: results/<case file stem>); replaced if it exists and demfit created it "
+      "(marker file .demfit-output); never the working folder, a parent of it, or a folder holding the case");
   cmd->add_option("--threads", options->threads, "OpenMP threads of the simulation (default 1)");
   cmd->add_option("--noise", options->noise,
                   "add seeded Gaussian noise to the written curves, sigma = NOISE x max|y| (default 0 = none); "
@@ -129,7 +133,8 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--snapshots", options->snapshots,
                   "VTK snapshot times [s] from the start of the measured stage (default: none)")
       ->delimiter(',');
-  cmd->footer("Identified parameters for --set (docs/parameters.md, `demfit parameters`):\n" + cases::parameter_help_text());
+  cmd->footer("Identified parameters for --set (docs/parameters.md, `demfit parameters`):\n" +
+              cases::parameter_help_text());
   cmd->callback([options] { run_simulate(*options); });
 }
 

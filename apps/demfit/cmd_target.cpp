@@ -35,7 +35,8 @@ double parse_diameter(const std::string& text) {
   static const std::regex pattern(R"(\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(mm|m)?\s*)");
   std::smatch match;
   if (!std::regex_match(text, match, pattern))
-    throw std::runtime_error("--diameter '" + text + "': give a number with unit mm or m, e.g. 84mm or 0.084m (a bare number is metres)");
+    throw std::runtime_error("--diameter '" + text +
+                             "': give a number with unit mm or m, e.g. 84mm or 0.084m (a bare number is metres)");
   const double value = std::stod(match[1].str()) * (match[2].str() == "mm" ? 1e-3 : 1.0);
   if (!(value > 0.0)) throw std::runtime_error("--diameter '" + text + "': the drum diameter must be > 0, e.g. 84mm");
   if (value > 10.0)
@@ -48,11 +49,13 @@ std::string format_csv(const imaging::SurfaceProfile& profile, const imaging::Dr
                        const TargetFromImageOptions& o) {
   std::ostringstream csv;
   csv.precision(6);
-  csv << "# free surface of the bed in the drum frame: x right as seen in the picture, z up, origin on the drum axis, mm; "
+  csv << "# free surface of the bed in the drum frame: x right as seen in the picture, z up, origin on the drum axis, "
+         "mm; "
       << "the square image spans the inner diameter " << frame.diameter * 1e3 << " mm\n"
-      << "# source: " << o.photo << "; threshold " << profile.threshold_used << (o.threshold < 0.0 ? " (Otsu)" : " (given)")
-      << "; material " << (o.inverted ? "light" : "dark") << "; margin " << o.margin << " (compared circle radius "
-      << profile.compared_radius * 1e3 << " mm); pixel " << profile.pixel_size * 1e3 << " mm\n"
+      << "# source: " << o.photo << "; threshold " << profile.threshold_used
+      << (o.threshold < 0.0 ? " (Otsu)" : " (given)") << "; material " << (o.inverted ? "light" : "dark") << "; margin "
+      << o.margin << " (compared circle radius " << profile.compared_radius * 1e3 << " mm); pixel "
+      << profile.pixel_size * 1e3 << " mm\n"
       << "x_mm,z_mm\n";
   for (std::size_t i = 0; i < profile.x.size(); ++i) csv << profile.x[i] * 1e3 << ',' << profile.z[i] * 1e3 << '\n';
   return csv.str();
@@ -61,8 +64,12 @@ std::string format_csv(const imaging::SurfaceProfile& profile, const imaging::Dr
 void run_target_from_image(const TargetFromImageOptions& o) {
   // Everything is computed before anything is written (bad input leaves nothing behind).
   const imaging::DrumFrame frame{parse_diameter(o.diameter)};
-  if (o.threshold > 1.0) throw std::runtime_error("--threshold " + std::to_string(o.threshold) + ": give a grey level in [0, 1] (0 black, 1 white)");
-  if (!(o.margin >= 0.0 && o.margin < 1.0)) throw std::runtime_error("--margin " + std::to_string(o.margin) + ": give a fraction of the radius in [0, 1), e.g. 0.1");
+  if (o.threshold > 1.0)
+    throw std::runtime_error("--threshold " + std::to_string(o.threshold) +
+                             ": give a grey level in [0, 1] (0 black, 1 white)");
+  if (!(o.margin >= 0.0 && o.margin < 1.0))
+    throw std::runtime_error("--margin " + std::to_string(o.margin) +
+                             ": give a fraction of the radius in [0, 1), e.g. 0.1");
   if (o.points < 2) throw std::runtime_error("--points " + std::to_string(o.points) + ": give at least 2");
   imaging::ProfileOptions options;
   options.threshold = o.threshold;
@@ -78,10 +85,11 @@ void run_target_from_image(const TargetFromImageOptions& o) {
   identify::prepare_output_folder(o.out, {o.photo}, "--out");
   identify::write_file_atomically(fs::path(o.out) / "free_surface.csv", csv);
   identify::write_file_atomically(fs::path(o.out) / "overlay.png", png);
-  std::printf("demfit target from-image: %s -> %s\n  %zu points, x %.2f .. %.2f mm, threshold %.3f%s\n"
-              "  straight-line fit: angle %.2f deg (negative = bed lifted on the left), residual %.3f mm RMS\n",
-              o.photo.c_str(), o.out.c_str(), profile.x.size(), profile.x.front() * 1e3, profile.x.back() * 1e3,
-              profile.threshold_used, o.threshold < 0.0 ? " (Otsu)" : "", line.angle_deg, line.residual_rms * 1e3);
+  std::printf(
+      "demfit target from-image: %s -> %s\n  %zu points, x %.2f .. %.2f mm, threshold %.3f%s\n"
+      "  straight-line fit: angle %.2f deg (negative = bed lifted on the left), residual %.3f mm RMS\n",
+      o.photo.c_str(), o.out.c_str(), profile.x.size(), profile.x.front() * 1e3, profile.x.back() * 1e3,
+      profile.threshold_used, o.threshold < 0.0 ? " (Otsu)" : "", line.angle_deg, line.residual_rms * 1e3);
 }
 
 }  // namespace
@@ -99,15 +107,18 @@ void register_target(CLI::App& app) {
       "overlay.png (the photo, the profile in red, the compared circle in blue). --out must be new, empty\n"
       "or a folder demfit made (never the working folder); nothing is written when the input is bad.");
   cmd->add_option("photo", options->photo, "drum photo (BMP, PNG or JPEG)")->required();
-  cmd->add_option("--diameter", options->diameter,
-                  "inner drum diameter spanned by the image, with unit mm or m (e.g. 84mm or 0.084m; a bare number is metres)")
+  cmd->add_option(
+         "--diameter", options->diameter,
+         "inner drum diameter spanned by the image, with unit mm or m (e.g. 84mm or 0.084m; a bare number is metres)")
       ->required();
   cmd->add_option("--threshold", options->threshold,
                   "grey level in [0,1] separating material from empty (0 black, 1 white); default: automatic (Otsu)");
   cmd->add_flag("--inverted", options->inverted, "material is light on a dark background (default: powder dark)");
   cmd->add_option("--margin", options->margin,
-                  "ignore pixels beyond (1 - margin) x radius from the axis (the drawn outline), fraction of the radius (default 0.1)");
-  cmd->add_option("--points", options->points, "profile abscissae, equally spaced across the surface's chord (default 41)");
+                  "ignore pixels beyond (1 - margin) x radius from the axis (the drawn outline), fraction of the "
+                  "radius (default 0.1)");
+  cmd->add_option("--points", options->points,
+                  "profile abscissae, equally spaced across the surface's chord (default 41)");
   cmd->add_option("--out", options->out, "output folder (created if missing)")->required();
   cmd->callback([options] { run_target_from_image(*options); });
 }

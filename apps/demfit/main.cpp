@@ -24,9 +24,7 @@ int main(int argc, char** argv) {
   demfit::apps::register_parameters(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
+  } catch (const CLI::ParseError& e) { return app.exit(e); } catch (const std::exception& e) {
     std::cerr << "demfit: error: " << e.what() << '\n';
     return 1;
   }

@@ -21,7 +21,6 @@ using namespace demfit;
 
 namespace {
 
-
 void throughput(const char* name, const dem_core::Simulation& prepared, std::uint64_t steps) {
   double wall[2] = {0, 0}, cpu[2] = {0, 0};
   for (int threads = 1; threads <= 2; ++threads) {
@@ -30,9 +29,11 @@ void throughput(const char* name, const dem_core::Simulation& prepared, std::uin
     wall[threads - 1] = bench::time_steps(sim, steps, &cpu[threads - 1]);
   }
   const double work = static_cast<double>(prepared.particle_count()) * static_cast<double>(steps);
-  std::printf("%-22s N=%5zu dt=%.3g s | 1 thread: %.3g particle-steps/s wall, %.3g per CPU-s | 2 threads: %.3g "
-              "wall, speed-up %.2f (CPU %.2f s vs %.2f s)\n", name, prepared.particle_count(), prepared.time_step(),
-              work / wall[0], work / cpu[0], work / wall[1], wall[0] / wall[1], cpu[0], cpu[1]);
+  std::printf(
+      "%-22s N=%5zu dt=%.3g s | 1 thread: %.3g particle-steps/s wall, %.3g per CPU-s | 2 threads: %.3g "
+      "wall, speed-up %.2f (CPU %.2f s vs %.2f s)\n",
+      name, prepared.particle_count(), prepared.time_step(), work / wall[0], work / cpu[0], work / wall[1],
+      wall[0] / wall[1], cpu[0], cpu[1]);
 }
 
 /// One case evaluation each on 1 thread: s = 4 drum (3 s simulated) and pellet compressions.
@@ -43,8 +44,10 @@ void cases(const dem_core::Simulation& bed) {
     const double fill_cpu = bench::cpu_seconds() - fill_cpu_start;
     double cpu = 0.0;
     const double t = bench::time_steps(s4, static_cast<std::uint64_t>(2.7 / s4.time_step()), &cpu);
-    std::printf("drum s=4: N=%zu, dt=%.3g s, fill + 0.3 s settle %.2f CPU-s, 2.7 s at 60 RPM %.2f s wall, %.2f CPU-s "
-                "(1 thread) [target < 15 s for 3 s]\n", s4.particle_count(), s4.time_step(), fill_cpu, t, cpu);
+    std::printf(
+        "drum s=4: N=%zu, dt=%.3g s, fill + 0.3 s settle %.2f CPU-s, 2.7 s at 60 RPM %.2f s wall, %.2f CPU-s "
+        "(1 thread) [target < 15 s for 3 s]\n",
+        s4.particle_count(), s4.time_step(), fill_cpu, t, cpu);
   }
   for (double normk : {0.01, 0.875046}) {
     dem_core::Simulation p = bed;
@@ -55,9 +58,10 @@ void cases(const dem_core::Simulation& bed) {
     p.set_contact_parameters(c);
     double simulated = 0.0, reached = 0.0, cpu = 0.0;
     const double t = bench::time_compression(p, 0.05, 3.0e6, simulated, reached, &cpu);
-    std::printf("pellet compression NORMK=%g: N=%zu, dt=%.3g s, %.4f s simulated to %.2f MPa took %.2f s wall, "
-                "%.2f CPU-s (1 thread) [target < 30 s]\n", normk, p.particle_count(), p.time_step(), simulated,
-                reached / 1e6, t, cpu);
+    std::printf(
+        "pellet compression NORMK=%g: N=%zu, dt=%.3g s, %.4f s simulated to %.2f MPa took %.2f s wall, "
+        "%.2f CPU-s (1 thread) [target < 30 s]\n",
+        normk, p.particle_count(), p.time_step(), simulated, reached / 1e6, t, cpu);
   }
 }
 
@@ -73,11 +77,12 @@ void ensure_passive_waiting(char** argv) {
 }
 
 int usage() {
-  std::printf("usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
-              "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
-                            "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
-              "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
-              "                 [--lattice-order]\n");
+  std::printf(
+      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
+      "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
+      "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
+      "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
+      "                 [--lattice-order]\n");
   return EXIT_FAILURE;
 }
 
@@ -94,25 +99,32 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     const bool has_value = a + 1 < argc;
-    if (arg == "--quick") quick = true;
-    else if (arg == "--only" && has_value) only = argv[++a];
-    else if (arg == "--steps" && has_value) drum.steps = std::stol(argv[++a]);
-    else if (arg == "--repeats" && has_value) drum.repeats = scaling.repeats = std::stoi(argv[++a]);
-    else if (arg == "--spin-up" && has_value) drum.spin_up_time = std::stod(argv[++a]);
-    else if (arg == "--dir" && has_value) drum.dir = argv[++a];
-    else if (arg == "--scaling-work" && has_value) scaling.work = std::stod(argv[++a]);
-    else if (arg == "--lattice-order") scaling.shuffled = false;
+    if (arg == "--quick")
+      quick = true;
+    else if (arg == "--only" && has_value)
+      only = argv[++a];
+    else if (arg == "--steps" && has_value)
+      drum.steps = std::stol(argv[++a]);
+    else if (arg == "--repeats" && has_value)
+      drum.repeats = scaling.repeats = std::stoi(argv[++a]);
+    else if (arg == "--spin-up" && has_value)
+      drum.spin_up_time = std::stod(argv[++a]);
+    else if (arg == "--dir" && has_value)
+      drum.dir = argv[++a];
+    else if (arg == "--scaling-work" && has_value)
+      scaling.work = std::stod(argv[++a]);
+    else if (arg == "--lattice-order")
+      scaling.shuffled = false;
     else if (arg == "--scaling-sizes" && has_value) {
       scaling.sizes.clear();
       std::stringstream list(argv[++a]);
       for (std::string n; std::getline(list, n, ',');) scaling.sizes.push_back(std::stoul(n));
-    }
-    else if (arg == "--mesh" && a + 3 < argc) {
+    } else if (arg == "--mesh" && a + 3 < argc) {
       drum.mesh.segments = std::stoi(argv[++a]);
       drum.mesh.shell_rings = std::stoi(argv[++a]);
       drum.mesh.cap_rings = std::stoi(argv[++a]);
-    }
-    else return usage();
+    } else
+      return usage();
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
   auto wanted = [&](const char* section) { return only.empty() || only == section; };

@@ -20,7 +20,7 @@ Simulation make_drum(double scale, double settle_time, int threads) {
   const double drum_radius = 0.05, length = 0.025, radius = 1.0e-3 * scale;
   SimulationSettings settings;
   settings.threads = threads;
-  settings.gravity = {0, -9.81, 0};  // axis along z, gravity perpendicular
+  settings.gravity = {0, -9.81, 0};                                       // axis along z, gravity perpendicular
   settings.contact = {0.01, 0.0029, 0.5, 0.5, 0.3, -1.0, 0.0, 0.1, 1.0};  // Table 3 initial values
   Simulation sim(settings);
   sim.add_material({1.0e9, 2500.0, 0.3});
@@ -32,8 +32,8 @@ Simulation make_drum(double scale, double settle_time, int threads) {
   // Solid volume = 0.64 x 30 % of the drum; generated loosely in the lower 65 % and settled.
   const double drum_volume = std::numbers::pi * drum_radius * drum_radius * length;
   PackingRequest request;
-  request.region = DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, drum_radius, length, {0, 1, 0},
-                                     drum_fill_height(drum_radius, 0.65)};
+  request.region =
+      DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, drum_radius, length, {0, 1, 0}, drum_fill_height(drum_radius, 0.65)};
   request.radius_min = request.radius_max = radius;
   request.solid_volume = 0.64 * 0.3 * drum_volume;
   request.up = {0, 1, 0};
@@ -81,7 +81,8 @@ double time_compression(Simulation& sim, double speed, double pressure, double& 
   const double area = std::numbers::pi * 0.018 * 0.018;
   sim.set_wall_velocity(2, {0, 0, -speed});
   const double t0 = sim.time(), start = now(), cpu_start = cpu_seconds();
-  sim.run_until(sim.time() + 1.0, [&](Simulation& s) { return s.wall_force(2).z / area < pressure; }, 10);
+  sim.run_until(
+      sim.time() + 1.0, [&](Simulation& s) { return s.wall_force(2).z / area < pressure; }, 10);
   simulated = sim.time() - t0;
   reached = sim.wall_force(2).z / area;
   if (cpu != nullptr) *cpu = cpu_seconds() - cpu_start;

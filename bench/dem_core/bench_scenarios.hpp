@@ -20,7 +20,7 @@ double time_steps(dem_core::Simulation& sim, std::uint64_t steps, double* cpu = 
 double cpu_seconds();
 /// Wall-clock seconds to push the piston down at `speed` [m/s] until the piston pressure reaches
 /// `pressure` [Pa]; returns the seconds and reports the simulated time and final pressure.
-double time_compression(dem_core::Simulation& sim, double speed, double pressure, double& simulated,
-                        double& reached, double* cpu = nullptr);
+double time_compression(dem_core::Simulation& sim, double speed, double pressure, double& simulated, double& reached,
+                        double* cpu = nullptr);
 
 }  // namespace demfit::bench

@@ -8,11 +8,11 @@
 namespace demfit::bench {
 
 struct ChildResult {
-  bool started = false;     ///< false when the program could not be executed
-  int exit_code = -1;       ///< exit status, or -1 when killed by a signal / not started
+  bool started = false;  ///< false when the program could not be executed
+  int exit_code = -1;    ///< exit status, or -1 when killed by a signal / not started
   double wall_seconds = 0.0;
-  double cpu_seconds = 0.0;     ///< user + system of the child (and its children)
-  double max_rss_bytes = 0.0;   ///< peak resident set of the child (ru_maxrss)
+  double cpu_seconds = 0.0;    ///< user + system of the child (and its children)
+  double max_rss_bytes = 0.0;  ///< peak resident set of the child (ru_maxrss)
 };
 
 /// Run argv[0] (looked up on PATH) with the arguments argv[1..] in `working_dir` (empty = ours),

@@ -40,8 +40,8 @@ double time_liggghts(const std::filesystem::path& dir, int px, int py, int pz, L
     return 0.0;
   }
   std::printf("  LIGGGHTS %ld rank%s %d %d %d %8.3f s  %6.3g M particle-steps/s  (%ld list builds, %ld atoms)  [%s]\n",
-              run.procs, run.procs > 1 ? "s" : " ", px, py, pz, run.loop_seconds,
-              run.particle_steps_per_second() / 1e6, run.neighbour_builds, run.atoms, load_average().c_str());
+              run.procs, run.procs > 1 ? "s" : " ", px, py, pz, run.loop_seconds, run.particle_steps_per_second() / 1e6,
+              run.neighbour_builds, run.atoms, load_average().c_str());
   if (keep != nullptr) *keep = run;
   return run.particle_steps_per_second();
 }
@@ -76,10 +76,11 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
   std::printf("drum (issue 16): preparing the bed: settle %.2f s, turn %.2f s at 60 RPM (2 threads) ...\n",
               o.settle_time, o.spin_up_time);
   const Simulation bed = make_hertz_drum(spec, o.settle_time, o.spin_up_time, 2);
-  std::printf("drum: N=%zu spheres R=%.3g m, drum D=%.3g m x %.3g m, Hertz-Mindlin E=%.3g Pa nu=%.2g e=%.2g mu=%.2g "
-              "mu_r=%.2g, dt=%.3g s, skin=%.3g m, %ld steps, t0=%.3f s\n", bed.particle_count(), spec.radius,
-              2 * spec.drum_radius, spec.depth, spec.youngs_modulus, spec.poisson_ratio, spec.restitution,
-              spec.sliding_friction, spec.rolling_friction, spec.time_step, spec.skin, o.steps, bed.time());
+  std::printf(
+      "drum: N=%zu spheres R=%.3g m, drum D=%.3g m x %.3g m, Hertz-Mindlin E=%.3g Pa nu=%.2g e=%.2g mu=%.2g "
+      "mu_r=%.2g, dt=%.3g s, skin=%.3g m, %ld steps, t0=%.3f s\n",
+      bed.particle_count(), spec.radius, 2 * spec.drum_radius, spec.depth, spec.youngs_modulus, spec.poisson_ratio,
+      spec.restitution, spec.sliding_friction, spec.rolling_friction, spec.time_step, spec.skin, o.steps, bed.time());
   const bool have_liggghts = !liggghts_executable().empty();
   std::size_t triangles = 0;
   if (have_liggghts) {
@@ -109,23 +110,29 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
   std::printf("medians of %d (M particle-steps/s)  [%s]\n", o.repeats, load_average().c_str());
   std::printf("  1 core : demfit %.3g  LIGGGHTS %.3g  ratio %.2f   [target >= 2.0]\n", d1.median_rate() / 1e6,
               l1.median_rate() / 1e6, have_liggghts ? d1.median_rate() / l1.median_rate() : 0.0);
-  std::printf("  2 cores: demfit %.3g  LIGGGHTS best split %.3g  ratio %.2f   [target >= 2.0]\n", d2.median_rate() / 1e6,
-              l2.median_rate() / 1e6, have_liggghts ? d2.median_rate() / l2.median_rate() : 0.0);
-  std::printf("  1 core, LIGGGHTS counting only its pair + neighbour + comm time (as if its mesh walls and integration\n"
-              "         were free): %.3g -> ratio %.2f (a lower bound on demfit's lead without the mesh)\n",
-              l1_bound.median_rate() / 1e6, have_liggghts ? d1.median_rate() / l1_bound.median_rate() : 0.0);
-  std::printf("  demfit with reorder_particles (Morton order at rebuilds): 1 thread %.3g (x%.2f), 2 threads %.3g (x%.2f)\n",
-              d1_reordered.median_rate() / 1e6, d1_reordered.median_rate() / d1.median_rate(),
-              d2_reordered.median_rate() / 1e6, d2_reordered.median_rate() / d2.median_rate());
+  std::printf("  2 cores: demfit %.3g  LIGGGHTS best split %.3g  ratio %.2f   [target >= 2.0]\n",
+              d2.median_rate() / 1e6, l2.median_rate() / 1e6,
+              have_liggghts ? d2.median_rate() / l2.median_rate() : 0.0);
+  std::printf(
+      "  1 core, LIGGGHTS counting only its pair + neighbour + comm time (as if its mesh walls and integration\n"
+      "         were free): %.3g -> ratio %.2f (a lower bound on demfit's lead without the mesh)\n",
+      l1_bound.median_rate() / 1e6, have_liggghts ? d1.median_rate() / l1_bound.median_rate() : 0.0);
+  std::printf(
+      "  demfit with reorder_particles (Morton order at rebuilds): 1 thread %.3g (x%.2f), 2 threads %.3g (x%.2f)\n",
+      d1_reordered.median_rate() / 1e6, d1_reordered.median_rate() / d1.median_rate(), d2_reordered.median_rate() / 1e6,
+      d2_reordered.median_rate() / d2.median_rate());
   std::printf("  speed-up 1 -> 2 cores: demfit %.2f [target >= 1.85]  LIGGGHTS %.2f\n",
               d2.median_rate() / d1.median_rate(), have_liggghts ? l2.median_rate() / l1.median_rate() : 0.0);
   const dem_core::Vec3 c = centre_of_mass(demfit_end);
-  std::printf("same-physics check after %ld steps: translational KE demfit %.4g J, LIGGGHTS %.4g J; centre of mass "
-              "x,y demfit %.4g %.4g m, LIGGGHTS %.4g %.4g m\n", o.steps, translational_kinetic_energy(demfit_end),
-              liggghts_end.kinetic_energy, c.x, c.y, liggghts_end.centre_x, liggghts_end.centre_y);
+  std::printf(
+      "same-physics check after %ld steps: translational KE demfit %.4g J, LIGGGHTS %.4g J; centre of mass "
+      "x,y demfit %.4g %.4g m, LIGGGHTS %.4g %.4g m\n",
+      o.steps, translational_kinetic_energy(demfit_end), liggghts_end.kinetic_energy, c.x, c.y, liggghts_end.centre_x,
+      liggghts_end.centre_y);
   print_differences(triangles);
-  std::printf("These figures were measured on a shared machine unless the load averages above are ~0: re-run on a "
-              "quiet machine for the record.\n");
+  std::printf(
+      "These figures were measured on a shared machine unless the load averages above are ~0: re-run on a "
+      "quiet machine for the record.\n");
 }
 
 }  // namespace demfit::bench

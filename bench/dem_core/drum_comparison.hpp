@@ -9,7 +9,7 @@
 namespace demfit::bench {
 
 struct DrumComparisonOptions {
-  long steps = 10000;         ///< timed steps per run
+  long steps = 10000;  ///< timed steps per run
   int repeats = 3;
   double settle_time = 0.3;   ///< [s] drum at rest
   double spin_up_time = 1.0;  ///< [s] turning before the timed runs (steady flow)

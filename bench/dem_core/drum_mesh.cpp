@@ -66,8 +66,10 @@ std::size_t write_drum_stl(std::ostream& out, const DrumMeshRequest& r) {
     for (int k = 0; k < r.segments; ++k) {
       const double a0 = r.phase + tau * k / r.segments, a1 = r.phase + tau * (k + 1) / r.segments;
       const Vec3 inward = -on_circle(1.0, 0.5 * (a0 + a1), 0.0);
-      stl.facet(on_circle(vertex_radius, a0, z0), on_circle(vertex_radius, a1, z0), on_circle(vertex_radius, a1, z1), inward);
-      stl.facet(on_circle(vertex_radius, a0, z0), on_circle(vertex_radius, a1, z1), on_circle(vertex_radius, a0, z1), inward);
+      stl.facet(on_circle(vertex_radius, a0, z0), on_circle(vertex_radius, a1, z0), on_circle(vertex_radius, a1, z1),
+                inward);
+      stl.facet(on_circle(vertex_radius, a0, z0), on_circle(vertex_radius, a1, z1), on_circle(vertex_radius, a0, z1),
+                inward);
     }
   }
   const int per_ring = r.segments / r.cap_rings;

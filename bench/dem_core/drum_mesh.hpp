@@ -10,12 +10,12 @@
 namespace demfit::bench {
 
 struct DrumMeshRequest {
-  double radius = 0.05;   ///< [m]
-  double depth = 0.02;    ///< [m], caps at z = 0 and z = depth, axis = z through the origin
-  double phase = 0.0;     ///< [rad] rotation of the whole mesh about z (the drum's current angle)
+  double radius = 0.05;  ///< [m]
+  double depth = 0.02;   ///< [m], caps at z = 0 and z = depth, axis = z through the origin
+  double phase = 0.0;    ///< [rad] rotation of the whole mesh about z (the drum's current angle)
   int segments = 360;
   int shell_rings = 4;
-  int cap_rings = 20;     ///< segments must be a multiple of cap_rings
+  int cap_rings = 20;  ///< segments must be a multiple of cap_rings
 };
 
 /// Writes the mesh; returns the triangle count.

@@ -40,8 +40,8 @@ Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double
   sim.add_wall({DiskGeometry{{0, 0, 0}, {0, 0, 1}, spec.drum_radius}, still, wall, {}, "front"});
   sim.add_wall({DiskGeometry{{0, 0, spec.depth}, {0, 0, -1}, spec.drum_radius}, still, wall, {}, "back"});
   PackingRequest request;
-  request.region = DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, spec.drum_radius, spec.depth, {0, 1, 0},
-                                     drum_fill_height(spec.drum_radius, 0.65)};
+  request.region = DrumSegmentRegion{{0, 0, 0},  {0, 0, 1}, spec.drum_radius,
+                                     spec.depth, {0, 1, 0}, drum_fill_height(spec.drum_radius, 0.65)};
   request.radius_min = request.radius_max = spec.radius;
   request.count = spec.particles;
   request.up = {0, 1, 0};

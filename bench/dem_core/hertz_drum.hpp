@@ -11,13 +11,13 @@
 namespace demfit::bench {
 
 struct HertzDrumSpec {
-  double drum_radius = 0.05;   ///< [m]
-  double depth = 0.02;         ///< [m] (axial length, z from 0 to depth)
-  double radius = 1.0e-3;      ///< particle radius [m]
+  double drum_radius = 0.05;  ///< [m]
+  double depth = 0.02;        ///< [m] (axial length, z from 0 to depth)
+  double radius = 1.0e-3;     ///< particle radius [m]
   std::size_t particles = 6996;
   double youngs_modulus = 5.0e6;  ///< [Pa]
   double poisson_ratio = 0.3;
-  double density = 2500.0;        ///< [kg/m^3]
+  double density = 2500.0;  ///< [kg/m^3]
   double restitution = 0.5;
   double sliding_friction = 0.4;
   double rolling_friction = 0.1;
@@ -35,8 +35,7 @@ void add_hertz_material(dem_core::Simulation& sim, const HertzDrumSpec& spec);
 /// The drum filled (seeded lattice packing in the lower part), settled for `settle_time` [s] with
 /// the drum at rest, then turned at the spec's speed for `spin_up_time` [s] so that the flow is
 /// steady. Walls: 0 = shell, 1 = front disk (z = 0), 2 = back disk (z = depth), all rotating.
-dem_core::Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time,
-                                     int threads);
+dem_core::Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time, int threads);
 
 /// Translational kinetic energy sum 1/2 m v^2 [J] (what LIGGGHTS' thermo `ke` reports).
 double translational_kinetic_energy(const dem_core::Simulation& sim);

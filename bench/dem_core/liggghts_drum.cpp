@@ -21,12 +21,14 @@ void write_data_file(const std::filesystem::path& file, const HertzDrumSpec& spe
   const double half = spec.drum_radius + 5.0 * spec.radius;
   out << "LIGGGHTS data file (SI units) written by demfit bench_dem: drum bed at t = " << sim.time() << " s\n\n"
       << sim.particle_count() << " atoms\n1 atom types\n\n"
-      << -half << ' ' << half << " xlo xhi\n" << -half << ' ' << half << " ylo yhi\n"
+      << -half << ' ' << half << " xlo xhi\n"
+      << -half << ' ' << half << " ylo yhi\n"
       << -5.0 * spec.radius << ' ' << spec.depth + 5.0 * spec.radius << " zlo zhi\n\nAtoms\n\n";
   // atom_style granular: atom-ID atom-type diameter density x y z
   for (std::size_t i = 0; i < sim.particle_count(); ++i) {
     const Vec3& x = sim.positions()[i];
-    out << i + 1 << " 1 " << 2.0 * sim.radii()[i] << ' ' << spec.density << ' ' << x.x << ' ' << x.y << ' ' << x.z << '\n';
+    out << i + 1 << " 1 " << 2.0 * sim.radii()[i] << ' ' << spec.density << ' ' << x.x << ' ' << x.y << ' ' << x.z
+        << '\n';
   }
   out << "\nVelocities\n\n";  // atom-ID vx vy vz wx wy wz
   for (std::size_t i = 0; i < sim.particle_count(); ++i) {
@@ -71,7 +73,8 @@ std::string read_text(const std::filesystem::path& file) {
 void parse_log(const std::string& s, LiggghtsRun& run) {
   std::smatch m;
   const std::string number = "([-0-9.eE+]+)";
-  if (std::regex_search(s, m, std::regex("Loop time of " + number + " on ([0-9]+) procs for ([0-9]+) steps with ([0-9]+) atoms"))) {
+  if (std::regex_search(
+          s, m, std::regex("Loop time of " + number + " on ([0-9]+) procs for ([0-9]+) steps with ([0-9]+) atoms"))) {
     run.loop_seconds = std::stod(m[1]);
     run.procs = std::stol(m[2]);
     run.steps = std::stol(m[3]);
@@ -100,8 +103,8 @@ std::size_t write_liggghts_drum(const std::filesystem::path& dir, const HertzDru
   write_data_file(dir / "bed.data", spec, sim);
   write_input(dir / "in.drum", spec, steps);
   std::ofstream stl(dir / "drum.stl");
-  DrumMeshRequest request{spec.drum_radius, spec.depth, sim.wall(0).rotation_angle, shape.segments,
-                          shape.shell_rings, shape.cap_rings};
+  DrumMeshRequest request{spec.drum_radius, spec.depth,        sim.wall(0).rotation_angle,
+                          shape.segments,   shape.shell_rings, shape.cap_rings};
   return write_drum_stl(stl, request);
 }
 
@@ -128,7 +131,8 @@ LiggghtsRun run_liggghts_drum(const std::filesystem::path& dir, int px, int py, 
   LiggghtsRun run;
   const ChildResult child = run_child(argv, dir, dir / (out_name + ".out"));
   if (!child.started || child.exit_code != 0) {
-    run.note = "LIGGGHTS failed (exit " + std::to_string(child.exit_code) + "); see " + (dir / (out_name + ".out")).string();
+    run.note =
+        "LIGGGHTS failed (exit " + std::to_string(child.exit_code) + "); see " + (dir / (out_name + ".out")).string();
     return run;
   }
   parse_log(read_text(dir / (out_name + ".out")), run);

@@ -14,9 +14,9 @@ namespace demfit::bench {
 /// Triangles of the drum mesh: `segments` around (shell split into `shell_rings` axial rings),
 /// end caps as concentric rings. Written by write_liggghts_drum.
 struct DrumMeshShape {
-  int segments = 360;    ///< facets within ~1 um of the 50 mm cylinder
+  int segments = 360;  ///< facets within ~1 um of the 50 mm cylinder
   int shell_rings = 1;
-  int cap_rings = 2;     ///< 2160 triangles in all (LIGGGHTS' cost grows with the count: printed)
+  int cap_rings = 2;  ///< 2160 triangles in all (LIGGGHTS' cost grows with the count: printed)
 };
 
 /// Writes bed.data, drum.stl and in.drum into `dir` (created). `sim` is the demfit state both
@@ -27,13 +27,13 @@ std::size_t write_liggghts_drum(const std::filesystem::path& dir, const HertzDru
 
 struct LiggghtsRun {
   bool ok = false;
-  std::string note;          ///< failure reason (and where the log is)
-  double loop_seconds = 0.0; ///< "Loop time of T on P procs for N steps with M atoms"
+  std::string note;           ///< failure reason (and where the log is)
+  double loop_seconds = 0.0;  ///< "Loop time of T on P procs for N steps with M atoms"
   long procs = 0, steps = 0, atoms = 0;
-  long neighbour_builds = 0; ///< "Neighbor list builds = "
+  long neighbour_builds = 0;                                               ///< "Neighbor list builds = "
   double pair_seconds = 0.0, neighbour_seconds = 0.0, comm_seconds = 0.0;  ///< its timing breakdown
-  double kinetic_energy = 0.0;  ///< last thermo `ke` (translational) [J]
-  double centre_x = 0.0, centre_y = 0.0;  ///< last thermo centre of mass [m]
+  double kinetic_energy = 0.0;                                             ///< last thermo `ke` (translational) [J]
+  double centre_x = 0.0, centre_y = 0.0;                                   ///< last thermo centre of mass [m]
   [[nodiscard]] double particle_steps_per_second() const {
     return loop_seconds > 0.0 ? static_cast<double>(atoms) * static_cast<double>(steps) / loop_seconds : 0.0;
   }

@@ -31,7 +31,8 @@ Simulation make_box(std::size_t target, bool shuffled) {
   Simulation sim(hertz_settings(spec, SimulationSettings{}.threads));
   add_hertz_material(sim, spec);
   const double r = spec.radius, a = 2.0 * std::sqrt(2.0) * r;  // fcc cell: nearest distance 2R
-  const long cells_z = 5, side = std::max<long>(1, std::lround(std::sqrt(static_cast<double>(target) / (4.0 * cells_z))));
+  const long cells_z = 5,
+             side = std::max<long>(1, std::lround(std::sqrt(static_cast<double>(target) / (4.0 * cells_z))));
   std::vector<Vec3> sites;
   const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   for (long k = 0; k < cells_z; ++k)
@@ -71,7 +72,8 @@ ChildLine parse_child(const std::filesystem::path& file) {
   ChildLine c;
   while (in >> word)
     if (word == "scaling-result") {
-      in >> c.particles >> c.pairs >> c.steps >> c.rate[0][0] >> c.rate[0][1] >> c.rate[1][0] >> c.rate[1][1] >> c.peak_bytes;
+      in >> c.particles >> c.pairs >> c.steps >> c.rate[0][0] >> c.rate[0][1] >> c.rate[1][0] >> c.rate[1][1] >>
+          c.peak_bytes;
       c.ok = static_cast<bool>(in);
     }
   return c;
@@ -102,7 +104,8 @@ int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuff
         Simulation& sim = variant == 0 ? plain : reordered;
         sim.set_threads(threads);
         const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
-        rate[variant][threads - 1].push_back(static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds);
+        rate[variant][threads - 1].push_back(static_cast<double>(sim.particle_count()) * static_cast<double>(steps) /
+                                             seconds);
       }
   std::printf("scaling-result %zu %zu %ld %.6g %.6g %.6g %.6g %.6g\n", plain.particle_count(),
               plain.neighbor_list().pair_count(), steps, median(rate[0][0]), median(rate[0][1]), median(rate[1][0]),
@@ -112,17 +115,21 @@ int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuff
 
 void print_scaling_table(const ScalingOptions& o) {
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / ("demfit_bench_scaling_" + std::to_string(getpid()) + ".txt");
-  std::printf("scaling: fcc box of touching spheres (drum material), 10 layers, %s order, median of %d; each size in a "
-              "child process\n", o.shuffled ? "shuffled" : "lattice", o.repeats);
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / ("demfit_bench_scaling_" + std::to_string(getpid()) + ".txt");
+  std::printf(
+      "scaling: fcc box of touching spheres (drum material), 10 layers, %s order, median of %d; each size in a "
+      "child process\n",
+      o.shuffled ? "shuffled" : "lattice", o.repeats);
   std::printf("M particle-steps/s as stored / with reorder_particles (Morton order at list rebuilds, same run)\n");
-  std::printf("%9s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pairs/N", "steps", "1 thread", "2 threads",
-              "speedup", "peak B/part", "marg B/p", "load");
+  std::printf("%9s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pairs/N", "steps", "1 thread", "2 threads", "speedup",
+              "peak B/part", "marg B/p", "load");
   double previous_rss = 0.0, previous_n = 0.0;
   for (const std::size_t n : o.sizes) {
     const long steps = std::max(10L, std::lround(o.work / static_cast<double>(n)));
     const ChildResult child = run_child({self, "--scaling-child", std::to_string(n), std::to_string(steps),
-                                         std::to_string(o.repeats), o.shuffled ? "shuffled" : "lattice"}, {}, out);
+                                         std::to_string(o.repeats), o.shuffled ? "shuffled" : "lattice"},
+                                        {}, out);
     const ChildLine c = parse_child(out);
     if (!c.ok) {
       std::printf("%9zu child failed (exit %d), output in %s\n", n, child.exit_code, out.c_str());
@@ -130,11 +137,12 @@ void print_scaling_table(const ScalingOptions& o) {
     }
     const double pn = static_cast<double>(c.particles);
     char marginal[32] = "-";
-    if (previous_n > 0.0) std::snprintf(marginal, sizeof marginal, "%.0f", (c.peak_bytes - previous_rss) / (pn - previous_n));
+    if (previous_n > 0.0)
+      std::snprintf(marginal, sizeof marginal, "%.0f", (c.peak_bytes - previous_rss) / (pn - previous_n));
     std::printf("%9zu %7.2f %6ld %7.3g / %5.3g %7.3g / %5.3g %3.2f/%3.2f %11.0f %9s  [%s]\n", c.particles,
                 static_cast<double>(c.pairs) / pn, c.steps, c.rate[0][0] / 1e6, c.rate[1][0] / 1e6, c.rate[0][1] / 1e6,
-                c.rate[1][1] / 1e6, c.rate[0][1] / c.rate[0][0], c.rate[1][1] / c.rate[1][0], c.peak_bytes / pn, marginal,
-                load_average().c_str());
+                c.rate[1][1] / 1e6, c.rate[0][1] / c.rate[0][0], c.rate[1][1] / c.rate[1][0], c.peak_bytes / pn,
+                marginal, load_average().c_str());
     previous_rss = c.peak_bytes;
     previous_n = pn;
   }

@@ -9,7 +9,7 @@ namespace demfit::bench {
 
 struct ScalingOptions {
   std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000};
-  double work = 1.0e7;   ///< particle-steps per timed run (steps = max(work / N, 10))
+  double work = 1.0e7;  ///< particle-steps per timed run (steps = max(work / N, 10))
   int repeats = 3;
   bool shuffled = true;  ///< particles inserted in a seeded random order (a mixed bed) vs lattice order
 };

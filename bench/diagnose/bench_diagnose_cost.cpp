@@ -43,7 +43,8 @@ identify::StudySpec study_with(const identify::ParameterSet& truth, unsigned see
   for (auto& y : data.y) y += normal(rng);
   identify::StudySpec spec;
   spec.model_reference = "analytic";
-  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0}, {"rate", 1.0, 8.0, 4.0, false, 1.0},
+  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
+                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
                     {"slope", 0.0, 1.5, 0.3, false, 1.0}};
   identify::TargetSpec target;
   target.name = target.curve = "response";
@@ -56,11 +57,16 @@ identify::StudySpec study_with(const identify::ParameterSet& truth, unsigned see
 
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
-  const std::vector<std::pair<std::string, double>> hidden{
-      {"", 0.0}, {"stiffening_coefficient", 1.5}, {"toe_shift", 0.05}, {"yield_drop", 0.25}, {"ripple_amplitude", 0.03}};
+  const std::vector<std::pair<std::string, double>> hidden{{"", 0.0},
+                                                           {"stiffening_coefficient", 1.5},
+                                                           {"toe_shift", 0.05},
+                                                           {"yield_drop", 0.25},
+                                                           {"ripple_amplitude", 0.03}};
   const AnalyticEffectsModel analytic(101);
   const CountingModel model(analytic);
-  std::printf("hidden effect            | mean evaluations (base / screening / re-fits) | max | named as hidden | ms per diagnosis\n");
+  std::printf(
+      "hidden effect            | mean evaluations (base / screening / re-fits) | max | named as hidden | ms per "
+      "diagnosis\n");
   for (const auto& [parameter, value] : hidden) {
     double base = 0, screen = 0, refit = 0, total = 0, max_total = 0, seconds = 0;
     int correct = 0;
@@ -69,24 +75,26 @@ int main(int argc, char** argv) {
       if (!parameter.empty()) truth[parameter] = value;
       const long before = model.count;
       const auto start = std::chrono::steady_clock::now();
-      const Diagnosis d = run_diagnosis(study_with(truth, 1000 + s), model, analytic_effect_candidates(), DiagnoseOptions{});
+      const Diagnosis d =
+          run_diagnosis(study_with(truth, 1000 + s), model, analytic_effect_candidates(), DiagnoseOptions{});
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       base += d.base_evaluations;
       screen += d.screening_evaluations;
       refit += d.refit_evaluations;
       const long counted = model.count - before;
-      if (counted != d.evaluations) std::printf("warning: counted %ld evaluations, the diagnosis reports %d\n", counted, d.evaluations);
+      if (counted != d.evaluations)
+        std::printf("warning: counted %ld evaluations, the diagnosis reports %d\n", counted, d.evaluations);
       total += static_cast<double>(counted);
       max_total = std::max<double>(max_total, static_cast<double>(counted));
       const std::string named = d.chosen >= 0 ? d.refits[d.chosen].effect : "";
       const bool right = parameter.empty() || parameter == "ripple_amplitude" ? named.empty()
-                         : parameter == "stiffening_coefficient"            ? named == "stiffening"
-                                                                             : named == parameter;
+                         : parameter == "stiffening_coefficient"              ? named == "stiffening"
+                                                                              : named == parameter;
       correct += right;
     }
     std::printf("%-24s | %6.1f (%5.1f / %4.1f / %5.1f)                  | %4.0f | %d/%d | %.2f\n",
-                parameter.empty() ? "none" : parameter.c_str(), total / seeds, base / seeds, screen / seeds, refit / seeds,
-                max_total, correct, seeds, 1e3 * seconds / seeds);
+                parameter.empty() ? "none" : parameter.c_str(), total / seeds, base / seeds, screen / seeds,
+                refit / seeds, max_total, correct, seeds, 1e3 * seconds / seeds);
   }
   return 0;
 }

@@ -49,9 +49,8 @@ void StagedDirectory::commit() {
   committed_ = true;
 }
 
-void write_case_result(const std::filesystem::path& dir, const CaseResult& result,
-                       const nlohmann::json& resolved_case, const identify::ParameterSet& parameters,
-                       const SyntheticNoise& noise) {
+void write_case_result(const std::filesystem::path& dir, const CaseResult& result, const nlohmann::json& resolved_case,
+                       const identify::ParameterSet& parameters, const SyntheticNoise& noise) {
   std::string parameter_line = "parameters:";
   for (const auto& [name, value] : parameters) {
     char buffer[64];

@@ -7,14 +7,18 @@ namespace demfit::cases {
 
 const std::vector<CaseKindRow>& case_kind_table() {
   static const std::vector<CaseKindRow> table{
-      {CaseKind::pellet_compression, "pellet_compression", "pellet",
+      {CaseKind::pellet_compression,
+       "pellet_compression",
+       "pellet",
        "pellets poured into a cylinder and compressed by a piston (SPEC 2.1)",
        {{{"pressure_volume", "volume_cm3", "pressure_MPa"}},
         {{"bottom_force_volume", "volume_cm3", "bottom_force_N"}},
         {{"pressure_volume_cycle", "volume_cm3", "pressure_MPa"}, CurveCondition::pellet_unload},
         // SPEC 2.1's quasi-static check (identify::kQuasiStaticCurve), once the bed carries load.
         {{"quasi_static_check", "volume_cm3", "kinetic_over_elastic_energy_per_limit"}}}},
-      {CaseKind::rotary_drum, "rotary_drum", "drum",
+      {CaseKind::rotary_drum,
+       "rotary_drum",
+       "drum",
        "powder turning in a closed drum (SPEC 2.2; the GranuDrum, data/granudrum_mcc)",
        {{{"torque", "time_s", "torque_Nm"}},
         {{"free_surface", "x_mm", "height_mm"}},
@@ -48,9 +52,12 @@ namespace {
 // Whether the case-file option a curve depends on is on in `spec` (exhaustive: -Werror=switch).
 bool option_on(const CaseSpec& spec, CurveCondition produced) {
   switch (produced) {
-    case CurveCondition::always: return true;
-    case CurveCondition::pellet_unload: return spec.pellet.unload;
-    case CurveCondition::drum_image: return spec.drum.image.enabled;
+    case CurveCondition::always:
+      return true;
+    case CurveCondition::pellet_unload:
+      return spec.pellet.unload;
+    case CurveCondition::drum_image:
+      return spec.drum.image.enabled;
   }
   throw std::logic_error("case registry: a CurveCondition without its option");
 }
@@ -67,7 +74,8 @@ std::vector<identify::CurveDescriptor> produced_curves(const CaseSpec& spec) {
 const identify::CurveDescriptor& case_curve(CaseKind kind, std::string_view name) {
   for (const CaseCurve& c : case_kind_row(kind).curves)
     if (c.curve.name == name) return c.curve;
-  throw std::logic_error("case registry: kind " + std::string(case_kind_row(kind).name) + " has no curve " + std::string(name));
+  throw std::logic_error("case registry: kind " + std::string(case_kind_row(kind).name) + " has no curve " +
+                         std::string(name));
 }
 
 identify::Curve empty_curve(CaseKind kind, std::string_view name) {

@@ -17,8 +17,7 @@ std::filesystem::path default_cache_dir() {
   return ".demfit-cache";
 }
 
-CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& parameters,
-                    const CaseRunOptions& options) {
+CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& parameters, const CaseRunOptions& options) {
   CaseRunOptions resolved = options;
   if (resolved.cache_dir.empty()) resolved.cache_dir = default_cache_dir();
   const CaseSpec evaluated = detail::with_parameters(spec, parameters);
@@ -32,8 +31,10 @@ CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& paramete
   fill.drum.particle_count = evaluated.drum.particle_count;
   fill.drum.fill_volume_ml = evaluated.drum.fill_volume_ml;
   switch (spec.kind) {  // exhaustive (case_registry.hpp)
-    case CaseKind::pellet_compression: return detail::run_pellet_compression(fill, evaluated, resolved);
-    case CaseKind::rotary_drum: return detail::run_rotary_drum(fill, evaluated, resolved);
+    case CaseKind::pellet_compression:
+      return detail::run_pellet_compression(fill, evaluated, resolved);
+    case CaseKind::rotary_drum:
+      return detail::run_rotary_drum(fill, evaluated, resolved);
   }
   throw std::logic_error("run_case: a CaseKind without a runner");
 }

@@ -29,7 +29,8 @@ MaterialSpec parse_material(const json& j, MaterialSpec m) {
 constexpr auto kLsDyna = dem_core::ContactLawKind::lsdyna_linear;
 constexpr auto kHertz = dem_core::ContactLawKind::hertz_mindlin;
 
-std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_view section, dem_core::ContactLawKind law) {
+std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_view section,
+                                   dem_core::ContactLawKind law) {
   for (std::string& key : parameter_keys(section, law)) keys.push_back(std::move(key));
   return keys;
 }
@@ -49,8 +50,9 @@ void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec)
 void parse_hertz_contact(const json& j, CaseSpec& spec) {
   require_known_keys(j, "contact", keys_with({"law"}, "contact", kHertz));
   if (!j.contains("restitution"))
-    throw std::runtime_error("'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
-                             find_parameter("restitution")->valid.to_string());
+    throw std::runtime_error(
+        "'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
+        find_parameter("restitution")->valid.to_string());
   read_parameter_fields(j, "contact", kHertz, spec);
   spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
   spec.contact.dc = 0.0;
@@ -66,7 +68,9 @@ void parse_hertz_wall(const json& j, CaseSpec& spec) {
   w.poisson_ratio = read_bounded(j, p, "poisson_ratio", spec.material.poisson_ratio, -0.99, 0.499);
   spec.wall_friction_as_particles = read_bool(j, p, "friction_as_particles", false);
   if (spec.wall_friction_as_particles && (j.contains("frics") || j.contains("fricr")))
-    throw std::runtime_error("'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: remove one");
+    throw std::runtime_error(
+        "'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: "
+        "remove one");
   read_parameter_fields(j, p, kHertz, spec);
   w.damp = 0.0;
   w.sfp = 1.0;
@@ -100,9 +104,9 @@ OutputSpec parse_output(const json& j, OutputSpec o) {
 
 PelletSpec parse_pellet(const json& j, PelletSpec s) {
   const char* p = "pellet";
-  require_known_keys(j, p, {"container_diameter", "container_height", "particle_count", "fill_seed",
-                            "fill_normk", "settle_time", "piston_speed", "max_pressure",
-                            "max_travel", "unload", "curve_points"});
+  require_known_keys(j, p,
+                     {"container_diameter", "container_height", "particle_count", "fill_seed", "fill_normk",
+                      "settle_time", "piston_speed", "max_pressure", "max_travel", "unload", "curve_points"});
   s.container_diameter = read_number(j, p, "container_diameter", s.container_diameter, Sign::positive);
   s.container_height = read_number(j, p, "container_height", s.container_height, Sign::positive);
   s.particle_count = read_integer(j, p, "particle_count", s.particle_count, 1);
@@ -132,15 +136,18 @@ DrumImageSpec parse_drum_image(const json& j) {
 void parse_fill_amount(const json& j, DrumSpec& s) {
   const char* p = "drum";
   int given = 0;
-  for (const char* k : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"}) given += j.contains(k) ? 1 : 0;
-  if (given > 1) throw std::runtime_error("'drum': give exactly one of fill_fraction, fill_volume_ml, particle_count or fill_mass");
+  for (const char* k : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"})
+    given += j.contains(k) ? 1 : 0;
+  if (given > 1)
+    throw std::runtime_error("'drum': give exactly one of fill_fraction, fill_volume_ml, particle_count or fill_mass");
   s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
   if (j.contains("fill_volume_ml")) {
     s.fill_by = FillBy::fill_volume;
     s.fill_volume_ml = read_parameter(j, p, "fill_volume_ml", 0.0);
   } else if (j.contains("particle_count")) {
     s.fill_by = FillBy::particle_count;
-    s.particle_count = read_integer(j, p, "particle_count", 0, static_cast<long long>(find_parameter("particle_count")->valid.lower));
+    s.particle_count =
+        read_integer(j, p, "particle_count", 0, static_cast<long long>(find_parameter("particle_count")->valid.lower));
   } else if (j.contains("fill_mass")) {
     s.fill_by = FillBy::fill_mass;
     s.fill_mass = read_number(j, p, "fill_mass", 0.0, Sign::positive);
@@ -151,11 +158,11 @@ void parse_fill_amount(const json& j, DrumSpec& s) {
 
 DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base_dir) {
   const char* p = "drum";
-  require_known_keys(j, p, {"diameter", "length", "rpm", "duration", "fill_fraction",
-                            "volume_fraction", "coarse_graining", "scale_factor", "fill_seed",
-                            "densify_time", "torque_interval", "surface_window",
-                            "surface_snapshots", "surface_points", "fill_volume_ml",
-                            "particle_count", "fill_mass", "size_distribution", "image"});
+  require_known_keys(
+      j, p,
+      {"diameter", "length", "rpm", "duration", "fill_fraction", "volume_fraction", "coarse_graining", "scale_factor",
+       "fill_seed", "densify_time", "torque_interval", "surface_window", "surface_snapshots", "surface_points",
+       "fill_volume_ml", "particle_count", "fill_mass", "size_distribution", "image"});
   s.diameter = read_number(j, p, "diameter", s.diameter, Sign::positive);
   s.length = read_number(j, p, "length", s.length, Sign::positive);
   s.rpm = read_number(j, p, "rpm", s.rpm);
@@ -179,22 +186,21 @@ DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base
     throw std::runtime_error("'drum.surface_window' must not exceed 'drum.duration'");
   }
   if (j.contains("size_distribution"))
-    s.size_distribution = parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);
+    s.size_distribution =
+        parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);
   if (j.contains("image")) s.image = parse_drum_image(child_object(j, p, "image"));
   if (s.fill_by == FillBy::fill_volume) {
     const double drum_ml = std::numbers::pi * 0.25 * s.diameter * s.diameter * s.length * 1e6;
     if (s.fill_volume_ml > 0.9 * drum_ml)
-      throw std::runtime_error("'drum.fill_volume_ml' = " + std::to_string(s.fill_volume_ml) + " exceeds 90 % of the drum volume (" +
-                               std::to_string(drum_ml) + " mL): lower it");
+      throw std::runtime_error("'drum.fill_volume_ml' = " + std::to_string(s.fill_volume_ml) +
+                               " exceeds 90 % of the drum volume (" + std::to_string(drum_ml) + " mL): lower it");
   }
   return s;
 }
 
 }  // namespace
 
-double MaterialSpec::bulk_modulus() const {
-  return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio));
-}
+double MaterialSpec::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
 
 std::string to_string(dem_core::ContactLawKind law) {
   return law == dem_core::ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "lsdyna_linear";
@@ -203,28 +209,42 @@ std::string to_string(dem_core::ContactLawKind law) {
 namespace {
 
 json pellet_json(const PelletSpec& p) {
-  return {{"container_diameter", p.container_diameter}, {"container_height", p.container_height},
-          {"particle_count", p.particle_count}, {"fill_seed", p.fill_seed},
-          {"fill_normk", p.fill_normk}, {"settle_time", p.settle_time},
-          {"piston_speed", p.piston_speed}, {"max_pressure", p.max_pressure},
-          {"max_travel", p.max_travel}, {"unload", p.unload}, {"curve_points", p.curve_points}};
+  return {{"container_diameter", p.container_diameter},
+          {"container_height", p.container_height},
+          {"particle_count", p.particle_count},
+          {"fill_seed", p.fill_seed},
+          {"fill_normk", p.fill_normk},
+          {"settle_time", p.settle_time},
+          {"piston_speed", p.piston_speed},
+          {"max_pressure", p.max_pressure},
+          {"max_travel", p.max_travel},
+          {"unload", p.unload},
+          {"curve_points", p.curve_points}};
 }
 
 json drum_json(const DrumSpec& d) {
-  json j = {{"diameter", d.diameter}, {"length", d.length}, {"rpm", d.rpm},
-            {"duration", d.duration}, {"fill_fraction", d.fill_fraction},
+  json j = {{"diameter", d.diameter},
+            {"length", d.length},
+            {"rpm", d.rpm},
+            {"duration", d.duration},
+            {"fill_fraction", d.fill_fraction},
             {"volume_fraction", d.volume_fraction},
-            {"coarse_graining", to_string(d.coarse_graining)}, {"scale_factor", d.scale_factor},
-            {"fill_seed", d.fill_seed}, {"densify_time", d.densify_time},
-            {"torque_interval", d.torque_interval}, {"surface_window", d.surface_window},
-            {"surface_snapshots", d.surface_snapshots}, {"surface_points", d.surface_points}};
+            {"coarse_graining", to_string(d.coarse_graining)},
+            {"scale_factor", d.scale_factor},
+            {"fill_seed", d.fill_seed},
+            {"densify_time", d.densify_time},
+            {"torque_interval", d.torque_interval},
+            {"surface_window", d.surface_window},
+            {"surface_snapshots", d.surface_snapshots},
+            {"surface_points", d.surface_points}};
   // General-drum options appear only when used, so a paper drum keeps its old text.
   if (d.fill_by != FillBy::fill_fraction) j.erase("fill_fraction");
   if (d.fill_by == FillBy::fill_volume) j["fill_volume_ml"] = d.fill_volume_ml;
   if (d.fill_by == FillBy::particle_count) j["particle_count"] = d.particle_count;
   if (d.fill_by == FillBy::fill_mass) j["fill_mass"] = d.fill_mass;
   if (d.size_distribution.enabled()) j["size_distribution"] = to_json(d.size_distribution);
-  if (d.image.enabled) j["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
+  if (d.image.enabled)
+    j["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
   return j;
 }
 
@@ -232,8 +252,10 @@ json drum_json(const DrumSpec& d) {
 // for the drum only).
 bool hertz_supported(CaseKind kind) {
   switch (kind) {
-    case CaseKind::pellet_compression: return false;
-    case CaseKind::rotary_drum: return true;
+    case CaseKind::pellet_compression:
+      return false;
+    case CaseKind::rotary_drum:
+      return true;
   }
   return false;
 }
@@ -241,8 +263,9 @@ bool hertz_supported(CaseKind kind) {
 }  // namespace
 
 CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir) {
-  require_known_keys(document, "", {"case", "description", "particle", "contact", "wall_contact",
-                                    "time_step", "output", "pellet", "drum"});
+  require_known_keys(
+      document, "",
+      {"case", "description", "particle", "contact", "wall_contact", "time_step", "output", "pellet", "drum"});
   CaseSpec spec;
   if (!document.contains("case")) throw std::runtime_error("'case' is missing: set \"case\": " + case_kind_names());
   const std::string kind = read_string(document, "", "case", "");
@@ -258,7 +281,8 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   const std::string law = read_string(contact, "contact", "law", "lsdyna_linear");
   if (law == "hertz_mindlin") {
     if (!hertz_supported(spec.kind))
-      throw std::runtime_error("'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
+      throw std::runtime_error(
+          "'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
     spec.law = dem_core::ContactLawKind::hertz_mindlin;
     parse_hertz_contact(contact, spec);
     parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
@@ -267,7 +291,8 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
       spec.wall.fricd = spec.contact.fricr;
     }
     if (spec.material.radius_spread != 0.0)
-      throw std::runtime_error("'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
+      throw std::runtime_error(
+          "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
   } else if (law == "lsdyna_linear") {
     json plain = contact;
     plain.erase("law");
@@ -285,7 +310,8 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
       spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum, base_dir);
       if (spec.drum.size_distribution.enabled()) {
         if (child_object(document, "", "particle").contains("radius"))
-          throw std::runtime_error("'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
+          throw std::runtime_error(
+              "'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
         if (spec.material.radius_spread != 0.0)
           throw std::runtime_error("'particle.radius_spread' cannot be combined with 'drum.size_distribution'");
         spec.material.radius = 0.5 * spec.drum.size_distribution.min_diameter();  // smallest size (time-step checks)
@@ -299,7 +325,8 @@ json to_json(const CaseSpec& s) {
   json j;
   j["case"] = case_kind_row(s.kind).name;
   j["description"] = s.description;
-  j["particle"] = {{"radius", s.material.radius}, {"density", s.material.density},
+  j["particle"] = {{"radius", s.material.radius},
+                   {"density", s.material.density},
                    {"youngs_modulus", s.material.youngs_modulus},
                    {"poisson_ratio", s.material.poisson_ratio},
                    {"radius_spread", s.material.radius_spread}};
@@ -311,8 +338,10 @@ json to_json(const CaseSpec& s) {
     j["contact"] = {{"law", to_string(s.law)}};
     write_parameter_fields(j["contact"], "contact", s.law, s);
     j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-    if (s.wall_friction_as_particles) j["wall_contact"]["friction_as_particles"] = true;
-    else write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
+    if (s.wall_friction_as_particles)
+      j["wall_contact"]["friction_as_particles"] = true;
+    else
+      write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   } else {
     // lsdyna_linear: the text of a case file from before the law could be chosen.
     j["contact"] = json::object();
@@ -321,11 +350,14 @@ json to_json(const CaseSpec& s) {
     write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
-  j["output"] = {{"snapshot_times", s.output.snapshot_times},
-                 {"progress_interval", s.output.progress_interval}};
+  j["output"] = {{"snapshot_times", s.output.snapshot_times}, {"progress_interval", s.output.progress_interval}};
   switch (s.kind) {
-    case CaseKind::pellet_compression: j["pellet"] = pellet_json(s.pellet); break;
-    case CaseKind::rotary_drum: j["drum"] = drum_json(s.drum); break;
+    case CaseKind::pellet_compression:
+      j["pellet"] = pellet_json(s.pellet);
+      break;
+    case CaseKind::rotary_drum:
+      j["drum"] = drum_json(s.drum);
+      break;
   }
   return j;
 }
@@ -389,7 +421,8 @@ void apply_setting(json& document, const std::string& assignment) {
   // A fill amount replaces the file's fill amount (exactly one may be given).
   for (const char* fill : {"drum.fill_fraction", "drum.fill_volume_ml", "drum.particle_count", "drum.fill_mass"}) {
     if (path != fill || !document.contains("drum") || !document["drum"].is_object()) continue;
-    for (const char* other : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"}) document["drum"].erase(other);
+    for (const char* other : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"})
+      document["drum"].erase(other);
   }
   json* node = &document;
   std::size_t start = 0;

@@ -13,16 +13,11 @@ CoarseGraining parse_coarse_graining(const std::string& name) {
   throw std::runtime_error("coarse-graining model '" + name + "' is unknown (use \"scg\" or \"cvf\")");
 }
 
-std::string to_string(CoarseGraining model) {
-  return model == CoarseGraining::scg ? "scg" : "cvf";
-}
+std::string to_string(CoarseGraining model) { return model == CoarseGraining::scg ? "scg" : "cvf"; }
 
-double sphere_volume(double radius) {
-  return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
-}
+double sphere_volume(double radius) { return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius; }
 
-CoarseParticle coarse_grain(CoarseGraining model, double s, double phi,
-                            const OriginalParticle& original) {
+CoarseParticle coarse_grain(CoarseGraining model, double s, double phi, const OriginalParticle& original) {
   if (!(s > 0.0)) throw std::runtime_error("coarse-graining scale factor s must be > 0");
   if (!(phi > 0.0 && phi <= 1.0)) {
     throw std::runtime_error("coarse-graining volume fraction phi must lie in (0, 1]");

@@ -50,15 +50,18 @@ bool is_change(const ParameterRow& row, const CaseSpec& base, double value) { re
 void check_applicable(const ParameterRow& row, const CaseSpec& base) {
   const std::string name = row.name;
   if (!row.applies_to(base.law)) {
-    const dem_core::ContactLawKind other = is_hertz(base) ? dem_core::ContactLawKind::lsdyna_linear
-                                                          : dem_core::ContactLawKind::hertz_mindlin;
-    throw std::runtime_error("parameter '" + name + "' belongs to contact law " + to_string(other) + "; this case uses " +
-                             to_string(base.law) + " (its parameters: " + law_parameters_text(base.law) + ")");
+    const dem_core::ContactLawKind other =
+        is_hertz(base) ? dem_core::ContactLawKind::lsdyna_linear : dem_core::ContactLawKind::hertz_mindlin;
+    throw std::runtime_error("parameter '" + name + "' belongs to contact law " + to_string(other) +
+                             "; this case uses " + to_string(base.law) +
+                             " (its parameters: " + law_parameters_text(base.law) + ")");
   }
   if (row.drum_only && base.kind != CaseKind::rotary_drum)
-    throw std::runtime_error("parameter '" + name + "' is a drum fill amount: it does not apply to a pellet_compression case");
+    throw std::runtime_error("parameter '" + name +
+                             "' is a drum fill amount: it does not apply to a pellet_compression case");
   if (base.wall_friction_as_particles && row.home == ParameterHome::wall_contact)
-    throw std::runtime_error("parameter '" + name + "': the case's wall friction follows the particles "
+    throw std::runtime_error("parameter '" + name +
+                             "': the case's wall friction follows the particles "
                              "(wall_contact.friction_as_particles); vary frics/fricr instead");
 }
 
@@ -117,8 +120,8 @@ void precheck_user_time_step(const CaseSpec& spec, double radius, double density
   // radius the caller passes) sets the stable step.
   const double smallest = radius * (1.0 - spec.material.radius_spread);
   probe.add_particle({0, 0, 0}, smallest);
-  probe.add_wall({dem_core::PlaneGeometry{{0, 0, -smallest}, {0, 0, 1}}, dem_core::FixedMotion{},
-                  spec.wall, {}, "probe"});
+  probe.add_wall(
+      {dem_core::PlaneGeometry{{0, 0, -smallest}, {0, 0, 1}}, dem_core::FixedMotion{}, spec.wall, {}, "probe"});
   check_user_time_step(spec, probe);
 }
 

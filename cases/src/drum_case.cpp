@@ -41,7 +41,7 @@ std::string fmt(const char* pattern, double value) {
 }
 
 struct Powder {
-  CoarseParticle particle;           // monodisperse: the particle; distribution: its smallest one
+  CoarseParticle particle;  // monodisperse: the particle; distribution: its smallest one
   long long count = 0;
   double original_total_mass = 0.0;  // M0 [kg]
   double original_count = 0.0;       // N0 (real: the rule's value before rounding)
@@ -56,10 +56,14 @@ double drum_volume(const DrumSpec& d) { return std::numbers::pi * 0.25 * d.diame
 double original_count(const CaseSpec& spec, double mean_volume) {
   const DrumSpec& d = spec.drum;
   switch (d.fill_by) {
-    case FillBy::fill_fraction: return d.volume_fraction * d.fill_fraction * drum_volume(d) / mean_volume;
-    case FillBy::fill_volume: return d.volume_fraction * d.fill_volume_ml * 1e-6 / mean_volume;
-    case FillBy::particle_count: return static_cast<double>(d.particle_count);
-    case FillBy::fill_mass: return d.fill_mass / (spec.material.density * mean_volume);
+    case FillBy::fill_fraction:
+      return d.volume_fraction * d.fill_fraction * drum_volume(d) / mean_volume;
+    case FillBy::fill_volume:
+      return d.volume_fraction * d.fill_volume_ml * 1e-6 / mean_volume;
+    case FillBy::particle_count:
+      return static_cast<double>(d.particle_count);
+    case FillBy::fill_mass:
+      return d.fill_mass / (spec.material.density * mean_volume);
   }
   return 0.0;
 }
@@ -77,7 +81,8 @@ Powder powder_of(const CaseSpec& spec) {
     p.count = coarse_particle_count(p.particle, p.original_total_mass);
     p.original_count = p.original_total_mass / (spec.material.density * sphere_volume(spec.material.radius));
     p.bulk_fraction = d.fill_fraction;
-    if (p.count < 1) throw std::runtime_error("drum: the fill holds less than one coarse particle: lower drum.scale_factor");
+    if (p.count < 1)
+      throw std::runtime_error("drum: the fill holds less than one coarse particle: lower drum.scale_factor");
     return p;
   }
   const SizeDistributionSpec& sizes = d.size_distribution;
@@ -92,8 +97,10 @@ Powder powder_of(const CaseSpec& spec) {
   } else {
     // Every size of the distribution is coarse-grained alike (Table 2 with r0 = 1 gives the
     // radius factor); SCG count = N0 / s^3, CVF phi N0 / s^3 (the Table 2 total mass).
-    const CoarseParticle unit = coarse_grain(d.coarse_graining, d.scale_factor, d.volume_fraction, {1.0, spec.material.density});
-    p.count = std::llround(unit.total_mass_factor * p.original_count / (d.scale_factor * d.scale_factor * d.scale_factor));
+    const CoarseParticle unit =
+        coarse_grain(d.coarse_graining, d.scale_factor, d.volume_fraction, {1.0, spec.material.density});
+    p.count =
+        std::llround(unit.total_mass_factor * p.original_count / (d.scale_factor * d.scale_factor * d.scale_factor));
     if (p.count >= 1) {
       p.radii = sizes.sample_radii(static_cast<std::size_t>(p.count), static_cast<std::uint64_t>(d.fill_seed));
       for (double& r : p.radii) r *= unit.radius;
@@ -101,7 +108,9 @@ Powder powder_of(const CaseSpec& spec) {
     p.particle = coarse_grain(d.coarse_graining, d.scale_factor, d.volume_fraction,
                               {0.5 * sizes.min_diameter(), spec.material.density});
   }
-  if (p.count < 1) throw std::runtime_error("drum: the fill holds less than one coarse particle: lower drum.scale_factor or raise the fill");
+  if (p.count < 1)
+    throw std::runtime_error(
+        "drum: the fill holds less than one coarse particle: lower drum.scale_factor or raise the fill");
   return p;
 }
 
@@ -129,11 +138,16 @@ std::size_t add_drum(dem_core::Simulation& sim, const CaseSpec& spec, double ome
 nlohmann::json fill_key(const CaseSpec& spec) {
   const nlohmann::json full = to_key_json(spec);
   nlohmann::json drum = full["drum"];
-  for (const char* k : {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points", "image"}) {
+  for (const char* k :
+       {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points", "image"}) {
     drum.erase(k);
   }
-  return {{"fill_format", 1}, {"particle", full["particle"]}, {"contact", full["contact"]},
-          {"wall_contact", full["wall_contact"]}, {"time_step_factor", kFillTimeStepFactor}, {"drum", drum}};
+  return {{"fill_format", 1},
+          {"particle", full["particle"]},
+          {"contact", full["contact"]},
+          {"wall_contact", full["wall_contact"]},
+          {"time_step_factor", kFillTimeStepFactor},
+          {"drum", drum}};
 }
 
 // Fallback when the lattice cannot hold the count (coarse particles only a few diameters shorter
@@ -166,7 +180,8 @@ std::optional<dem_core::Packing> random_packing_of_radii(const CaseSpec& spec, s
     if (reach <= 0.0 || spec.drum.length < 2.0 * r) return std::nullopt;
     bool placed = false;
     for (int attempt = 0; attempt < 200000 && !placed; ++attempt) {
-      const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r + uniform() * (spec.drum.length - 2.0 * r)};
+      const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach,
+                   r + uniform() * (spec.drum.length - 2.0 * r)};
       if (c.x * c.x + c.y * c.y > reach * reach) continue;
       placed = place_if_free(packing, c, r);
     }
@@ -196,7 +211,8 @@ std::optional<dem_core::Packing> random_packing(const CaseSpec& spec, const Powd
       r = powder.particle.radius * (1.0 + spread * (2.0 * static_cast<double>(size_engine() >> 11) * 0x1.0p-53 - 1.0));
       next_radius = false;
     }
-    const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach, r_max + uniform() * (spec.drum.length - 2.0 * r_max)};
+    const Vec3 c{(2.0 * uniform() - 1.0) * reach, (2.0 * uniform() - 1.0) * reach,
+                 r_max + uniform() * (spec.drum.length - 2.0 * r_max)};
     if (c.x * c.x + c.y * c.y > reach * reach) continue;
     if (!place_if_free(packing, c, r)) continue;
     next_radius = spread > 0.0;
@@ -239,18 +255,17 @@ Fill pack_and_densify(const CaseSpec& spec, const CaseRunOptions& options) {
   for (double gap : {0.2, 0.1, 0.03}) {
     for (double fraction = std::min(0.9, 1.2 * powder.bulk_fraction); fraction <= 0.995 && !packing; fraction += 0.05) {
       request.gap = gap;
-      request.region = dem_core::DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, rd, spec.drum.length, {0, 1, 0},
-                                                   dem_core::drum_fill_height(rd, fraction)};
+      request.region = dem_core::DrumSegmentRegion{
+          {0, 0, 0}, {0, 0, 1}, rd, spec.drum.length, {0, 1, 0}, dem_core::drum_fill_height(rd, fraction)};
       try {
         packing = dem_core::generate_packing(request);
-      } catch (const std::exception& e) {
-        last_error = e.what();
-      }
+      } catch (const std::exception& e) { last_error = e.what(); }
     }
     if (packing) break;
   }
   if (!packing) packing = random_packing(spec, powder);
-  if (!packing) throw std::runtime_error("drum: cannot place " + std::to_string(powder.count) + " particles: " + last_error);
+  if (!packing)
+    throw std::runtime_error("drum: cannot place " + std::to_string(powder.count) + " particles: " + last_error);
   dem_core::add_packing(sim, *packing);
   add_drum(sim, spec, 0.0);
   if (options.progress) options.progress("densify", 0.0, spec.drum.densify_time);
@@ -315,10 +330,12 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
   RotationRun run;
   run.time_step = sim.time_step();
   const DrumSpec& d = spec.drum;
-  const auto steps_per_sample = static_cast<std::uint64_t>(std::max(1.0, std::round(d.torque_interval / run.time_step)));
+  const auto steps_per_sample =
+      static_cast<std::uint64_t>(std::max(1.0, std::round(d.torque_interval / run.time_step)));
   std::vector<double> surface_times;
   for (long long k = 0; k < d.surface_snapshots; ++k) {
-    const double f = d.surface_snapshots == 1 ? 1.0 : static_cast<double>(k) / static_cast<double>(d.surface_snapshots - 1);
+    const double f =
+        d.surface_snapshots == 1 ? 1.0 : static_cast<double>(k) / static_cast<double>(d.surface_snapshots - 1);
     surface_times.push_back(d.duration - d.surface_window * (1.0 - f));
   }
   std::vector<SurfaceProfile> profiles;
@@ -337,11 +354,13 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
   auto callback = [&](dem_core::Simulation& s) {
     torque_sum -= sense * (s.wall_torque(shell) + s.wall_torque(shell + 1) + s.wall_torque(shell + 2));
     snapshots.maybe_write(s, s.time());
-    while (profiles.size() < surface_times.size() && s.time() >= surface_times[profiles.size()] - 1e-12) take_surface(s);
+    while (profiles.size() < surface_times.size() && s.time() >= surface_times[profiles.size()] - 1e-12)
+      take_surface(s);
     if (++in_sample >= steps_per_sample) {
       run.times.push_back(s.time());
       run.torques.push_back(torque_sum / static_cast<double>(in_sample));
-      if (!std::isfinite(run.torques.back())) throw std::runtime_error("drum run diverged (non-finite torque): lower time_step.factor");
+      if (!std::isfinite(run.torques.back()))
+        throw std::runtime_error("drum run diverged (non-finite torque): lower time_step.factor");
       torque_sum = 0.0;
       in_sample = 0;
       if (options.progress) options.progress("rotate", s.time(), d.duration);
@@ -361,7 +380,8 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
   }
   run.steps = sim.step_count();
   run.particles = CurveTable{{"particle centres at the end time; drum axis z, gravity -y"},
-                             {"x_mm", "y_mm", "z_mm", "radius_mm"}, std::vector<std::vector<double>>(4)};
+                             {"x_mm", "y_mm", "z_mm", "radius_mm"},
+                             std::vector<std::vector<double>>(4)};
   for (std::size_t i = 0; i < sim.particle_count(); ++i) {
     const Vec3 p = sim.positions()[i];
     const double v[4] = {p.x * 1e3, p.y * 1e3, p.z * 1e3, sim.radii()[i] * 1e3};
@@ -404,8 +424,8 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   bool generated = false;
   const Powder powder = powder_of(spec);
   precheck_user_time_step(spec, powder.particle.radius, powder.particle.density);
-  const Fill fill = cached_fill(options.cache_dir, "drum", fill_key(fill_spec),
-                                [&] { return pack_and_densify(fill_spec, options); }, &generated);
+  const Fill fill = cached_fill(
+      options.cache_dir, "drum", fill_key(fill_spec), [&] { return pack_and_densify(fill_spec, options); }, &generated);
   const double fill_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const auto rotate_start = Clock::now();
   const RotationRun run = rotate(spec, powder, fill, options);
@@ -438,7 +458,10 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   double mean_torque = 0.0;
   int counted = 0;
   for (std::size_t i = 0; i < run.times.size(); ++i) {
-    if (run.times[i] >= 0.5 * spec.drum.duration) { mean_torque += run.torques[i]; ++counted; }
+    if (run.times[i] >= 0.5 * spec.drum.duration) {
+      mean_torque += run.torques[i];
+      ++counted;
+    }
   }
   auto& sum = result.summary;
   sum.emplace_back("model", to_string(spec.drum.coarse_graining) + " s = " + fmt("%g", spec.drum.scale_factor));
@@ -450,7 +473,8 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
     double mean = 0.0;
     for (double r : fill.radii) mean += r;
     sum.emplace_back("original particles N0 (fill rule)", fmt("%.1f", powder.original_count));
-    sum.emplace_back("mean particle radius [mm] (size distribution x coarse-graining factor)", fmt("%.4f", mean / static_cast<double>(fill.radii.size()) * 1e3));
+    sum.emplace_back("mean particle radius [mm] (size distribution x coarse-graining factor)",
+                     fmt("%.4f", mean / static_cast<double>(fill.radii.size()) * 1e3));
   }
   sum.emplace_back("particle density [kg/m3]", fmt("%.1f", powder.particle.density));
   double total_mass = 0.0;  // summed per particle: radii differ with a radius spread
@@ -462,8 +486,10 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
                    fmt("%.2f", repose_angle_degrees(run.surface, -0.5 * rd, 0.5 * rd)));
   sum.emplace_back("mean drive torque, second half [N m]", fmt("%.5f", counted ? mean_torque / counted : 0.0));
   if (run.image_surface) {
-    sum.emplace_back("surface_angle_deg (dynamic repose angle of free_surface_image, line fit over |x| < R/2; positive = lifted at x < 0)",
-                     fmt("%.2f", image_surface_angle(*run.image_surface, 0.5 * rd)));
+    sum.emplace_back(
+        "surface_angle_deg (dynamic repose angle of free_surface_image, line fit over |x| < R/2; positive = lifted at "
+        "x < 0)",
+        fmt("%.2f", image_surface_angle(*run.image_surface, 0.5 * rd)));
   }
   sum.emplace_back("time step [s]", fmt("%.3e", run.time_step));
   sum.emplace_back("rotation steps", std::to_string(run.steps));

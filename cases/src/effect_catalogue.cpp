@@ -32,7 +32,8 @@ constexpr double kDrumCohesionWeights = 1.0;
 EffectParameterInfo fitting(const char* name, double lower, double upper) {
   const ParameterRow* row = find_parameter(name);
   if (!row || !row->is_effect || !row->valid.contains_interval(lower, upper))
-    throw std::logic_error(std::string("effect catalogue: '") + name + "' is no effect row or its fitting range lies outside its valid range");
+    throw std::logic_error(std::string("effect catalogue: '") + name +
+                           "' is no effect row or its fitting range lies outside its valid range");
   return {name, lower, upper, row->off_value, row->unit};
 }
 
@@ -42,8 +43,8 @@ EffectParameterInfo fitting(const char* name, double lower, double upper) {
 double case_cohesion_bound(const CaseSpec& spec) {
   switch (spec.kind) {
     case CaseKind::rotary_drum: {
-      const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor, spec.drum.volume_fraction,
-                                            {spec.material.radius, spec.material.density});
+      const CoarseParticle p = coarse_grain(spec.drum.coarse_graining, spec.drum.scale_factor,
+                                            spec.drum.volume_fraction, {spec.material.radius, spec.material.density});
       return cohesion_surface_energy_bound(p.radius, p.density, kDrumCohesionWeights);
     }
     case CaseKind::pellet_compression:
@@ -66,14 +67,15 @@ EffectInfo cohesion(double upper) {
 // The effects of case `case_name`, each with `cases` = {case_name}.
 std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_name) {
   std::vector<EffectInfo> all;
-  all.push_back({"plasticity",
-                 "Walton-Braun hysteretic normal spring: unloading stiffness k2 = ratio k1, delta0 = delta_max (1 - k1/k2); "
-                 "undamped restitution 1/sqrt(ratio). Shows mainly on unloading (pellet.unload = true, curve "
-                 "pressure_volume_cycle); contacts that unload during rearrangement change the loading curve too",
-                 // Up to 4 (head-on restitution 0.5) of the valid 100: the pellet cycle resolves that range.
-                 {fitting("unloading_stiffness_ratio", 1.0, 4.0)},
-                 {kPellet},
-                 {}});
+  all.push_back(
+      {"plasticity",
+       "Walton-Braun hysteretic normal spring: unloading stiffness k2 = ratio k1, delta0 = delta_max (1 - k1/k2); "
+       "undamped restitution 1/sqrt(ratio). Shows mainly on unloading (pellet.unload = true, curve "
+       "pressure_volume_cycle); contacts that unload during rearrangement change the loading curve too",
+       // Up to 4 (head-on restitution 0.5) of the valid 100: the pellet cycle resolves that range.
+       {fitting("unloading_stiffness_ratio", 1.0, 4.0)},
+       {kPellet},
+       {}});
   all.push_back(cohesion(cohesion_upper));
   all.push_back({"hertz_stiffness",
                  "nonlinear normal spring F = k_n d_ref (delta/d_ref)^n, d_ref = 0.01 R* (equal to the linear law at "
@@ -94,14 +96,16 @@ std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_nam
                  {fitting("fricr", 0.0, 0.3)},
                  {kPellet, kDrum},
                  {}});
-  all.push_back({"polydispersity",
-                 "radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (the drum's coarse-grained radius gets "
-                 "the same relative spread); changes the fill, which is regenerated and cached per spread",
-                 // Up to 0.25, inside the valid 0.3 (the drum lattice limit).
-                 {fitting("radius_spread", 0.0, 0.25)},
-                 {kPellet, kDrum},
-                 {}});
-  std::erase_if(all, [&](const EffectInfo& e) { return std::find(e.cases.begin(), e.cases.end(), case_name) == e.cases.end(); });
+  all.push_back(
+      {"polydispersity",
+       "radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (the drum's coarse-grained radius gets "
+       "the same relative spread); changes the fill, which is regenerated and cached per spread",
+       // Up to 0.25, inside the valid 0.3 (the drum lattice limit).
+       {fitting("radius_spread", 0.0, 0.25)},
+       {kPellet, kDrum},
+       {}});
+  std::erase_if(
+      all, [&](const EffectInfo& e) { return std::find(e.cases.begin(), e.cases.end(), case_name) == e.cases.end(); });
   for (EffectInfo& e : all) e.cases = {case_name};
   return all;
 }

@@ -56,8 +56,8 @@ void write_fill(const std::filesystem::path& path, const std::string& key_text, 
   std::string text = key_text + '\n';
   char line[160];
   for (std::size_t i = 0; i < fill.radii.size(); ++i) {
-    std::snprintf(line, sizeof line, "%a %a %a %a\n", fill.positions[i][0], fill.positions[i][1],
-                  fill.positions[i][2], fill.radii[i]);
+    std::snprintf(line, sizeof line, "%a %a %a %a\n", fill.positions[i][0], fill.positions[i][1], fill.positions[i][2],
+                  fill.radii[i]);
     text += line;
   }
   try {
@@ -85,8 +85,8 @@ std::filesystem::path fill_cache_path(const std::filesystem::path& cache_dir, co
   return cache_dir / (prefix + "_" + hex + ".fill");
 }
 
-Fill cached_fill(const std::filesystem::path& cache_dir, const std::string& prefix,
-                 const nlohmann::json& key, const std::function<Fill()>& generate, bool* generated) {
+Fill cached_fill(const std::filesystem::path& cache_dir, const std::string& prefix, const nlohmann::json& key,
+                 const std::function<Fill()>& generate, bool* generated) {
   const std::filesystem::path path = fill_cache_path(cache_dir, prefix, key);
   const std::string key_text = key.dump();
   std::lock_guard<std::mutex> lock(file_mutex(path.string()));

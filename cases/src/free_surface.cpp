@@ -35,8 +35,8 @@ long long cell_key(long long ix, long long iy, long long iz) {
 
 }  // namespace
 
-std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions,
-                                 const std::vector<double>& radii, double contact_tolerance) {
+std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
+                                 double contact_tolerance) {
   const int n = static_cast<int>(positions.size());
   if (radii.size() != positions.size()) throw std::runtime_error("free surface: radii/positions size mismatch");
   if (n == 0) return {};
@@ -76,8 +76,7 @@ std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& posit
 }
 
 SurfaceProfile extract_free_surface(const std::vector<std::array<double, 3>>& positions,
-                                    const std::vector<double>& radii,
-                                    const SurfaceOptions& options) {
+                                    const std::vector<double>& radii, const SurfaceOptions& options) {
   if (options.points < 2 || !(options.x_max > options.x_min)) {
     throw std::runtime_error("free surface: need points >= 2 and x_max > x_min");
   }
@@ -133,7 +132,11 @@ double repose_angle_degrees(const SurfaceProfile& profile, double x_low, double 
     const double x = profile.x[k];
     const double y = profile.height[k];
     if (x < x_low || x > x_high || !std::isfinite(y)) continue;
-    sx += x; sy += y; sxx += x * x; sxy += x * y; ++n;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++n;
   }
   if (n < 2) return std::numeric_limits<double>::quiet_NaN();
   const double denominator = n * sxx - sx * sx;

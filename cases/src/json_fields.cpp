@@ -27,25 +27,20 @@ void require_known_keys(const nlohmann::json& object, std::string_view path, con
     if (!known) {
       std::string list;
       for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
-      throw std::runtime_error("unknown key '" + join_path(path, item.key()) +
-                               "' (allowed here: " + list + ")");
+      throw std::runtime_error("unknown key '" + join_path(path, item.key()) + "' (allowed here: " + list + ")");
     }
   }
 }
 
-const nlohmann::json& child_object(const nlohmann::json& object, std::string_view path,
-                                   const char* key) {
+const nlohmann::json& child_object(const nlohmann::json& object, std::string_view path, const char* key) {
   static const nlohmann::json empty = nlohmann::json::object();
   auto it = object.find(key);
   if (it == object.end()) return empty;
-  if (!it->is_object()) {
-    throw std::runtime_error("'" + join_path(path, key) + "' must be a JSON object {...}");
-  }
+  if (!it->is_object()) { throw std::runtime_error("'" + join_path(path, key) + "' must be a JSON object {...}"); }
   return *it;
 }
 
-double read_number(const nlohmann::json& object, std::string_view path, const char* key,
-                   double fallback, Sign sign) {
+double read_number(const nlohmann::json& object, std::string_view path, const char* key, double fallback, Sign sign) {
   auto it = object.find(key);
   if (it == object.end()) return fallback;
   const std::string name = join_path(path, key);
@@ -61,27 +56,24 @@ double read_number(const nlohmann::json& object, std::string_view path, const ch
   return value;
 }
 
-long long read_integer(const nlohmann::json& object, std::string_view path, const char* key,
-                       long long fallback, long long minimum) {
+long long read_integer(const nlohmann::json& object, std::string_view path, const char* key, long long fallback,
+                       long long minimum) {
   auto it = object.find(key);
   if (it == object.end()) return fallback;
   const std::string name = join_path(path, key);
   if (!it->is_number_integer()) throw std::runtime_error("'" + name + "' must be an integer");
   const long long value = it->get<long long>();
   if (value < minimum) {
-    throw std::runtime_error("'" + name + "' must be >= " + std::to_string(minimum) + " (got " +
-                             std::to_string(value) + ")");
+    throw std::runtime_error("'" + name + "' must be >= " + std::to_string(minimum) + " (got " + std::to_string(value) +
+                             ")");
   }
   return value;
 }
 
-bool read_bool(const nlohmann::json& object, std::string_view path, const char* key,
-               bool fallback) {
+bool read_bool(const nlohmann::json& object, std::string_view path, const char* key, bool fallback) {
   auto it = object.find(key);
   if (it == object.end()) return fallback;
-  if (!it->is_boolean()) {
-    throw std::runtime_error("'" + join_path(path, key) + "' must be true or false");
-  }
+  if (!it->is_boolean()) { throw std::runtime_error("'" + join_path(path, key) + "' must be true or false"); }
   return it->get<bool>();
 }
 
@@ -93,12 +85,12 @@ std::string read_string(const nlohmann::json& object, std::string_view path, con
   return it->get<std::string>();
 }
 
-double read_bounded(const nlohmann::json& object, std::string_view path, const char* key,
-                    double fallback, double low, double high) {
+double read_bounded(const nlohmann::json& object, std::string_view path, const char* key, double fallback, double low,
+                    double high) {
   const double value = read_number(object, path, key, fallback);
   if (value < low || value > high) {
-    throw std::runtime_error("'" + join_path(path, key) + "' must lie in [" + std::to_string(low) +
-                             ", " + std::to_string(high) + "] (got " + std::to_string(value) + ")");
+    throw std::runtime_error("'" + join_path(path, key) + "' must lie in [" + std::to_string(low) + ", " +
+                             std::to_string(high) + "] (got " + std::to_string(value) + ")");
   }
   return value;
 }

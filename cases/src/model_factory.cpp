@@ -42,8 +42,10 @@ class DemCaseModel final : public identify::Model {
 // The shipped case file of each kind, compiled in (a reference by kind name resolves to it).
 nlohmann::json builtin_document(CaseKind kind) {
   switch (kind) {
-    case CaseKind::pellet_compression: return nlohmann::json::parse(detail::kBuiltinPelletCompression);
-    case CaseKind::rotary_drum: return nlohmann::json::parse(detail::kBuiltinRotaryDrum);
+    case CaseKind::pellet_compression:
+      return nlohmann::json::parse(detail::kBuiltinPelletCompression);
+    case CaseKind::rotary_drum:
+      return nlohmann::json::parse(detail::kBuiltinRotaryDrum);
   }
   throw std::logic_error("a CaseKind without a built-in case file");
 }
@@ -58,7 +60,8 @@ std::unique_ptr<identify::Model> make_model(const std::string& reference, const 
   if (reference == "analytic") {
     const nlohmann::json o = overrides.is_null() ? nlohmann::json::object() : overrides;
     require_known_keys(o, "model.overrides", {"points"});
-    return std::make_unique<identify::AnalyticCurveModel>(static_cast<int>(read_integer(o, "model.overrides", "points", 41, 2)));
+    return std::make_unique<identify::AnalyticCurveModel>(
+        static_cast<int>(read_integer(o, "model.overrides", "points", 41, 2)));
   }
   return std::make_unique<DemCaseModel>(resolve_case(reference, overrides, base_dir));
 }
@@ -82,8 +85,9 @@ CaseSpec resolve_case(const std::string& reference, const nlohmann::json& overri
                       const std::filesystem::path& base_dir) {
   // A study with "experiments" has no single model: say so instead of reading base_dir as a file.
   if (reference.empty())
-    throw std::runtime_error("no case reference: a study with \"experiments\" has one model per experiment; this "
-                             "command needs a single-model study (\"model\" + \"targets\")");
+    throw std::runtime_error(
+        "no case reference: a study with \"experiments\" has one model per experiment; this "
+        "command needs a single-model study (\"model\" + \"targets\")");
   nlohmann::json document;
   std::filesystem::path case_dir = base_dir;  // relative files in the case (size CSV) start here
   if (const CaseKindRow* kind = find_case_kind(reference)) {

@@ -12,7 +12,8 @@ namespace {
 // does not exist under that law.
 std::pair<std::string, std::string> field_of(const ParameterRow& row, dem_core::ContactLawKind law) {
   if (!row.applies_to(law)) return {};
-  const std::string path = law == dem_core::ContactLawKind::hertz_mindlin && row.hertz_path ? row.hertz_path : row.case_path;
+  const std::string path =
+      law == dem_core::ContactLawKind::hertz_mindlin && row.hertz_path ? row.hertz_path : row.case_path;
   const auto dot = path.find('.');
   return {path.substr(0, dot), path.substr(dot + 1)};
 }

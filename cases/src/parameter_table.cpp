@@ -28,7 +28,9 @@ const dem_core::WallContactParameters kWall{};
 
 // Fill amounts exist only in the form the case gives them: NaN otherwise.
 double fill_count(const CaseSpec& s) {
-  return s.kind == CaseKind::rotary_drum && s.drum.fill_by == FillBy::particle_count ? static_cast<double>(s.drum.particle_count) : kNone;
+  return s.kind == CaseKind::rotary_drum && s.drum.fill_by == FillBy::particle_count
+             ? static_cast<double>(s.drum.particle_count)
+             : kNone;
 }
 double fill_volume(const CaseSpec& s) {
   return s.kind == CaseKind::rotary_drum && s.drum.fill_by == FillBy::fill_volume ? s.drum.fill_volume_ml : kNone;
@@ -39,26 +41,30 @@ double fill_volume(const CaseSpec& s) {
 // *CONTROL_DISCRETE_ELEMENT: particle pairs (frics, fricr also in Hertz-Mindlin).
 std::vector<ParameterRow> pair_rows() {
   return {
-      {"normk", "-", "particle spring k_i = NORMK K R_i (K bulk modulus); a pair is two springs in series",
-       positive(), kPair.normk, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT NORMK", Law::lsdyna_linear, false,
+      {"normk", "-", "particle spring k_i = NORMK K R_i (K bulk modulus); a pair is two springs in series", positive(),
+       kPair.normk, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT NORMK", Law::lsdyna_linear, false,
        "contact.normk", nullptr, DEMFIT_FIELD(contact.normk)},
       {"sheark", "-", "tangential spring k_t = SHEARK k_n", non_negative(), kPair.sheark, false, 0.0,
-       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT SHEARK", Law::lsdyna_linear, false, "contact.sheark", nullptr, DEMFIT_FIELD(contact.sheark)},
+       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT SHEARK", Law::lsdyna_linear, false, "contact.sheark", nullptr,
+       DEMFIT_FIELD(contact.sheark)},
       {"ndamp", "-", "normal damping, fraction of critical", damping(), kPair.ndamp, false, 0.0, Home::pair_contact,
-       "*CONTROL_DISCRETE_ELEMENT NDAMP", Law::lsdyna_linear, false, "contact.ndamp", nullptr, DEMFIT_FIELD(contact.ndamp)},
+       "*CONTROL_DISCRETE_ELEMENT NDAMP", Law::lsdyna_linear, false, "contact.ndamp", nullptr,
+       DEMFIT_FIELD(contact.ndamp)},
       {"tdamp", "-", "tangential damping, fraction of critical", damping(), kPair.tdamp, false, 0.0, Home::pair_contact,
-       "*CONTROL_DISCRETE_ELEMENT TDAMP", Law::lsdyna_linear, false, "contact.tdamp", nullptr, DEMFIT_FIELD(contact.tdamp)},
+       "*CONTROL_DISCRETE_ELEMENT TDAMP", Law::lsdyna_linear, false, "contact.tdamp", nullptr,
+       DEMFIT_FIELD(contact.tdamp)},
       {"frics", "-", "static (sliding) friction between particles; 0 switches particle rotation off", non_negative(),
-       kPair.frics, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICS", Law::both, false, "contact.frics", nullptr,
-       DEMFIT_FIELD(contact.frics)},
+       kPair.frics, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICS", Law::both, false,
+       "contact.frics", nullptr, DEMFIT_FIELD(contact.frics)},
       {"fricd", "-", "dynamic friction, mu = FRICD + (FRICS - FRICD) exp(-DC abs(v_t)); default FRICS", non_negative(),
-       kNone, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICD", Law::lsdyna_linear, false, "contact.fricd", nullptr,
-       DEMFIT_FIELD(contact.fricd)},
+       kNone, false, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICD", Law::lsdyna_linear, false,
+       "contact.fricd", nullptr, DEMFIT_FIELD(contact.fricd)},
       {"dc", "s/m", "decay of friction with sliding speed (FRICS -> FRICD)", non_negative(), kPair.dc, false, 0.0,
-       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT DC", Law::lsdyna_linear, false, "contact.dc", nullptr, DEMFIT_FIELD(contact.dc)},
+       Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT DC", Law::lsdyna_linear, false, "contact.dc", nullptr,
+       DEMFIT_FIELD(contact.dc)},
       {"fricr", "-", "rolling friction between particles, constant-torque model (acts only with FRICS > 0)",
-       non_negative(), kPair.fricr, true, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICR", Law::both, false, "contact.fricr",
-       nullptr, DEMFIT_FIELD(contact.fricr)},
+       non_negative(), kPair.fricr, true, 0.0, Home::pair_contact, "*CONTROL_DISCRETE_ELEMENT FRICR", Law::both, false,
+       "contact.fricr", nullptr, DEMFIT_FIELD(contact.fricr)},
   };
 }
 
@@ -66,24 +72,25 @@ std::vector<ParameterRow> pair_rows() {
 std::vector<ParameterRow> wall_rows() {
   return {
       {"wall_frics", "-", "particle-wall sliding friction", non_negative(), kWall.frics, true, 0.0, Home::wall_contact,
-       "*DEFINE_DE_TO_SURFACE_COUPLING FRICS", Law::both, false, "wall_contact.frics", nullptr, DEMFIT_FIELD(wall.frics)},
+       "*DEFINE_DE_TO_SURFACE_COUPLING FRICS", Law::both, false, "wall_contact.frics", nullptr,
+       DEMFIT_FIELD(wall.frics)},
       {"wall_fricd", "-", "particle-wall ROLLING friction (FRICD of the coupling card)", non_negative(), kWall.fricd,
-       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING FRICD", Law::both, false, "wall_contact.fricd", "wall_contact.fricr",
-       DEMFIT_FIELD(wall.fricd)},
+       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING FRICD", Law::both, false, "wall_contact.fricd",
+       "wall_contact.fricr", DEMFIT_FIELD(wall.fricd)},
       {"wall_damp", "-", "particle-wall damping, fraction of critical (normal and tangential)", damping(), kWall.damp,
-       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING DAMP", Law::lsdyna_linear, false, "wall_contact.damp", nullptr,
-       DEMFIT_FIELD(wall.damp)},
+       false, 0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING DAMP", Law::lsdyna_linear, false,
+       "wall_contact.damp", nullptr, DEMFIT_FIELD(wall.damp)},
       {"wall_sfp", "-", "scale factor on the wall normal spring, k_n,w = SFP NORMK K R", positive(), kWall.sfp, false,
-       0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING SFP (written as a comment)", Law::lsdyna_linear, false, "wall_contact.sfp", nullptr,
-       DEMFIT_FIELD(wall.sfp)},
+       0.0, Home::wall_contact, "*DEFINE_DE_TO_SURFACE_COUPLING SFP (written as a comment)", Law::lsdyna_linear, false,
+       "wall_contact.sfp", nullptr, DEMFIT_FIELD(wall.sfp)},
   };
 }
 
 // Effects library (issue #6): pairs and walls; off at the off value (the plain LS-DYNA law).
 std::vector<ParameterRow> effect_rows() {
   return {
-      {"unloading_stiffness_ratio", "-", "plasticity (Walton-Braun): unloading stiffness k2 = ratio k1", closed(1.0, 100.0),
-       kPair.unloading_stiffness_ratio, true, 1.0, Home::effect, "", Law::lsdyna_linear, false,
+      {"unloading_stiffness_ratio", "-", "plasticity (Walton-Braun): unloading stiffness k2 = ratio k1",
+       closed(1.0, 100.0), kPair.unloading_stiffness_ratio, true, 1.0, Home::effect, "", Law::lsdyna_linear, false,
        "contact.unloading_stiffness_ratio", nullptr, DEMFIT_FIELD(contact.unloading_stiffness_ratio)},
       {"surface_energy", "J/m^2", "cohesion: pull-off force F_c = 1.5 pi gamma R* while overlapping", non_negative(),
        kPair.surface_energy, true, 0.0, Home::effect, "", Law::lsdyna_linear, false, "contact.surface_energy", nullptr,
@@ -92,9 +99,10 @@ std::vector<ParameterRow> effect_rows() {
        closed(1.0, 2.0), kPair.stiffness_exponent, true, 1.0, Home::effect, "", Law::lsdyna_linear, false,
        "contact.stiffness_exponent", nullptr, DEMFIT_FIELD(contact.stiffness_exponent)},
       // Up to 0.3: the drum's lattice packing (gap 0.03) still holds the s = 1 fill.
-      {"radius_spread", "-", "polydispersity: radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (changes the fill)",
-       closed(0.0, 0.3), 0.0, true, 0.0, Home::effect, "", Law::lsdyna_linear, false, "particle.radius_spread",
-       nullptr, DEMFIT_FIELD(material.radius_spread)},
+      {"radius_spread", "-",
+       "polydispersity: radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (changes the fill)",
+       closed(0.0, 0.3), 0.0, true, 0.0, Home::effect, "", Law::lsdyna_linear, false, "particle.radius_spread", nullptr,
+       DEMFIT_FIELD(material.radius_spread)},
   };
 }
 
@@ -105,14 +113,15 @@ std::vector<ParameterRow> law_and_fill_rows() {
        kNone, false, 0.0, Home::pair_contact, "", Law::hertz_mindlin, false, "contact.restitution", nullptr,
        DEMFIT_FIELD(contact.restitution)},
       // Drum fill amount (issue 14): a parameter only in the form the case gives it.
-      {"particle_count", "-", "drum fill: count N0 of original (s = 1) particles (changes the fill)",
-       closed(1.0, kInf), kNone, false, 0.0, Home::fill, "", Law::both, true, "drum.particle_count", nullptr,
-       fill_count, [](CaseSpec& s, double v) {
+      {"particle_count", "-", "drum fill: count N0 of original (s = 1) particles (changes the fill)", closed(1.0, kInf),
+       kNone, false, 0.0, Home::fill, "", Law::both, true, "drum.particle_count", nullptr, fill_count,
+       [](CaseSpec& s, double v) {
          s.drum.fill_by = FillBy::particle_count;
          s.drum.particle_count = std::llround(v);
        }},
       {"fill_volume_ml", "mL", "drum fill: bulk volume of the fill (changes the fill)", positive(), kNone, false, 0.0,
-       Home::fill, "", Law::both, true, "drum.fill_volume_ml", nullptr, fill_volume, [](CaseSpec& s, double v) {
+       Home::fill, "", Law::both, true, "drum.fill_volume_ml", nullptr, fill_volume,
+       [](CaseSpec& s, double v) {
          s.drum.fill_by = FillBy::fill_volume;
          s.drum.fill_volume_ml = v;
        }},

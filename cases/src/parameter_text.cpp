@@ -21,19 +21,26 @@ std::string number(double value) {
 
 const char* home_text(ParameterHome home) {
   switch (home) {
-    case ParameterHome::pair_contact: return "pair contact";
-    case ParameterHome::wall_contact: return "wall contact";
-    case ParameterHome::effect: return "effect";
-    case ParameterHome::fill: return "case fill";
+    case ParameterHome::pair_contact:
+      return "pair contact";
+    case ParameterHome::wall_contact:
+      return "wall contact";
+    case ParameterHome::effect:
+      return "effect";
+    case ParameterHome::fill:
+      return "case fill";
   }
   return "";
 }
 
 const char* laws_text(ParameterLaws laws) {
   switch (laws) {
-    case ParameterLaws::lsdyna_linear: return "lsdyna_linear";
-    case ParameterLaws::hertz_mindlin: return "hertz_mindlin";
-    case ParameterLaws::both: return "lsdyna_linear, hertz_mindlin";
+    case ParameterLaws::lsdyna_linear:
+      return "lsdyna_linear";
+    case ParameterLaws::hertz_mindlin:
+      return "hertz_mindlin";
+    case ParameterLaws::both:
+      return "lsdyna_linear, hertz_mindlin";
   }
   return "";
 }
@@ -70,8 +77,10 @@ double read_parameter(const nlohmann::json& object, std::string_view path, const
   const identify::ParameterRange& r = row->valid;
   const bool unbounded_above = std::isinf(r.upper);
   // The messages of the plain readers where the range is one of theirs.
-  if (unbounded_above && r.lower == 0.0) return read_number(object, path, key, fallback, r.lower_open ? Sign::positive : Sign::non_negative);
-  if (!r.lower_open && !r.upper_open && !unbounded_above) return read_bounded(object, path, key, fallback, r.lower, r.upper);
+  if (unbounded_above && r.lower == 0.0)
+    return read_number(object, path, key, fallback, r.lower_open ? Sign::positive : Sign::non_negative);
+  if (!r.lower_open && !r.upper_open && !unbounded_above)
+    return read_bounded(object, path, key, fallback, r.lower, r.upper);
   const double value = read_number(object, path, key, fallback);
   if (!r.contains(value))
     throw std::runtime_error("'" + field + "' must lie in " + r.to_string() + " (got " + number(value) + ")");
@@ -95,13 +104,14 @@ std::string parameters_markdown() {
       "study variables, `model.fixed_parameters`, `demfit simulate --set name=value`. The valid range is\n"
       "what the case file, `--set`, a study's bounds and dem_core all accept; an effect's fitting range in\n"
       "the effect catalogue lies inside it. Units: SI; \"-\" = dimensionless.\n\n"
-      "| name | unit | valid range | default | off value | lives in | laws | LS-DYNA card and field | case-file field | meaning |\n"
+      "| name | unit | valid range | default | off value | lives in | laws | LS-DYNA card and field | case-file field "
+      "| meaning |\n"
       "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ParameterRow& row : parameter_table()) {
-    md += "| `" + std::string(row.name) + "` | " + row.unit + " | " + row.valid.to_string() + " | " + default_text(row) +
-          " | " + (row.is_effect ? number(row.off_value) : "") + " | " + home_text(row.home) + " | " + laws_text(row.laws) +
-          (row.drum_only ? " (drums)" : "") + " | " + (*row.lsdyna ? row.lsdyna : "none") + " | " + case_fields(row) +
-          " | " + row.meaning + " |\n";
+    md += "| `" + std::string(row.name) + "` | " + row.unit + " | " + row.valid.to_string() + " | " +
+          default_text(row) + " | " + (row.is_effect ? number(row.off_value) : "") + " | " + home_text(row.home) +
+          " | " + laws_text(row.laws) + (row.drum_only ? " (drums)" : "") + " | " +
+          (*row.lsdyna ? row.lsdyna : "none") + " | " + case_fields(row) + " | " + row.meaning + " |\n";
   }
   md +=
       "\n## Adding a parameter\n\n"

@@ -24,9 +24,7 @@ namespace {
 using dem_core::Vec3;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string fmt(const char* pattern, double value) {
   char buffer[64];
@@ -42,8 +40,11 @@ nlohmann::json fill_key(const CaseSpec& spec) {
   const nlohmann::json full = to_key_json(spec);
   nlohmann::json pellet = full["pellet"];
   for (const char* k : {"piston_speed", "max_pressure", "max_travel", "unload", "curve_points"}) pellet.erase(k);
-  return {{"fill_format", 1}, {"particle", full["particle"]}, {"contact", full["contact"]},
-          {"wall_contact", full["wall_contact"]}, {"time_step_factor", kFillTimeStepFactor},
+  return {{"fill_format", 1},
+          {"particle", full["particle"]},
+          {"contact", full["contact"]},
+          {"wall_contact", full["wall_contact"]},
+          {"time_step_factor", kFillTimeStepFactor},
           {"pellet", pellet}};
 }
 
@@ -52,8 +53,8 @@ void add_container(dem_core::Simulation& sim, const CaseSpec& spec, double heigh
   const double rc = container_radius(spec);
   const auto& wall = spec.wall;
   sim.add_wall({dem_core::DiskGeometry{{0, 0, 0}, {0, 0, 1}, rc}, dem_core::FixedMotion{}, wall, {}, "bottom"});
-  sim.add_wall({dem_core::CylinderGeometry{{0, 0, 0}, {0, 0, 1}, rc, height}, dem_core::FixedMotion{}, wall,
-                {}, "container"});
+  sim.add_wall(
+      {dem_core::CylinderGeometry{{0, 0, 0}, {0, 0, 1}, rc, height}, dem_core::FixedMotion{}, wall, {}, "container"});
 }
 
 // Pours the pellets: a jittered lattice in a tall cylinder above the bottom, settled under
@@ -104,13 +105,13 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
 
 // One averaged sample of the compression.
 struct Sample {
-  double time = 0, travel = 0, volume_cm3 = 0, pressure_mpa = 0, piston_force = 0, bottom_force = 0,
-         kinetic = 0, elastic = 0;
+  double time = 0, travel = 0, volume_cm3 = 0, pressure_mpa = 0, piston_force = 0, bottom_force = 0, kinetic = 0,
+         elastic = 0;
 };
 
 struct CompressionRun {
   std::vector<Sample> samples;
-  std::size_t loading_end = 0;   // samples [0, loading_end) are the loading branch
+  std::size_t loading_end = 0;  // samples [0, loading_end) are the loading branch
   bool reached_max_pressure = false;
   double time_step = 0.0;
   std::uint64_t steps = 0;
@@ -124,13 +125,13 @@ identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end
 
 }  // namespace
 
-CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec,
-                                  const CaseRunOptions& options) {
+CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options) {
   precheck_user_time_step(spec, spec.material.radius, spec.material.density);
   const auto start = Clock::now();
   bool generated = false;
-  const Fill fill = cached_fill(options.cache_dir, "pellet", fill_key(fill_spec),
-                                [&] { return pour_and_settle(fill_spec, options); }, &generated);
+  const Fill fill = cached_fill(
+      options.cache_dir, "pellet", fill_key(fill_spec), [&] { return pour_and_settle(fill_spec, options); },
+      &generated);
   const double fill_seconds = seconds_since(start);
   const auto compress_start = Clock::now();
   const CompressionRun run = compress(spec, fill, options);
@@ -151,10 +152,11 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
     }
     result.curves["pressure_volume_cycle"] = cycle;
   }
-  CurveTable history{{"pellet compression history (SPEC 2.1); piston force and bottom force are the forces the pellets exert"},
-                     {"time_s", "piston_travel_mm", "volume_cm3", "pressure_MPa", "piston_force_N",
-                      "bottom_force_N", "kinetic_energy_J", "elastic_energy_J"},
-                     std::vector<std::vector<double>>(8)};
+  CurveTable history{
+      {"pellet compression history (SPEC 2.1); piston force and bottom force are the forces the pellets exert"},
+      {"time_s", "piston_travel_mm", "volume_cm3", "pressure_MPa", "piston_force_N", "bottom_force_N",
+       "kinetic_energy_J", "elastic_energy_J"},
+      std::vector<std::vector<double>>(8)};
   double worst_ratio = 0.0;
   // SPEC 2.1: the compression is quasi-static while the bed's kinetic energy stays below 1 % of
   // its elastic energy. The study warns when a run crosses it (identify::kQuasiStaticCurve).
@@ -162,8 +164,8 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
   identify::Curve quasi_static = empty_curve(kind, identify::kQuasiStaticCurve);
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const Sample& s = run.samples[i];
-    const double values[8] = {s.time, s.travel * 1e3, s.volume_cm3, s.pressure_mpa, s.piston_force,
-                              s.bottom_force, s.kinetic, s.elastic};
+    const double values[8] = {s.time,         s.travel * 1e3, s.volume_cm3, s.pressure_mpa,
+                              s.piston_force, s.bottom_force, s.kinetic,    s.elastic};
     for (int c = 0; c < 8; ++c) history.values[c].push_back(values[c]);
     // Quasi-static check (SPEC 2.1) once the bed carries load (> 10 % of P_max).
     if (i < run.loading_end && s.pressure_mpa * 1e6 > 0.1 * spec.pellet.max_pressure && s.elastic > 0.0) {
@@ -183,7 +185,8 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
   sum.emplace_back("bed volume before compression [cm3]", fmt("%.3f", run.samples.front().volume_cm3));
   double solid = 0.0;
   for (double r : fill.radii) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  sum.emplace_back("solid fraction of the fill (under the piston)", fmt("%.3f", solid * 1e6 / run.samples.front().volume_cm3));
+  sum.emplace_back("solid fraction of the fill (under the piston)",
+                   fmt("%.3f", solid * 1e6 / run.samples.front().volume_cm3));
   sum.emplace_back("volume at the end of loading [cm3]", fmt("%.3f", last_loading.volume_cm3));
   sum.emplace_back("pressure at the end of loading [MPa]", fmt("%.3f", last_loading.pressure_mpa));
   sum.emplace_back("reached max_pressure", run.reached_max_pressure ? "yes" : "no (stopped at max_travel)");
@@ -216,7 +219,9 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   const double speed = spec.pellet.piston_speed;
   const std::size_t piston = sim.add_wall({dem_core::DiskGeometry{{0, 0, top}, {0, 0, -1}, rc},
                                            dem_core::TranslatingMotion{{0, 0, -speed}},
-                                           spec.wall, {}, "piston"});
+                                           spec.wall,
+                                           {},
+                                           "piston"});
   check_user_time_step(spec, sim);
   CompressionRun run;
   run.bed_top = top;
@@ -229,8 +234,8 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   std::uint64_t in_sample = 0;
   bool unloading = false;
   auto callback = [&](dem_core::Simulation& s) {
-    sum.piston_force += s.wall_force(piston).z;   // particles push the piston up (+z)
-    sum.bottom_force -= s.wall_force(0).z;        // and the bottom plate down (-z)
+    sum.piston_force += s.wall_force(piston).z;  // particles push the piston up (+z)
+    sum.bottom_force -= s.wall_force(0).z;       // and the bottom plate down (-z)
     if (++in_sample < steps_per_sample) return true;
     Sample out;
     out.time = s.time();
@@ -247,7 +252,8 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
     in_sample = 0;
     snapshots.maybe_write(s, s.time());
     if (options.progress) options.progress(unloading ? "unload" : "compress", s.time(), end_time);
-    if (!std::isfinite(out.piston_force)) throw std::runtime_error("pellet compression diverged (non-finite piston force): lower time_step.factor");
+    if (!std::isfinite(out.piston_force))
+      throw std::runtime_error("pellet compression diverged (non-finite piston force): lower time_step.factor");
     if (!unloading && out.pressure_mpa * 1e6 >= spec.pellet.max_pressure) {
       run.reached_max_pressure = true;
       run.loading_end = run.samples.size();
@@ -261,7 +267,8 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   };
   sim.run_until(2.0 * end_time + 1.0, callback, 1);
   if (run.loading_end == 0) run.loading_end = run.samples.size();
-  if (run.samples.size() < 2) throw std::runtime_error("pellet compression produced fewer than 2 samples: increase pellet.max_travel");
+  if (run.samples.size() < 2)
+    throw std::runtime_error("pellet compression produced fewer than 2 samples: increase pellet.max_travel");
   run.steps = sim.step_count();
   return run;
 }

@@ -4,7 +4,6 @@
 
 namespace demfit::cases::detail {
 
-CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec,
-                                  const CaseRunOptions& options);
+CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options);
 
 }  // namespace demfit::cases::detail

@@ -31,12 +31,12 @@ void ProgressPrinter::update(const std::string& stage, double time, double end_t
     const int filled = static_cast<int>(fraction * width);
     std::string bar(filled, '#');
     bar.resize(width, '.');
-    std::fprintf(stderr, "\r%-9s [%s] %5.1f%%  t = %.4f / %.4f s  ETA %4.0f s ", stage.c_str(),
-                 bar.c_str(), 100.0 * fraction, time, end_time, eta);
+    std::fprintf(stderr, "\r%-9s [%s] %5.1f%%  t = %.4f / %.4f s  ETA %4.0f s ", stage.c_str(), bar.c_str(),
+                 100.0 * fraction, time, end_time, eta);
     line_open_ = true;
   } else {
-    std::fprintf(stderr, "%s: t = %.4f / %.4f s (%.0f%%), elapsed %.0f s, ETA %.0f s\n", stage.c_str(),
-                 time, end_time, 100.0 * fraction, elapsed, eta);
+    std::fprintf(stderr, "%s: t = %.4f / %.4f s (%.0f%%), elapsed %.0f s, ETA %.0f s\n", stage.c_str(), time, end_time,
+                 100.0 * fraction, elapsed, eta);
   }
   std::fflush(stderr);
 }

@@ -97,7 +97,9 @@ std::string reproduce_figures(const ReproduceOptions& o) {
   fs::create_directories(dir);
   std::vector<std::string> runs;
   std::string text = "Figs. 4-5: rotary drum, s = 1, 2, 4, SCG and CVF (" +
-                     std::string(o.quick ? "quick: 12.5 mm long drum, 1 s" : "3 s") + " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque [N m] | cached |\n|---|---|---|---|---|---|\n";
+                     std::string(o.quick ? "quick: 12.5 mm long drum, 1 s" : "3 s") +
+                     " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque "
+                     "[N m] | cached |\n|---|---|---|---|---|---|\n";
   double duration = 0.0;
   for (CoarseGraining model : {CoarseGraining::scg, CoarseGraining::cvf}) {
     for (double s : {1.0, 2.0, 4.0}) {
@@ -115,7 +117,8 @@ std::string reproduce_figures(const ReproduceOptions& o) {
       fs::create_directories(dir / name);
       write_case_result(dir / name, result, to_json(spec), {}, {});
       auto value = [&](const std::string& prefix) {
-        for (const auto& [label, v] : result.summary) if (label.rfind(prefix, 0) == 0) return v;
+        for (const auto& [label, v] : result.summary)
+          if (label.rfind(prefix, 0) == 0) return v;
         return std::string("?");
       };
       text += "| " + name + " | " + value("particles") + " | " + value("particle radius") + " | " +
@@ -127,8 +130,9 @@ std::string reproduce_figures(const ReproduceOptions& o) {
   text += "\n";
   text += run_gnuplot(dir, "fig4_particles.gp");
   text += run_gnuplot(dir, "fig5_torque.gp");
-  text += "Pictures: figures/fig4_particles.png (cross-section, particles drawn at their radius), "
-          "figures/fig5_torque.png; data: figures/<run>/*.csv.\n";
+  text +=
+      "Pictures: figures/fig4_particles.png (cross-section, particles drawn at their radius), "
+      "figures/fig5_torque.png; data: figures/<run>/*.csv.\n";
   return text;
 }
 
@@ -143,25 +147,37 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   const identify::Curve target = original.curves.at("free_surface");
   write_curve_table(dir / "target_free_surface.csv",
                     curve_table(target, {"free surface of the original (s = 1) drum at the end time: Table 3 target"}));
-  struct Var { const char* name; double lower, upper, initial, paper; bool log; };
+  struct Var {
+    const char* name;
+    double lower, upper, initial, paper;
+    bool log;
+  };
   // Bounds: the earlier runs ended with ndamp, frics and sheark on their lower and wall_fricd on
   // its upper bound (the s = 4 bed stands ~7 deg steeper than the s = 1 bed, so the fit wants
   // less friction), so those bounds are wider than the paper's values alone would suggest.
-  const Var vars[] = {{"ndamp", 0.01, 0.95, 0.5, 0.558648808, false},   {"tdamp", 0.05, 0.95, 0.5, 0.547304765, false},
-                      {"frics", 0.01, 1.0, 0.3, 0.437766112, false},    {"fricr", 0.0, 0.3, 0.1, 0.088137162, false},
-                      {"normk", 0.003, 0.3, 0.01, 0.095010325, true},   {"sheark", 0.0003, 0.3, 0.0029, 0.004870718, true},
-                      {"wall_frics", 0.05, 1.0, 0.3, 0.398444369, false}, {"wall_fricd", 0.0, 1.0, 0.3, 0.186624382, false},
-                      {"wall_damp", 0.05, 0.95, 0.5, 0.101806949, false}};
+  const Var vars[] = {
+      {"ndamp", 0.01, 0.95, 0.5, 0.558648808, false},     {"tdamp", 0.05, 0.95, 0.5, 0.547304765, false},
+      {"frics", 0.01, 1.0, 0.3, 0.437766112, false},      {"fricr", 0.0, 0.3, 0.1, 0.088137162, false},
+      {"normk", 0.003, 0.3, 0.01, 0.095010325, true},     {"sheark", 0.0003, 0.3, 0.0029, 0.004870718, true},
+      {"wall_frics", 0.05, 1.0, 0.3, 0.398444369, false}, {"wall_fricd", 0.0, 1.0, 0.3, 0.186624382, false},
+      {"wall_damp", 0.05, 0.95, 0.5, 0.101806949, false}};
   json variables = json::array();
   for (const Var& v : vars) {
-    variables.push_back({{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial}, {"log_scale", v.log}});
+    variables.push_back(
+        {{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial}, {"log_scale", v.log}});
   }
   const json study = {
-      {"demfit_study_version", 1}, {"name", "table3_drum"},
+      {"demfit_study_version", 1},
+      {"name", "table3_drum"},
       {"model", {{"case", "rotary_drum"}, {"overrides", drum_overrides(CoarseGraining::scg, 4.0, o.quick)}}},
       {"variables", variables},
-      {"targets", json::array({{{"name", "free_surface"}, {"curve", "free_surface"}, {"x_column", "x_mm"},
-                                {"y_column", "height_mm"}, {"x", target.x}, {"y", target.y}, {"metric", "mse"}}})},
+      {"targets", json::array({{{"name", "free_surface"},
+                                {"curve", "free_surface"},
+                                {"x_column", "x_mm"},
+                                {"y_column", "height_mm"},
+                                {"x", target.x},
+                                {"y", target.y},
+                                {"metric", "mse"}}})},
       // Adaptive infill over the whole box, not SRSM: the surface error is so noisy that SRSM
       // shrinks onto one basin (measured ratio 0.57 in 193 runs) while the global infill keeps
       // finding better regions (ratio 0.37 in 193 runs; docs/reproduce.md).
@@ -182,24 +198,30 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   run.output_dir = dir / "study";
   const identify::StudyResult r = identify::run_study(spec, *model, run);
   const double error_after = rms_surface_error(target, r.best_curves.at("free_surface"));
-  std::string t = "Table 3: parameters identified on the SCG s = 4 drum against the s = 1 free surface\n\n"
-                  "| Keyword | Variable | Initial value | Paper optimal | demfit optimal (± 95 % CI) |\n|---|---|---|---|---|\n";
+  std::string t =
+      "Table 3: parameters identified on the SCG s = 4 drum against the s = 1 free surface\n\n"
+      "| Keyword | Variable | Initial value | Paper optimal | demfit optimal (± 95 % CI) |\n|---|---|---|---|---|\n";
   for (const Var& v : vars) {
     const std::string name = v.name;
     const bool wall = name.rfind("wall_", 0) == 0;
     std::string ours = fmt("%.6g", r.best.at(name));
-    if (auto ci = r.ci_half_width.find(name); ci != r.ci_half_width.end() && std::isfinite(ci->second)) ours += " ± " + fmt("%.3g", ci->second);
-    for (const std::string& u : r.unidentifiable) if (u == name) ours += " (not identifiable)";
+    if (auto ci = r.ci_half_width.find(name); ci != r.ci_half_width.end() && std::isfinite(ci->second))
+      ours += " ± " + fmt("%.3g", ci->second);
+    for (const std::string& u : r.unidentifiable)
+      if (u == name) ours += " (not identifiable)";
     t += std::string("| ") + (wall ? "*DEFINE_DE_TO_SURFACE_COUPLING" : "*CONTROL_DISCRETE_ELEMENT") + " | " +
-         (wall ? name.substr(5) : name) + " | " + fmt("%g", v.initial) + " | " + fmt("%.9g", v.paper) + " | " + ours + " |\n";
+         (wall ? name.substr(5) : name) + " | " + fmt("%g", v.initial) + " | " + fmt("%.9g", v.paper) + " | " + ours +
+         " |\n";
   }
   t += "\nSurface RMS error against the s = 1 target: " + fmt("%.3f", error_before) + " mm at the initial values, " +
        fmt("%.3f", error_after) + " mm after identification (ratio " + fmt("%.2f", error_after / error_before) + ").\n";
   t += "Runs used: " + std::to_string(r.runs) + " (" + std::to_string(r.failed_runs) + " failed), " +
-       std::to_string(r.iterations) + " iterations, wall time in this session " + fmt("%.0f", r.wall_seconds) + " s with " +
-       std::to_string(o.jobs) + " parallel runs; the paper used 1,600 runs (16 x 100) at 390-4,688 s CPU each.\n";
+       std::to_string(r.iterations) + " iterations, wall time in this session " + fmt("%.0f", r.wall_seconds) +
+       " s with " + std::to_string(o.jobs) +
+       " parallel runs; the paper used 1,600 runs (16 x 100) at 390-4,688 s CPU each.\n";
   t += "The target (" + std::string(computed ? "computed now" : "read from cache") +
-       ") is the s = 1 SCG run's free surface; our drum geometry is SPEC 2.2's choice, so optimal values differ from the paper's.\n";
+       ") is the s = 1 SCG run's free surface; our drum geometry is SPEC 2.2's choice, so optimal values differ from "
+       "the paper's.\n";
   return t;
 }
 

@@ -104,9 +104,7 @@ imaging::RgbImage side_by_side(const imaging::RgbImage& left, const imaging::Rgb
   return out;
 }
 
-std::string error_row(const SurfaceError& e) {
-  return fmt("%.2f", e.rms_mm) + " | " + fmt("%.0f", e.area_mm2);
-}
+std::string error_row(const SurfaceError& e) { return fmt("%.2f", e.rms_mm) + " | " + fmt("%.0f", e.area_mm2); }
 
 }  // namespace
 
@@ -137,8 +135,9 @@ std::vector<std::string> write_surface_pictures(const identify::StudySpec& spec,
     const auto simulated = profile_of(curve_for(best, target), radius);
     const imaging::RgbImage photo_view = imaging::draw_overlay(photo, frame, measured);
     const std::string stem = "granudrum_" + experiment_of(target);
-    identify::write_file_atomically(dir / (stem + "_side_by_side.png"),
-                                    imaging::encode_png(side_by_side(photo_view, simulated_bed(photo.width, frame, simulated))));
+    identify::write_file_atomically(
+        dir / (stem + "_side_by_side.png"),
+        imaging::encode_png(side_by_side(photo_view, simulated_bed(photo.width, frame, simulated))));
     imaging::RgbImage overlay = photo_view;
     imaging::draw_profile(overlay, frame, simulated, 20, 160, 40);
     identify::write_file_atomically(dir / (stem + "_overlay.png"), imaging::encode_png(overlay));
@@ -155,14 +154,17 @@ std::string anchor_section(const AnchorResult& published) {
                   " s wall time in all; the speeds side by side, one thread per run):\n\n"
                   "| experiment | s | run wall time [s] | threads |\n|---|---|---|---|\n";
   for (const auto& r : published.runs)
-    t += "| " + r.experiment + " | " + scale_label(r.scale) + " | " + fmt("%.0f", r.seconds) + " | " + std::to_string(r.threads) + " |\n";
+    t += "| " + r.experiment + " | " + scale_label(r.scale) + " | " + fmt("%.0f", r.seconds) + " | " +
+         std::to_string(r.threads) + " |\n";
   if (published.resolution.empty()) return t;
-  t += "\nResolution: the same parameters at coarse-graining factor s (time step s x the case's), "
-       "surface against the s = 1 surface and against the photo:\n\n"
-       "| target | s | vs s = 1: RMS [mm] | area [mm²] | vs photo: RMS [mm] | area [mm²] |\n|---|---|---|---|---|---|\n";
+  t +=
+      "\nResolution: the same parameters at coarse-graining factor s (time step s x the case's), "
+      "surface against the s = 1 surface and against the photo:\n\n"
+      "| target | s | vs s = 1: RMS [mm] | area [mm²] | vs photo: RMS [mm] | area [mm²] |\n|---|---|---|---|---|---|\n";
   for (const auto& r : published.resolution)
-    t += "| " + r.target + " | " + scale_label(r.scale) + " | " + fmt("%.2f", r.rms_vs_full_mm) + " | " + fmt("%.0f", r.area_vs_full_mm2) +
-         " | " + fmt("%.2f", r.rms_vs_photo_mm) + " | " + fmt("%.0f", r.area_vs_photo_mm2) + " |\n";
+    t += "| " + r.target + " | " + scale_label(r.scale) + " | " + fmt("%.2f", r.rms_vs_full_mm) + " | " +
+         fmt("%.0f", r.area_vs_full_mm2) + " | " + fmt("%.2f", r.rms_vs_photo_mm) + " | " +
+         fmt("%.0f", r.area_vs_photo_mm2) + " |\n";
   return t;
 }
 
@@ -186,9 +188,11 @@ std::string granudrum_report(const identify::StudySpec& spec, const identify::St
   for (const auto& [name, value] : published_parameters()) t += " " + name + " " + fmt("%g", value);
   t += " (50 mL).\n\n";
   t += "Runs: " + std::to_string(r.runs) + " evaluations (each = both speeds; " + std::to_string(r.failed_runs) +
-       " failed), " + std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) + " s.\n\n";
+       " failed), " + std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) +
+       " s.\n\n";
   t += "| target | demfit calibrated RMS [mm] | differing area [mm²] |";
-  t += anchor.empty() ? "\n|---|---|---|\n" : " source's parameters at s = 1: RMS [mm] | differing area [mm²] |\n|---|---|---|---|---|\n";
+  t += anchor.empty() ? "\n|---|---|---|\n"
+                      : " source's parameters at s = 1: RMS [mm] | differing area [mm²] |\n|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < calibrated.size(); ++i) {
     t += "| " + calibrated[i].target + " | " + error_row(calibrated[i]);
     if (i < anchor.size()) t += " | " + error_row(anchor[i]);
@@ -213,14 +217,16 @@ identify::CurveSet run_published(const identify::StudySpec& spec, const identify
   overrides.merge_patch(options.anchor_overrides);
   CaseSpec run_case_spec = resolve_case(experiment.model_reference, overrides, spec.base_dir);
   if (scale != 1.0) {
-    overrides.merge_patch({{"drum", {{"scale_factor", scale}}}, {"time_step", {{"value", scale * run_case_spec.time_step.value}}}});
+    overrides.merge_patch(
+        {{"drum", {{"scale_factor", scale}}}, {"time_step", {{"value", scale * run_case_spec.time_step.value}}}});
     run_case_spec = resolve_case(experiment.model_reference, overrides, spec.base_dir);
   }
   CaseRunOptions run;
   run.threads = std::max(1, options.base.threads_per_job);
   run.progress = progress;
   identify::CurveSet curves;
-  for (auto& [name, curve] : run_case(run_case_spec, published_parameters(), run).curves) curves[experiment.name + "/" + name] = curve;
+  for (auto& [name, curve] : run_case(run_case_spec, published_parameters(), run).curves)
+    curves[experiment.name + "/" + name] = curve;
   return curves;
 }
 
@@ -230,15 +236,22 @@ AnchorResult run_anchor(const identify::StudySpec& spec, const GranudrumOptions&
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> scales = options.resolution_scales;
   scales.push_back(1.0);  // the anchor itself last: the cheap coarse runs report first
-  struct Job { std::size_t experiment; double scale; identify::CurveSet curves; double seconds = 0.0; };
+  struct Job {
+    std::size_t experiment;
+    double scale;
+    identify::CurveSet curves;
+    double seconds = 0.0;
+  };
   std::vector<std::vector<Job>> jobs(spec.experiments.size());
   for (std::size_t e = 0; e < spec.experiments.size(); ++e)
     for (const double s : scales) jobs[e].push_back({e, s, {}, 0.0});
   std::mutex progress_mutex;  // experiments report from their own threads
-  const ProgressCallback progress = options.base.progress ? ProgressCallback([&](const std::string& stage, double done, double end) {
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    options.base.progress(stage, done, end);
-  }) : ProgressCallback{};
+  const ProgressCallback progress = options.base.progress
+                                        ? ProgressCallback([&](const std::string& stage, double done, double end) {
+                                            const std::lock_guard<std::mutex> lock(progress_mutex);
+                                            options.base.progress(stage, done, end);
+                                          })
+                                        : ProgressCallback{};
   auto run_experiment = [&](std::vector<Job>& list) {
     for (Job& job : list) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -265,8 +278,9 @@ AnchorResult run_anchor(const identify::StudySpec& spec, const GranudrumOptions&
     for (const Job& job : list) {
       const std::string& experiment = spec.experiments[job.experiment].name;
       for (const auto& [name, curve] : job.curves)
-        identify::write_curve_csv(options.base.out_dir / ("published_" + experiment + "_s" + scale_label(job.scale) + "_" +
-                                                          name.substr(name.find('/') + 1) + ".csv"), curve);
+        identify::write_curve_csv(options.base.out_dir / ("published_" + experiment + "_s" + scale_label(job.scale) +
+                                                          "_" + name.substr(name.find('/') + 1) + ".csv"),
+                                  curve);
       result.runs.push_back({experiment, job.scale, job.seconds, options.base.threads_per_job});
       if (job.scale == 1.0) continue;
       for (const auto& target : spec.targets) {
@@ -275,8 +289,7 @@ AnchorResult run_anchor(const identify::StudySpec& spec, const GranudrumOptions&
         const auto coarse = profile_of(curve_for(job.curves, target), radius);
         const auto reference = profile_of(curve_for(full, target), radius);
         const auto photo = profile_of(target.data, radius);
-        result.resolution.push_back({target.name, job.scale,
-                                     1e3 * imaging::profile_rms_distance(coarse, reference),
+        result.resolution.push_back({target.name, job.scale, 1e3 * imaging::profile_rms_distance(coarse, reference),
                                      1e6 * imaging::profile_differing_area(coarse, reference),
                                      1e3 * imaging::profile_rms_distance(coarse, photo),
                                      1e6 * imaging::profile_differing_area(coarse, photo)});
@@ -289,7 +302,8 @@ AnchorResult run_anchor(const identify::StudySpec& spec, const GranudrumOptions&
 std::string reproduce_granudrum(const GranudrumOptions& options) {
   const ReproduceOptions& o = options.base;
   const fs::path study_file = !options.study_file.empty() ? options.study_file
-                              : o.cases_dir / (o.quick ? "granudrum_calibration_quick.json" : "granudrum_calibration.json");
+                                                          : o.cases_dir / (o.quick ? "granudrum_calibration_quick.json"
+                                                                                   : "granudrum_calibration.json");
   const identify::StudySpec spec = identify::load_study_file(study_file);
   const auto model = make_study_model(spec);
   identify::RunOptions run;

@@ -36,12 +36,15 @@ nlohmann::json table1_study(const std::filesystem::path& data_csv, bool quick) {
       {"model", {{"case", "pellet_compression"}, {"overrides", {{"pellet", {{"max_travel", 0.0045}}}}}}},
       // NORMK log-scaled from the default 0.01 up to 2 (twice the paper's value; stiffer
       // candidates cost more: time step ~ 1/sqrt(NORMK)).
-      {"variables", json::array({
-          {{"name", "normk"}, {"lower", 0.01}, {"upper", 2.0}, {"initial", 0.01}, {"log_scale", true}},
-          {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}})},
-      {"targets", json::array({{{"name", "pressure_volume"}, {"curve", "pressure_volume"},
-                                {"csv", data_csv.string()}, {"x_column", "volume_cm3"},
-                                {"y_column", "pressure_MPa"}, {"metric", "mse"}}})},
+      {"variables",
+       json::array({{{"name", "normk"}, {"lower", 0.01}, {"upper", 2.0}, {"initial", 0.01}, {"log_scale", true}},
+                    {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}})},
+      {"targets", json::array({{{"name", "pressure_volume"},
+                                {"curve", "pressure_volume"},
+                                {"csv", data_csv.string()},
+                                {"x_column", "volume_cm3"},
+                                {"y_column", "pressure_MPa"},
+                                {"metric", "mse"}}})},
       {"sampling", {{"points_per_iteration", 6}}},
       // 6 points per iteration: 9 iterations + the verification run = 55 runs <= 60. The
       // tolerances are tight on purpose: run-to-run trajectory noise makes a 1 % stopping rule
@@ -66,8 +69,8 @@ std::string identified_cell(const identify::StudyResult& r, const identify::Vari
   const std::string best_text = "best run " + fmt("%.6f", best) + " (" + percent(best, truth) + ")";
   if (flagged && !std::isfinite(half)) {
     return "**not identifiable** near the optimum: over the last runs' spread its effect on the curve is below "
-           "the run-to-run noise, so the local fit bounds no 95 % interval within [" + fmt("%g", v.lower) + ", " +
-           fmt("%g", v.upper) + "]; " + best_text;
+           "the run-to-run noise, so the local fit bounds no 95 % interval within [" +
+           fmt("%g", v.lower) + ", " + fmt("%g", v.upper) + "]; " + best_text;
   }
   // A flagged variable's local fit is not trusted for a centre either: the best run stands.
   const double value =
@@ -75,7 +78,8 @@ std::string identified_cell(const identify::StudyResult& r, const identify::Vari
   std::string cell = "**" + fmt("%.6f", value) + "**";
   if (std::isfinite(half)) cell += " ± " + fmt("%.3g", half);
   cell += " (" + percent(value, truth);
-  if (std::isfinite(half)) cell += std::abs(value - truth) <= half ? ", truth inside the interval" : ", truth OUTSIDE the interval";
+  if (std::isfinite(half))
+    cell += std::abs(value - truth) <= half ? ", truth inside the interval" : ", truth OUTSIDE the interval";
   if (flagged) cell += ", not identifiable";
   cell += "); " + best_text;
   return cell;
@@ -86,7 +90,8 @@ std::string identified_cell(const identify::StudyResult& r, const identify::Vari
 std::string reproduce_table1(const ReproduceOptions& o) {
   const std::filesystem::path data_csv = std::filesystem::absolute(o.data_dir / "pellet_pressure_volume_synthetic.csv");
   if (!std::filesystem::exists(data_csv)) {
-    throw std::runtime_error("synthetic curve '" + data_csv.string() + "' is missing: run from the source tree or pass --data");
+    throw std::runtime_error("synthetic curve '" + data_csv.string() +
+                             "' is missing: run from the source tree or pass --data");
   }
   const nlohmann::json study = table1_study(data_csv, o.quick);
   const identify::StudySpec spec = identify::parse_study(study, o.out_dir);
@@ -107,8 +112,8 @@ std::string reproduce_table1(const ReproduceOptions& o) {
   t += "| K_bulk = E / (3(1 - 2 nu)) (MPa) | 1,767 | " + fmt("%.1f", bulk / 1e6) + " |\n";
   t += "| RADIUS (mm) | 1.86 | " + fmt("%.2f", pellet.material.radius * 1e3) + " |\n";
   t += "| NORMK (default = 0.01) | 0.875046 | " + identified_cell(r, spec.variables[0], kPaperNormk) + " |\n";
-  t += "| SHEARK (default = 2/7 = 0.2857) | 0.299582 | " +
-       identified_cell(r, spec.variables[1], kPaperSheark) + " |\n\n";
+  t += "| SHEARK (default = 2/7 = 0.2857) | 0.299582 | " + identified_cell(r, spec.variables[1], kPaperSheark) +
+       " |\n\n";
   t += "Identified from data/pellet_pressure_volume_synthetic.csv (SYNTHETIC: simulated by demfit at the\n"
        "paper's NORMK and SHEARK plus 1 % Gaussian noise, seed 2026; the experimental curve of Fig. 2 is not\n"
        "published). Start: LS-DYNA defaults NORMK = 0.01, SHEARK = 2/7. Bold: centre of the local least-squares\n"
@@ -116,8 +121,8 @@ std::string reproduce_table1(const ReproduceOptions& o) {
        "simulation noise; docs/study_format.md); percentages are the error against the generating values.\n";
   t += "Runs used: " + std::to_string(r.runs) + " (" + std::to_string(r.failed_runs) + " failed), " +
        std::to_string(r.iterations) + " iterations, " + (r.converged ? "converged" : "iteration limit") +
-       ", best objective " + fmt("%.3g", r.best_objective) + ", wall time in this session " + fmt("%.0f", r.wall_seconds) +
-       " s with " + std::to_string(o.jobs) + " parallel runs.\n";
+       ", best objective " + fmt("%.3g", r.best_objective) + ", wall time in this session " +
+       fmt("%.0f", r.wall_seconds) + " s with " + std::to_string(o.jobs) + " parallel runs.\n";
   return t;
 }
 

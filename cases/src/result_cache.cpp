@@ -14,7 +14,8 @@ using nlohmann::json;
 
 json to_json(const CaseResult& r) {
   json tables = json::object();
-  for (const auto& [name, t] : r.tables) tables[name] = {{"comments", t.comments}, {"columns", t.columns}, {"values", t.values}};
+  for (const auto& [name, t] : r.tables)
+    tables[name] = {{"comments", t.comments}, {"columns", t.columns}, {"values", t.values}};
   return {{"curves", identify::curves_to_json(r.curves)}, {"tables", tables}, {"summary", r.summary}};
 }
 

@@ -61,16 +61,20 @@ double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11)
 std::vector<double> read_csv_column(const std::filesystem::path& file, const std::string& column) {
   std::ifstream in(file, std::ios::binary);
   const std::string name = file.string();
-  if (!in) throw std::runtime_error("size CSV '" + name + "' cannot be opened: check the path (relative paths start at the case file's folder)");
+  if (!in)
+    throw std::runtime_error("size CSV '" + name +
+                             "' cannot be opened: check the path (relative paths start at the case file's folder)");
   std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error("size CSV '" + name + "' is empty: it needs a header line and one size per row");
+  if (!std::getline(in, line))
+    throw std::runtime_error("size CSV '" + name + "' is empty: it needs a header line and one size per row");
   if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 byte-order mark
   const std::vector<std::string> header = split_csv_line(line);
   std::size_t index = header.size();
   for (std::size_t k = 0; k < header.size(); ++k)
     if (trimmed(header[k]) == column) index = k;
   if (index == header.size())
-    throw std::runtime_error("size CSV '" + name + "' has no column '" + column + "' in its header line: set size_distribution.column");
+    throw std::runtime_error("size CSV '" + name + "' has no column '" + column +
+                             "' in its header line: set size_distribution.column");
   std::vector<double> values;
   long long row = 1;
   while (std::getline(in, line)) {
@@ -84,10 +88,9 @@ std::vector<double> read_csv_column(const std::filesystem::path& file, const std
     std::size_t used = 0;
     try {
       v = std::stod(cell, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != cell.size()) throw std::runtime_error(where + " = '" + cell + "' is not a number: fix or remove the row");
+    } catch (const std::exception&) { used = 0; }
+    if (used != cell.size())
+      throw std::runtime_error(where + " = '" + cell + "' is not a number: fix or remove the row");
     if (!std::isfinite(v)) throw std::runtime_error(where + " = '" + cell + "' is not finite: fix or remove the row");
     if (v <= 0.0) throw std::runtime_error(where + " = " + cell + " must be > 0: fix or remove the row");
     values.push_back(v);
@@ -98,8 +101,9 @@ std::vector<double> read_csv_column(const std::filesystem::path& file, const std
 
 SizeDistributionSpec parse_size_distribution(const json& j, const std::string& path,
                                              const std::filesystem::path& base_dir) {
-  require_known_keys(j, path, {"csv", "column", "unit", "diameter_kind", "diameter", "radius",
-                               "number_fraction", "mass_fraction", "min_size", "max_size"});
+  require_known_keys(j, path,
+                     {"csv", "column", "unit", "diameter_kind", "diameter", "radius", "number_fraction",
+                      "mass_fraction", "min_size", "max_size"});
   SizeDistributionSpec s;
   s.unit = read_string(j, path, "unit", s.unit);
   const double to_m = unit_factor(s.unit, path);
@@ -109,14 +113,19 @@ SizeDistributionSpec parse_size_distribution(const json& j, const std::string& p
   bool radius = false;
   if (j.contains("csv")) {
     for (const char* k : {"diameter", "radius", "number_fraction", "mass_fraction"})
-      if (j.contains(k)) throw std::runtime_error("'" + path + "." + k + "' cannot be combined with '" + path + ".csv': give measured sizes or classes");
+      if (j.contains(k))
+        throw std::runtime_error("'" + path + "." + k + "' cannot be combined with '" + path +
+                                 ".csv': give measured sizes or classes");
     s.source = SizeDistributionSpec::Source::csv;
     s.csv = read_string(j, path, "csv", "");
-    if (!j.contains("column")) throw std::runtime_error("'" + path + ".column' is missing: name the CSV column holding the sizes");
+    if (!j.contains("column"))
+      throw std::runtime_error("'" + path + ".column' is missing: name the CSV column holding the sizes");
     s.column = read_string(j, path, "column", "");
     s.diameter_kind = read_string(j, path, "diameter_kind", s.diameter_kind);
     if (s.diameter_kind != "sphere_diameter" && s.diameter_kind != "max_feret" && s.diameter_kind != "radius")
-      throw std::runtime_error("'" + path + ".diameter_kind' must be \"sphere_diameter\", \"max_feret\" or \"radius\" (got \"" + s.diameter_kind + "\")");
+      throw std::runtime_error("'" + path +
+                               ".diameter_kind' must be \"sphere_diameter\", \"max_feret\" or \"radius\" (got \"" +
+                               s.diameter_kind + "\")");
     radius = s.diameter_kind == "radius";
     std::filesystem::path file(s.csv);
     if (file.is_relative()) file = base_dir / file;
@@ -124,7 +133,8 @@ SizeDistributionSpec parse_size_distribution(const json& j, const std::string& p
     weights.assign(sizes.size(), 1.0);
   } else {
     for (const char* k : {"column", "diameter_kind"})
-      if (j.contains(k)) throw std::runtime_error("'" + path + "." + k + "' applies to a CSV only: add '" + path + ".csv' or remove it");
+      if (j.contains(k))
+        throw std::runtime_error("'" + path + "." + k + "' applies to a CSV only: add '" + path + ".csv' or remove it");
     if (j.contains("diameter") == j.contains("radius"))
       throw std::runtime_error("'" + path + "' needs exactly one of 'csv', 'diameter' or 'radius' (class sizes)");
     if (j.contains("number_fraction") == j.contains("mass_fraction"))
@@ -138,7 +148,8 @@ SizeDistributionSpec parse_size_distribution(const json& j, const std::string& p
       throw std::runtime_error("'" + path + "': the fractions must have one entry per class size (" +
                                std::to_string(s.class_sizes.size()) + ")");
     for (double v : s.class_sizes)
-      if (!(v > 0.0)) throw std::runtime_error("'" + path + (radius ? ".radius" : ".diameter") + "' entries must be > 0");
+      if (!(v > 0.0))
+        throw std::runtime_error("'" + path + (radius ? ".radius" : ".diameter") + "' entries must be > 0");
     sizes = s.class_sizes;
     weights = s.class_fractions;
     // Mass fractions -> number fractions: n_i proportional to w_i / d_i^3.

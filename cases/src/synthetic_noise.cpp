@@ -9,8 +9,7 @@
 
 namespace demfit::cases {
 
-std::vector<double> add_relative_noise(const std::vector<double>& y, double relative,
-                                       std::uint64_t seed) {
+std::vector<double> add_relative_noise(const std::vector<double>& y, double relative, std::uint64_t seed) {
   if (!(relative >= 0.0)) throw std::runtime_error("--noise must be >= 0 (relative to max|y|)");
   double scale = 0.0;
   for (double v : y) scale = std::max(scale, std::fabs(v));

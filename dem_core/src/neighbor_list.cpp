@@ -36,7 +36,8 @@ CellGrid make_grid(std::span<const Vec3> positions, double edge) {
   // Cap the cell count (escaped particles would otherwise blow up the grid): at most ~4N cells.
   const double limit = 4.0 * static_cast<double>(positions.size()) + 64.0;
   auto count = [&](double e) {
-    return (std::floor((hi.x - lo.x) / e) + 1) * (std::floor((hi.y - lo.y) / e) + 1) * (std::floor((hi.z - lo.z) / e) + 1);
+    return (std::floor((hi.x - lo.x) / e) + 1) * (std::floor((hi.y - lo.y) / e) + 1) *
+           (std::floor((hi.z - lo.z) / e) + 1);
   };
   while (count(edge) > limit) edge *= 1.26;
   CellGrid grid;
@@ -55,14 +56,15 @@ CellGrid make_grid(std::span<const Vec3> positions, double edge) {
   for (std::size_t c = 0; c < cells; ++c) grid.cell_start[c + 1] += grid.cell_start[c];
   grid.cell_particles.resize(positions.size());
   std::vector<std::uint32_t> fill(grid.cell_start.begin(), grid.cell_start.end() - 1);
-  for (std::size_t i = 0; i < positions.size(); ++i) grid.cell_particles[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    grid.cell_particles[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
   return grid;
 }
 
 /// Visit every j > i within the cutoff of i; `emit(j)` is called in a deterministic order.
 template <class Emit>
-void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<const double> r, double skin,
-                      std::size_t i, Emit&& emit) {
+void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<const double> r, double skin, std::size_t i,
+                      Emit&& emit) {
   const Vec3& p = x[i];
   const std::int64_t cx = g.coordinate(p.x, g.origin.x, g.nx);
   const std::int64_t cy = g.coordinate(p.y, g.origin.y, g.ny);
@@ -97,7 +99,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(threads > 1)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     std::uint32_t c = 0;
     for_each_partner(grid, positions, radii, skin, static_cast<std::size_t>(i), [&](std::uint32_t) { ++c; });
@@ -107,7 +109,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   const std::size_t pairs = row_offsets_[n];
   first_.resize(pairs);
   second_.resize(pairs);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(threads > 1)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     const auto ii = static_cast<std::size_t>(i);
     std::uint32_t k = row_offsets_[ii];
@@ -134,7 +136,7 @@ double NeighborList::max_displacement(std::span<const Vec3> positions, int threa
     return std::numeric_limits<double>::infinity();
   const auto n = static_cast<std::int64_t>(positions.size());
   double worst = 0.0;  // max is order-independent, so the reduction is deterministic
-#pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads) if(threads > 1)
+#pragma omp parallel for reduction(max : worst) schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const double d2 = norm2(positions[static_cast<std::size_t>(i)] - reference_positions_[static_cast<std::size_t>(i)]);
     worst = std::max(worst, d2);

@@ -38,12 +38,16 @@ Frame frame_for(const Vec3& up) {
 
 /// Centre and radius of a sphere enclosing the region.
 std::pair<Vec3, double> bounding_sphere(const Region& region) {
-  return std::visit([](const auto& g) -> std::pair<Vec3, double> {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, BoxRegion>) return {0.5 * (g.lower + g.upper), 0.5 * norm(g.upper - g.lower)};
-    else return {g.base_center + (0.5 * g.length) * normalized(g.axis),
-                 std::sqrt(g.radius * g.radius + 0.25 * g.length * g.length)};
-  }, region);
+  return std::visit(
+      [](const auto& g) -> std::pair<Vec3, double> {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, BoxRegion>)
+          return {0.5 * (g.lower + g.upper), 0.5 * norm(g.upper - g.lower)};
+        else
+          return {g.base_center + (0.5 * g.length) * normalized(g.axis),
+                  std::sqrt(g.radius * g.radius + 0.25 * g.length * g.length)};
+      },
+      region);
 }
 
 bool inside_cylinder(const Vec3& base, const Vec3& axis, double radius, double length, const Vec3& c, double r) {
@@ -56,57 +60,63 @@ bool inside_cylinder(const Vec3& base, const Vec3& axis, double radius, double l
 }
 
 void validate_region(const Region& region) {
-  std::visit([](const auto& g) {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, BoxRegion>) {
-      require_finite("box.lower [m]", g.lower);
-      require_finite("box.upper [m]", g.upper);
-      if (!(g.upper.x > g.lower.x && g.upper.y > g.lower.y && g.upper.z > g.lower.z))
-        throw std::runtime_error("box.upper must exceed box.lower in x, y and z");
-    } else {
-      require_finite("region base_center [m]", g.base_center);
-      require_direction("region axis", g.axis);
-      require_positive("region radius [m]", g.radius);
-      require_positive("region length [m]", g.length);
-      if constexpr (std::is_same_v<G, DrumSegmentRegion>) {
-        require_direction("drum segment up", g.up);
-        require_finite("drum segment fill_height [m]", g.fill_height);
-        if (std::fabs(dot(normalized(g.up), normalized(g.axis))) > 1e-9)
-          throw std::runtime_error("drum segment up must be perpendicular to its axis");
-      }
-    }
-  }, region);
+  std::visit(
+      [](const auto& g) {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, BoxRegion>) {
+          require_finite("box.lower [m]", g.lower);
+          require_finite("box.upper [m]", g.upper);
+          if (!(g.upper.x > g.lower.x && g.upper.y > g.lower.y && g.upper.z > g.lower.z))
+            throw std::runtime_error("box.upper must exceed box.lower in x, y and z");
+        } else {
+          require_finite("region base_center [m]", g.base_center);
+          require_direction("region axis", g.axis);
+          require_positive("region radius [m]", g.radius);
+          require_positive("region length [m]", g.length);
+          if constexpr (std::is_same_v<G, DrumSegmentRegion>) {
+            require_direction("drum segment up", g.up);
+            require_finite("drum segment fill_height [m]", g.fill_height);
+            if (std::fabs(dot(normalized(g.up), normalized(g.axis))) > 1e-9)
+              throw std::runtime_error("drum segment up must be perpendicular to its axis");
+          }
+        }
+      },
+      region);
 }
 
 }  // namespace
 
 double region_volume(const Region& region) {
-  return std::visit([](const auto& g) -> double {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, BoxRegion>) {
-      const Vec3 d = g.upper - g.lower;
-      return d.x * d.y * d.z;
-    } else if constexpr (std::is_same_v<G, CylinderRegion>) {
-      return std::numbers::pi * g.radius * g.radius * g.length;
-    } else {
-      return segment_area(g.radius, g.fill_height) * g.length;
-    }
-  }, region);
+  return std::visit(
+      [](const auto& g) -> double {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, BoxRegion>) {
+          const Vec3 d = g.upper - g.lower;
+          return d.x * d.y * d.z;
+        } else if constexpr (std::is_same_v<G, CylinderRegion>) {
+          return std::numbers::pi * g.radius * g.radius * g.length;
+        } else {
+          return segment_area(g.radius, g.fill_height) * g.length;
+        }
+      },
+      region);
 }
 
 bool region_contains(const Region& region, const Vec3& c, double r) {
-  return std::visit([&](const auto& g) -> bool {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, BoxRegion>) {
-      return c.x - r >= g.lower.x && c.x + r <= g.upper.x && c.y - r >= g.lower.y && c.y + r <= g.upper.y &&
-             c.z - r >= g.lower.z && c.z + r <= g.upper.z;
-    } else if constexpr (std::is_same_v<G, CylinderRegion>) {
-      return inside_cylinder(g.base_center, g.axis, g.radius, g.length, c, r);
-    } else {
-      return inside_cylinder(g.base_center, g.axis, g.radius, g.length, c, r) &&
-             dot(c - g.base_center, normalized(g.up)) <= g.fill_height - r;
-    }
-  }, region);
+  return std::visit(
+      [&](const auto& g) -> bool {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, BoxRegion>) {
+          return c.x - r >= g.lower.x && c.x + r <= g.upper.x && c.y - r >= g.lower.y && c.y + r <= g.upper.y &&
+                 c.z - r >= g.lower.z && c.z + r <= g.upper.z;
+        } else if constexpr (std::is_same_v<G, CylinderRegion>) {
+          return inside_cylinder(g.base_center, g.axis, g.radius, g.length, c, r);
+        } else {
+          return inside_cylinder(g.base_center, g.axis, g.radius, g.length, c, r) &&
+                 dot(c - g.base_center, normalized(g.up)) <= g.fill_height - r;
+        }
+      },
+      region);
 }
 
 double drum_fill_height(double radius, double fraction) {
@@ -125,20 +135,24 @@ namespace {
 
 // Feasibility before any lattice is built (issue #13: impossible fills once spun silently). The
 // lattice of spacing 2 r_max (1 + gap) holds at most the simple-cubic fraction pi/6 of the region
-// (face-centred cubic: pi/(3 sqrt 2)), so a larger solid volume can never be placed; a sphere wider than the region fits
-// nowhere; and a lattice of more than kMaxLatticeSites sites would take minutes and gigabytes.
+// (face-centred cubic: pi/(3 sqrt 2)), so a larger solid volume can never be placed; a sphere wider than the region
+// fits nowhere; and a lattice of more than kMaxLatticeSites sites would take minutes and gigabytes.
 void check_packing_feasible(const PackingRequest& q) {
-  const double kLatticeFraction = q.lattice == PackingRequest::Lattice::cubic ? std::numbers::pi / 6.0
-                                                                              : std::numbers::pi / (3.0 * std::sqrt(2.0));
+  const double kLatticeFraction =
+      q.lattice == PackingRequest::Lattice::cubic ? std::numbers::pi / 6.0 : std::numbers::pi / (3.0 * std::sqrt(2.0));
   constexpr double kMaxLatticeSites = 2.0e8;
   const bool explicit_radii = !q.radii.empty();
   const double r_largest = explicit_radii ? *std::max_element(q.radii.begin(), q.radii.end()) : 0.0;
-  const double r_hi = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
+  const double r_hi = explicit_radii          ? r_largest
+                      : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread)
+                                              : q.radius_max;
   const double volume = region_volume(q.region);
   const double extent = bounding_sphere(q.region).second;
   if (r_hi >= extent) fail("packing.radius_max [m]", r_hi, "is larger than the region; no sphere fits");
   // Smallest possible sphere: the check refuses only what surely cannot be placed.
-  const double r_lo = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
+  const double r_lo = explicit_radii          ? r_largest
+                      : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread)
+                                              : q.radius_min;
   const double sphere = 4.0 / 3.0 * std::numbers::pi * r_lo * r_lo * r_lo;
   double requested = q.count > 0 ? static_cast<double>(q.count) * sphere : q.solid_volume;
   if (explicit_radii) {
@@ -147,8 +161,11 @@ void check_packing_feasible(const PackingRequest& q) {
   }
   if (requested > kLatticeFraction * volume) {
     std::ostringstream msg;
-    msg << "packing: " << (explicit_radii ? "radii" : q.count > 0 ? "count" : "solid_volume") << " needs a solid volume of " << requested
-        << " m^3, more than the " << kLatticeFraction << " x " << volume
+    msg << "packing: "
+        << (explicit_radii ? "radii"
+            : q.count > 0  ? "count"
+                           : "solid_volume")
+        << " needs a solid volume of " << requested << " m^3, more than the " << kLatticeFraction << " x " << volume
         << " m^3 of the region that a packing can reach; fewer or smaller particles, or a larger container";
     throw std::runtime_error(msg.str());
   }
@@ -156,7 +173,8 @@ void check_packing_feasible(const PackingRequest& q) {
   if (cells * cells * cells > kMaxLatticeSites) {
     std::ostringstream msg;
     msg << "packing.radius_max [m]: " << r_hi << " is too small for a region of extent " << extent << " m ("
-        << cells * cells * cells << " lattice sites, limit " << kMaxLatticeSites << "); use larger particles or coarse graining";
+        << cells * cells * cells << " lattice sites, limit " << kMaxLatticeSites
+        << "); use larger particles or coarse graining";
     throw std::runtime_error(msg.str());
   }
 }
@@ -196,8 +214,12 @@ Packing generate_packing(const PackingRequest& q) {
   // Radius bounds: [radius_min, radius_max], or R(1 -+ s) with a spread (identical when s = 0);
   // explicit radii: every site sized for the largest one.
   const double r_largest = explicit_radii ? *std::max_element(q.radii.begin(), q.radii.end()) : 0.0;
-  const double r_lo = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread) : q.radius_min;
-  const double r_hi = explicit_radii ? r_largest : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread) : q.radius_max;
+  const double r_lo = explicit_radii          ? r_largest
+                      : q.radius_spread > 0.0 ? q.radius_min * (1.0 - q.radius_spread)
+                                              : q.radius_min;
+  const double r_hi = explicit_radii          ? r_largest
+                      : q.radius_spread > 0.0 ? q.radius_max * (1.0 + q.radius_spread)
+                                              : q.radius_max;
   const std::size_t count = explicit_radii ? q.radii.size() : q.count;
   const double neighbour_distance = 2.0 * r_hi * (1.0 + q.gap);
   const std::vector<Vec3> basis = lattice_basis(q.lattice);
@@ -207,7 +229,12 @@ Packing generate_packing(const PackingRequest& q) {
   const auto [center, extent] = bounding_sphere(q.region);
   const auto cells = static_cast<std::int64_t>(std::ceil(extent / spacing));
   std::mt19937_64 rng(q.seed);
-  struct Site { std::int64_t layer; double key; Vec3 x; double r; };
+  struct Site {
+    std::int64_t layer;
+    double key;
+    Vec3 x;
+    double r;
+  };
   std::vector<Site> sites;
   for (std::int64_t k = -cells; k <= cells; ++k)
     for (std::int64_t j = -cells; j <= cells; ++j)
@@ -221,15 +248,15 @@ Packing generate_packing(const PackingRequest& q) {
           const double key = uniform01(rng);
           const Vec3 cell{static_cast<double>(i) + basis[b].x, static_cast<double>(j) + basis[b].y,
                           static_cast<double>(k) + basis[b].z};
-          const Vec3 x = center + (cell.x * spacing + a) * f.e1 + (cell.y * spacing + bb) * f.e2 + (cell.z * spacing + c) * f.up;
+          const Vec3 x =
+              center + (cell.x * spacing + a) * f.e1 + (cell.y * spacing + bb) * f.e2 + (cell.z * spacing + c) * f.up;
           // Layers along up: a cubic cell holds two fcc layers (basis z = 0 and 1/2).
           const std::int64_t layer = basis.size() == 1 ? k : 2 * k + (basis[b].z > 0.0 ? 1 : 0);
           if (region_contains(q.region, x, r)) sites.push_back({layer, key, x, r});
         }
   // Lowest layers first; random order inside a layer so a partly filled top layer is random.
-  std::stable_sort(sites.begin(), sites.end(), [](const Site& s, const Site& t) {
-    return s.layer != t.layer ? s.layer < t.layer : s.key < t.key;
-  });
+  std::stable_sort(sites.begin(), sites.end(),
+                   [](const Site& s, const Site& t) { return s.layer != t.layer ? s.layer < t.layer : s.key < t.key; });
   Packing out;
   out.capacity = sites.size();
   for (const Site& s : sites) {
@@ -257,7 +284,8 @@ double mean_volume_factor(double radius_spread) {
 }
 
 void add_packing(Simulation& simulation, const Packing& packing, std::size_t material) {
-  for (std::size_t i = 0; i < packing.centers.size(); ++i) simulation.add_particle(packing.centers[i], packing.radii[i], material);
+  for (std::size_t i = 0; i < packing.centers.size(); ++i)
+    simulation.add_particle(packing.centers[i], packing.radii[i], material);
 }
 
 double bed_height(const Simulation& s, const Vec3& up, double top_fraction) {
@@ -265,7 +293,8 @@ double bed_height(const Simulation& s, const Vec3& up, double top_fraction) {
   const Vec3 u = normalized(up);
   std::vector<double> tops(s.particle_count());
   for (std::size_t i = 0; i < tops.size(); ++i) tops[i] = dot(s.positions()[i], u) + s.radii()[i];
-  const auto m = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(top_fraction * static_cast<double>(tops.size()))));
+  const auto m =
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(top_fraction * static_cast<double>(tops.size()))));
   std::nth_element(tops.begin(), tops.begin() + static_cast<std::ptrdiff_t>(m - 1), tops.end(), std::greater<>());
   std::sort(tops.begin(), tops.begin() + static_cast<std::ptrdiff_t>(m), std::greater<>());
   double sum = 0.0;
@@ -281,25 +310,29 @@ double solid_volume(const Simulation& s) {
 
 double region_volume_below(const Region& region, const Vec3& up, double height) {
   const Vec3 u = normalized(up);
-  return std::visit([&](const auto& g) -> double {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, BoxRegion>) {
-      const double lo = std::min(dot(g.lower, u), dot(g.upper, u));
-      const double hi = std::max(dot(g.lower, u), dot(g.upper, u));
-      const double aligned = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z)});
-      if (aligned < 1.0 - 1e-12) throw std::runtime_error("region_volume_below: box needs up along a coordinate axis");
-      return region_volume(region) * std::clamp((height - lo) / (hi - lo), 0.0, 1.0);
-    } else if constexpr (std::is_same_v<G, CylinderRegion>) {
-      const double along = dot(normalized(g.axis), u);
-      if (std::fabs(along) < 1.0 - 1e-9) throw std::runtime_error("region_volume_below: cylinder axis must be parallel to up");
-      const double b0 = dot(g.base_center, u);
-      const double lo = std::min(b0, b0 + along * g.length);
-      return std::numbers::pi * g.radius * g.radius * std::clamp(height - lo, 0.0, g.length);
-    } else {
-      const double h = std::min(height - dot(g.base_center, u), g.fill_height);
-      return segment_area(g.radius, h) * g.length;
-    }
-  }, region);
+  return std::visit(
+      [&](const auto& g) -> double {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, BoxRegion>) {
+          const double lo = std::min(dot(g.lower, u), dot(g.upper, u));
+          const double hi = std::max(dot(g.lower, u), dot(g.upper, u));
+          const double aligned = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z)});
+          if (aligned < 1.0 - 1e-12)
+            throw std::runtime_error("region_volume_below: box needs up along a coordinate axis");
+          return region_volume(region) * std::clamp((height - lo) / (hi - lo), 0.0, 1.0);
+        } else if constexpr (std::is_same_v<G, CylinderRegion>) {
+          const double along = dot(normalized(g.axis), u);
+          if (std::fabs(along) < 1.0 - 1e-9)
+            throw std::runtime_error("region_volume_below: cylinder axis must be parallel to up");
+          const double b0 = dot(g.base_center, u);
+          const double lo = std::min(b0, b0 + along * g.length);
+          return std::numbers::pi * g.radius * g.radius * std::clamp(height - lo, 0.0, g.length);
+        } else {
+          const double h = std::min(height - dot(g.base_center, u), g.fill_height);
+          return segment_area(g.radius, h) * g.length;
+        }
+      },
+      region);
 }
 
 double packed_volume_fraction(const Simulation& s, const Region& region, const Vec3& up) {

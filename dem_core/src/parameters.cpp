@@ -44,7 +44,8 @@ void validate(const WallContactParameters& p) {
   require_positive("wall.sfp (SFP)", p.sfp);
   require_non_negative("wall.youngs_modulus [Pa] (0 = rigid)", p.youngs_modulus);
   require_finite("wall.poisson_ratio", p.poisson_ratio);
-  if (p.poisson_ratio <= -1.0 || p.poisson_ratio >= 0.5) fail("wall.poisson_ratio", p.poisson_ratio, "must lie in (-1, 0.5)");
+  if (p.poisson_ratio <= -1.0 || p.poisson_ratio >= 0.5)
+    fail("wall.poisson_ratio", p.poisson_ratio, "must lie in (-1, 0.5)");
 }
 
 }  // namespace demfit::dem_core

@@ -17,8 +17,9 @@ namespace {
 /// The effects library extends the LS-DYNA linear law only (contact_effects.hpp).
 void require_effects_law(ContactLawKind law, const ContactParameters& c) {
   if (law != ContactLawKind::lsdyna_linear && c.effects_enabled())
-    throw std::runtime_error("contact.unloading_stiffness_ratio / surface_energy / stiffness_exponent apply to the "
-                             "lsdyna_linear law only: set them to 1 / 0 / 1 or use law lsdyna_linear");
+    throw std::runtime_error(
+        "contact.unloading_stiffness_ratio / surface_energy / stiffness_exponent apply to the "
+        "lsdyna_linear law only: set them to 1 / 0 / 1 or use law lsdyna_linear");
 }
 
 }  // namespace
@@ -39,8 +40,8 @@ std::size_t Simulation::add_material(const Material& material) {
   return materials_.size() - 1;
 }
 
-std::size_t Simulation::add_particle(const Vec3& position, double radius, std::size_t material,
-                                     const Vec3& velocity, const Vec3& angular_velocity) {
+std::size_t Simulation::add_particle(const Vec3& position, double radius, std::size_t material, const Vec3& velocity,
+                                     const Vec3& angular_velocity) {
   require_finite("particle position [m]", position);
   require_positive("particle radius [m]", radius);
   require_finite("particle velocity [m/s]", velocity);
@@ -75,7 +76,8 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
 }
 
 void Simulation::remove_particles(const std::vector<bool>& flags) {
-  if (flags.size() != particles_.size()) fail("remove_particles flags size", static_cast<double>(flags.size()), "must equal particle_count()");
+  if (flags.size() != particles_.size())
+    fail("remove_particles flags size", static_cast<double>(flags.size()), "must equal particle_count()");
   ParticleState& p = particles_;
   const std::size_t count = p.size();
   std::size_t kept = 0;
@@ -169,7 +171,8 @@ void Simulation::set_reorder_particles(bool reorder) {
 }
 
 const Wall& Simulation::wall(std::size_t index) const {
-  if (index >= walls_.size()) fail("wall index", static_cast<double>(index), "does not exist; use an index returned by add_wall");
+  if (index >= walls_.size())
+    fail("wall index", static_cast<double>(index), "does not exist; use an index returned by add_wall");
   reduce_diagnostics();
   return walls_[index];
 }
@@ -227,7 +230,8 @@ double Simulation::stable_time_step() const {
     max_damp = std::max(max_damp, w.contact.damp);
   }
   return estimate_time_step(settings_.law, particles_, materials_, settings_.contact, max_sfp, max_damp,
-                            settings_.time_step_factor).stable_limit;
+                            settings_.time_step_factor)
+      .stable_limit;
 }
 
 double Simulation::time_step() const {
@@ -236,8 +240,8 @@ double Simulation::time_step() const {
     max_sfp = std::max(max_sfp, w.contact.sfp);
     max_damp = std::max(max_damp, w.contact.damp);
   }
-  const TimeStepEstimate e = estimate_time_step(settings_.law, particles_, materials_, settings_.contact,
-                                                max_sfp, max_damp, settings_.time_step_factor);
+  const TimeStepEstimate e = estimate_time_step(settings_.law, particles_, materials_, settings_.contact, max_sfp,
+                                                max_damp, settings_.time_step_factor);
   if (settings_.time_step > 0.0) {
     if (settings_.time_step > e.stable_limit) {
       std::ostringstream out;
@@ -272,7 +276,8 @@ double Simulation::kick_and_drift(double dt) {
   const std::span<const Vec3> reference = neighbors_.reference_positions();
   const bool known = reference.size() == p.size();
   double worst = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst) num_threads(settings_.threads) if(settings_.threads > 1)
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : worst) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
@@ -313,7 +318,8 @@ double Simulation::kinetic_energy() const {
 
 double Simulation::gravitational_potential_energy() const {
   double e = 0.0;
-  for (std::size_t i = 0; i < particles_.size(); ++i) e -= particles_.mass[i] * dot(settings_.gravity, particles_.position[i]);
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    e -= particles_.mass[i] * dot(settings_.gravity, particles_.position[i]);
   return e;
 }
 

@@ -14,11 +14,11 @@ namespace demfit::dem_core {
 namespace {
 
 struct PairOutputs {
-  Vec3* force;            // on the first particle (the second particle gathers -force)
-  Vec3* torque_second;    // on the second particle (the first one sums its torque directly)
+  Vec3* force;          // on the first particle (the second particle gathers -force)
+  Vec3* torque_second;  // on the second particle (the first one sums its torque directly)
   double* energy;
   std::uint8_t* touching;
-  double* max_overlap;    // per pair, with plasticity on, else null
+  double* max_overlap;  // per pair, with plasticity on, else null
 };
 
 /// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
@@ -35,9 +35,12 @@ void pair_contact(const Law& law, const ParticleState& p, std::size_t k, std::si
     torque_i = {};
     if (!out.touching[k]) return;  // already cleared
     history[k] = {};
-    if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[k] = 0.0;
-    out.force[k] = {}; out.torque_second[k] = {};
-    out.energy[k] = 0.0; out.touching[k] = 0;
+    if constexpr (Law::tracks_max_overlap)
+      if (out.max_overlap) out.max_overlap[k] = 0.0;
+    out.force[k] = {};
+    out.torque_second[k] = {};
+    out.energy[k] = 0.0;
+    out.touching[k] = 0;
     return;
   }
   const double dist = std::sqrt(dist2);
@@ -48,8 +51,8 @@ void pair_contact(const Law& law, const ParticleState& p, std::size_t k, std::si
   const double branch_j = p.radius[j] - 0.5 * g.overlap;
   g.contact_velocity = p.velocity[i] - p.velocity[j];
   if (rotation) {
-    g.contact_velocity += cross(p.angular_velocity[i], branch_i * g.normal) +
-                          cross(p.angular_velocity[j], branch_j * g.normal);
+    g.contact_velocity +=
+        cross(p.angular_velocity[i], branch_i * g.normal) + cross(p.angular_velocity[j], branch_j * g.normal);
     g.relative_angular_velocity = p.angular_velocity[i] - p.angular_velocity[j];
   }
   g.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
@@ -58,8 +61,10 @@ void pair_contact(const Law& law, const ParticleState& p, std::size_t k, std::si
   g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
   g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
   ContactForce f;
-  if constexpr (Law::tracks_max_overlap) f = law.force(g, history[k], dt, out.max_overlap ? out.max_overlap + k : nullptr);
-  else f = law.force(g, history[k], dt);
+  if constexpr (Law::tracks_max_overlap)
+    f = law.force(g, history[k], dt, out.max_overlap ? out.max_overlap + k : nullptr);
+  else
+    f = law.force(g, history[k], dt);
   out.force[k] = f.force;
   force_i = f.force;
   torque_i = {};
@@ -80,7 +85,7 @@ void pair_rows(const Law& law, ParticleState& p, const NeighborList& list, Conta
   const auto rows = list.row_offsets();
   const auto second = list.second();
   const auto n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     Vec3 f = p.mass[i] * gravity;
@@ -97,14 +102,14 @@ void pair_rows(const Law& law, ParticleState& p, const NeighborList& list, Conta
 }
 
 struct WallOutputs {
-  const std::uint32_t* rows;   // slots of particle i: [rows[i], rows[i+1])
-  const std::uint32_t* wall;   // wall of each slot
-  Vec3* force;           // on the particle, per slot
+  const std::uint32_t* rows;  // slots of particle i: [rows[i], rows[i+1])
+  const std::uint32_t* wall;  // wall of each slot
+  Vec3* force;                // on the particle, per slot
   Vec3* contact_point;
   Vec3* rolling_torque;  // on the particle
   double* energy;
   std::uint8_t* touching;
-  double* max_overlap;   // per slot, with plasticity on, else null
+  double* max_overlap;  // per slot, with plasticity on, else null
 };
 
 /// Loads of the candidate walls on particle i (the others cannot touch it before the next
@@ -117,7 +122,8 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     const WallProximity prox = wall_proximity(walls[w].geometry, p.position[i], p.radius[i]);
     if (!prox.touching) {
       history[slot] = {};
-      if constexpr (Law::tracks_max_overlap) if (out.max_overlap) out.max_overlap[slot] = 0.0;
+      if constexpr (Law::tracks_max_overlap)
+        if (out.max_overlap) out.max_overlap[slot] = 0.0;
       out.touching[slot] = 0;
       continue;
     }
@@ -137,8 +143,10 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
     g.shear_compliance = p.shear_compliance[i];
     g.inverse_inertia_sum = p.inverse_inertia[i];
     ContactForce f;
-    if constexpr (Law::tracks_max_overlap) f = laws[w].force(g, history[slot], dt, out.max_overlap ? out.max_overlap + slot : nullptr);
-    else f = laws[w].force(g, history[slot], dt);
+    if constexpr (Law::tracks_max_overlap)
+      f = laws[w].force(g, history[slot], dt, out.max_overlap ? out.max_overlap + slot : nullptr);
+    else
+      f = laws[w].force(g, history[slot], dt);
     p.force[i] += f.force;
     if (rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
     out.force[slot] = f.force;
@@ -151,14 +159,14 @@ void wall_contacts_of(std::size_t i, const std::vector<Law>& laws, const std::ve
 
 template <class Law, class WallLaw>
 void all_forces(const Law& pair_law, const std::vector<WallLaw>& wall_laws, const std::vector<Wall>& walls,
-                ParticleState& p, const NeighborList& list, ContactHistory* pair_history,
-                const PairOutputs& pair_out, ContactHistory* wall_history, const WallOutputs& wall_out,
-                const Vec3& gravity, double dt, double closing_kick, bool rotation, int threads) {
+                ParticleState& p, const NeighborList& list, ContactHistory* pair_history, const PairOutputs& pair_out,
+                ContactHistory* wall_history, const WallOutputs& wall_out, const Vec3& gravity, double dt,
+                double closing_kick, bool rotation, int threads) {
   pair_rows(pair_law, p, list, pair_history, pair_out, gravity, dt, rotation, threads);
   const auto columns = list.column_offsets();
   const auto column_pairs = list.column_pairs();
   const auto n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) num_threads(threads) if(threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     // Fixed order: gravity and pairs where i is first (ascending j, summed by pair_rows), pairs
@@ -189,7 +197,8 @@ void Simulation::ensure_neighbors(double moved) {
   const bool wall_layout_ok = wall_displacement_at_build_.size() == walls;
   for (std::size_t w = 0; w < walls; ++w) {
     wall_always_checked_[w] = wall_distances_rigid(walls_[w]) ? 0 : 1;
-    if (wall_layout_ok) wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
+    if (wall_layout_ok)
+      wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
   }
   const bool stale = rebuild_requested_ || !wall_layout_ok || neighbors_.skin() != skin_now ||
                      neighbors_.particle_count() != particles_.size() || !wall_slots_.built_for(particles_.size());
@@ -200,7 +209,8 @@ void Simulation::ensure_neighbors(double moved) {
   rebuild_requested_ = false;
   wall_displacement_at_build_.resize(walls);
   for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
-  const std::vector<std::uint32_t> order = settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
+  const std::vector<std::uint32_t> order =
+      settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates(order);
   // Moved, not copied (peak memory at rebuilds); the counters stay with neighbors_.
   const NeighborList old = std::move(neighbors_);
@@ -232,20 +242,28 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
     pair_max_overlap_.clear();
     slots.max_overlap.clear();
   }
-  const PairOutputs pair_out{pair_force_.data(), pair_torque_second_.data(),
-                             pair_energy_.data(), pair_touching_.data(), plastic ? pair_max_overlap_.data() : nullptr};
-  const WallOutputs wall_out{slots.rows.data(), slots.wall.data(), slots.force_on_particle.data(),
-                             slots.contact_point.data(), slots.rolling_torque.data(), slots.energy.data(),
-                             slots.touching.data(), plastic ? slots.max_overlap.data() : nullptr};
+  const PairOutputs pair_out{pair_force_.data(), pair_torque_second_.data(), pair_energy_.data(), pair_touching_.data(),
+                             plastic ? pair_max_overlap_.data() : nullptr};
+  const WallOutputs wall_out{slots.rows.data(),
+                             slots.wall.data(),
+                             slots.force_on_particle.data(),
+                             slots.contact_point.data(),
+                             slots.rolling_torque.data(),
+                             slots.energy.data(),
+                             slots.touching.data(),
+                             plastic ? slots.max_overlap.data() : nullptr};
   const bool rotation = settings_.contact.rotation_enabled();
   if (!wall_laws_valid_) {
     linear_wall_laws_.clear();
     effects_wall_laws_.clear();
     hertz_wall_laws_.clear();
     for (const Wall& w : walls_) {
-      if (effects) effects_wall_laws_.push_back(make_effects_wall_law(c, w.contact));
-      else if (linear) linear_wall_laws_.push_back(make_linear_wall_law(c, w.contact));
-      else hertz_wall_laws_.push_back(make_hertz_wall_law(c, w.contact));
+      if (effects)
+        effects_wall_laws_.push_back(make_effects_wall_law(c, w.contact));
+      else if (linear)
+        linear_wall_laws_.push_back(make_linear_wall_law(c, w.contact));
+      else
+        hertz_wall_laws_.push_back(make_hertz_wall_law(c, w.contact));
     }
     wall_laws_valid_ = true;
   }
@@ -266,7 +284,12 @@ void Simulation::compute_forces(double dt, double closing_kick, double moved) {
 void Simulation::reduce_diagnostics() const {
   if (diagnostics_valid_) return;
   // Serial, fixed-order sums: wall loads and energies are identical for any thread count.
-  for (Wall& w : walls_) { w.force = {}; w.moment = {}; w.torque = 0.0; w.contact_count = 0; }
+  for (Wall& w : walls_) {
+    w.force = {};
+    w.moment = {};
+    w.torque = 0.0;
+    w.contact_count = 0;
+  }
   elastic_energy_ = 0.0;
   contact_count_ = 0;
   const WallSlots& slots = wall_slots_;

@@ -34,7 +34,7 @@ void Simulation::carry_pair_histories(const NeighborList& old, const std::vector
   const auto second = neighbors_.second();
   const bool reordered = !order.empty();
   const auto count = static_cast<std::int64_t>(pairs);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const auto k = static_cast<std::size_t>(kk);
     std::size_t a = first[k], b = second[k];
@@ -64,7 +64,7 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
   // Candidate flags per (particle, wall), in parallel; then the CSR rows in a fixed order.
   std::vector<std::uint8_t> flag(n * walls);
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::int64_t ii = 0; ii < count; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     for (std::size_t w = 0; w < walls; ++w)
@@ -91,7 +91,7 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
   const bool plastic = !old.max_overlap.empty();
   if (plastic) s.max_overlap.assign(slots, 0.0);
   const std::size_t old_particles = old.rows.empty() ? 0 : old.rows.size() - 1;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if(settings_.threads > 1)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::int64_t ii = 0; ii < count; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     std::uint32_t slot = s.rows[i];

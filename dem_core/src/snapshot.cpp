@@ -11,7 +11,8 @@ namespace {
 
 std::ofstream open_for_writing(const std::string& path, const char* what) {
   std::ofstream out(path);
-  if (!out) throw std::runtime_error(std::string(what) + ": cannot open '" + path + "' for writing; check the directory");
+  if (!out)
+    throw std::runtime_error(std::string(what) + ": cannot open '" + path + "' for writing; check the directory");
   out.precision(9);
   return out;
 }
@@ -48,8 +49,8 @@ void write_csv_snapshot(const Simulation& s, const std::string& path) {
     const Vec3& x = s.positions()[i];
     const Vec3& v = s.velocities()[i];
     const Vec3& w = s.angular_velocities()[i];
-    out << x.x << ',' << x.y << ',' << x.z << ',' << s.radii()[i] << ',' << v.x << ',' << v.y << ',' << v.z
-        << ',' << w.x << ',' << w.y << ',' << w.z << '\n';
+    out << x.x << ',' << x.y << ',' << x.z << ',' << s.radii()[i] << ',' << v.x << ',' << v.y << ',' << v.z << ','
+        << w.x << ',' << w.y << ',' << w.z << '\n';
   }
   if (!out) throw std::runtime_error("CSV snapshot: writing '" + path + "' failed; check disk space");
 }

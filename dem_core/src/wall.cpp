@@ -54,9 +54,12 @@ WallProximity wall_proximity(const WallGeometry& geometry, const Vec3& center, d
   return std::visit(
       [&](const auto& g) -> WallProximity {
         using G = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<G, PlaneGeometry>) return plane_proximity(g.point, g.normal, center, radius);
-        else if constexpr (std::is_same_v<G, DiskGeometry>) return disk_proximity(g, center, radius);
-        else return cylinder_proximity(g, center, radius);
+        if constexpr (std::is_same_v<G, PlaneGeometry>)
+          return plane_proximity(g.point, g.normal, center, radius);
+        else if constexpr (std::is_same_v<G, DiskGeometry>)
+          return disk_proximity(g, center, radius);
+        else
+          return cylinder_proximity(g, center, radius);
       },
       geometry);
 }
@@ -79,13 +82,20 @@ bool wall_distances_rigid(const Wall& wall) {
   const Vec3& u = m->axis_direction;
   constexpr double tolerance = 1e-9;
   auto parallel = [&](const Vec3& d) { return norm(cross(d, u)) < tolerance; };
-  auto on_axis = [&](const Vec3& p) { return norm(cross(p - m->axis_point, u)) < tolerance * (1.0 + norm(p - m->axis_point)); };
-  return std::visit([&](const auto& g) -> bool {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, PlaneGeometry>) return parallel(g.normal);
-    else if constexpr (std::is_same_v<G, DiskGeometry>) return parallel(g.normal) && on_axis(g.center);
-    else return parallel(g.axis) && on_axis(g.base_center);
-  }, wall.geometry);
+  auto on_axis = [&](const Vec3& p) {
+    return norm(cross(p - m->axis_point, u)) < tolerance * (1.0 + norm(p - m->axis_point));
+  };
+  return std::visit(
+      [&](const auto& g) -> bool {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, PlaneGeometry>)
+          return parallel(g.normal);
+        else if constexpr (std::is_same_v<G, DiskGeometry>)
+          return parallel(g.normal) && on_axis(g.center);
+        else
+          return parallel(g.axis) && on_axis(g.base_center);
+      },
+      wall.geometry);
 }
 
 Vec3 wall_velocity_at(const Wall& wall, const Vec3& point) {
@@ -103,12 +113,17 @@ Vec3 wall_angular_velocity(const Wall& wall) {
 void advance_wall(Wall& wall, double dt) {
   if (const auto* t = std::get_if<TranslatingMotion>(&wall.motion)) {
     const Vec3 shift = t->velocity * dt;
-    std::visit([&](auto& g) {
-      using G = std::decay_t<decltype(g)>;
-      if constexpr (std::is_same_v<G, PlaneGeometry>) g.point += shift;
-      else if constexpr (std::is_same_v<G, DiskGeometry>) g.center += shift;
-      else g.base_center += shift;
-    }, wall.geometry);
+    std::visit(
+        [&](auto& g) {
+          using G = std::decay_t<decltype(g)>;
+          if constexpr (std::is_same_v<G, PlaneGeometry>)
+            g.point += shift;
+          else if constexpr (std::is_same_v<G, DiskGeometry>)
+            g.center += shift;
+          else
+            g.base_center += shift;
+        },
+        wall.geometry);
     wall.torque_axis.point += shift;
     wall.displacement += shift;
   } else if (const auto* m = std::get_if<RotatingMotion>(&wall.motion)) {
@@ -119,12 +134,21 @@ void advance_wall(Wall& wall, double dt) {
     const Vec3& a = m->axis_point;
     auto move_point = [&](Vec3& p) { p = a + rotate(p - a, k, c, s); };
     auto move_direction = [&](Vec3& d) { d = normalized(rotate(d, k, c, s)); };
-    std::visit([&](auto& g) {
-      using G = std::decay_t<decltype(g)>;
-      if constexpr (std::is_same_v<G, PlaneGeometry>) { move_point(g.point); move_direction(g.normal); }
-      else if constexpr (std::is_same_v<G, DiskGeometry>) { move_point(g.center); move_direction(g.normal); }
-      else { move_point(g.base_center); move_direction(g.axis); }
-    }, wall.geometry);
+    std::visit(
+        [&](auto& g) {
+          using G = std::decay_t<decltype(g)>;
+          if constexpr (std::is_same_v<G, PlaneGeometry>) {
+            move_point(g.point);
+            move_direction(g.normal);
+          } else if constexpr (std::is_same_v<G, DiskGeometry>) {
+            move_point(g.center);
+            move_direction(g.normal);
+          } else {
+            move_point(g.base_center);
+            move_direction(g.axis);
+          }
+        },
+        wall.geometry);
     move_point(wall.torque_axis.point);
     move_direction(wall.torque_axis.direction);
     wall.rotation_angle += theta;
@@ -139,36 +163,40 @@ Wall make_wall(const WallSpec& spec) {
   wall.contact = spec.contact;
   wall.name = spec.name;
   Axis own_axis;
-  std::visit([&](auto& g) {
-    using G = std::decay_t<decltype(g)>;
-    if constexpr (std::is_same_v<G, PlaneGeometry>) {
-      require_finite("plane.point [m]", g.point);
-      g.normal = require_direction("plane.normal", g.normal);
-      own_axis = {g.point, g.normal};
-    } else if constexpr (std::is_same_v<G, DiskGeometry>) {
-      require_finite("disk.center [m]", g.center);
-      g.normal = require_direction("disk.normal", g.normal);
-      require_positive("disk.radius [m]", g.radius);
-      own_axis = {g.center, g.normal};
-    } else {
-      require_finite("cylinder.base_center [m]", g.base_center);
-      g.axis = require_direction("cylinder.axis", g.axis);
-      require_positive("cylinder.radius [m]", g.radius);
-      require_positive("cylinder.length [m]", g.length);
-      own_axis = {g.base_center, g.axis};
-    }
-  }, wall.geometry);
-  std::visit([&](auto& m) {
-    using M = std::decay_t<decltype(m)>;
-    if constexpr (std::is_same_v<M, TranslatingMotion>) {
-      require_finite("wall motion velocity [m/s]", m.velocity);
-    } else if constexpr (std::is_same_v<M, RotatingMotion>) {
-      require_finite("wall rotation axis_point [m]", m.axis_point);
-      m.axis_direction = require_direction("wall rotation axis_direction", m.axis_direction);
-      require_finite("wall rotation angular_velocity [rad/s]", m.angular_velocity);
-      own_axis = {m.axis_point, m.axis_direction};
-    }
-  }, wall.motion);
+  std::visit(
+      [&](auto& g) {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, PlaneGeometry>) {
+          require_finite("plane.point [m]", g.point);
+          g.normal = require_direction("plane.normal", g.normal);
+          own_axis = {g.point, g.normal};
+        } else if constexpr (std::is_same_v<G, DiskGeometry>) {
+          require_finite("disk.center [m]", g.center);
+          g.normal = require_direction("disk.normal", g.normal);
+          require_positive("disk.radius [m]", g.radius);
+          own_axis = {g.center, g.normal};
+        } else {
+          require_finite("cylinder.base_center [m]", g.base_center);
+          g.axis = require_direction("cylinder.axis", g.axis);
+          require_positive("cylinder.radius [m]", g.radius);
+          require_positive("cylinder.length [m]", g.length);
+          own_axis = {g.base_center, g.axis};
+        }
+      },
+      wall.geometry);
+  std::visit(
+      [&](auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, TranslatingMotion>) {
+          require_finite("wall motion velocity [m/s]", m.velocity);
+        } else if constexpr (std::is_same_v<M, RotatingMotion>) {
+          require_finite("wall rotation axis_point [m]", m.axis_point);
+          m.axis_direction = require_direction("wall rotation axis_direction", m.axis_direction);
+          require_finite("wall rotation angular_velocity [rad/s]", m.angular_velocity);
+          own_axis = {m.axis_point, m.axis_direction};
+        }
+      },
+      wall.motion);
   if (spec.torque_axis) {
     require_finite("wall torque_axis.point [m]", spec.torque_axis->point);
     wall.torque_axis = {spec.torque_axis->point,

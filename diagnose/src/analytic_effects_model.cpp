@@ -17,8 +17,13 @@ std::vector<std::string> AnalyticEffectsModel::parameter_names() const {
 }
 
 identify::ParameterSet AnalyticEffectsModel::default_parameters() const {
-  return {{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}, {"toe_shift", 0.0},
-          {"stiffening_coefficient", 0.0}, {"yield_drop", 0.0}, {"ripple_amplitude", 0.0}};
+  return {{"amplitude", 1.0},
+          {"rate", 3.0},
+          {"slope", 0.5},
+          {"toe_shift", 0.0},
+          {"stiffening_coefficient", 0.0},
+          {"yield_drop", 0.0},
+          {"ripple_amplitude", 0.0}};
 }
 
 identify::CurveSet AnalyticEffectsModel::evaluate(const identify::ParameterSet& parameters,
@@ -26,12 +31,12 @@ identify::CurveSet AnalyticEffectsModel::evaluate(const identify::ParameterSet& 
   identify::ParameterSet p = default_parameters();
   for (const auto& [name, value] : parameters) {
     if (!p.count(name)) throw std::runtime_error("analytic effects model: unknown parameter '" + name + "'");
-    if (!std::isfinite(value)) throw std::runtime_error("analytic effects model: parameter '" + name + "' is not finite");
+    if (!std::isfinite(value))
+      throw std::runtime_error("analytic effects model: parameter '" + name + "' is not finite");
     p[name] = value;
   }
   const double a = p["amplitude"], r = p["rate"], b = p["slope"];
-  const double shift = p["toe_shift"], c = p["stiffening_coefficient"], h = p["yield_drop"],
-               e = p["ripple_amplitude"];
+  const double shift = p["toe_shift"], c = p["stiffening_coefficient"], h = p["yield_drop"], e = p["ripple_amplitude"];
   identify::Curve curve{"x_1", "y_1", {}, {}};
   for (int i = 0; i < points_; ++i) {
     const double x = static_cast<double>(i) / (points_ - 1);

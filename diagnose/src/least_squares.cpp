@@ -63,7 +63,8 @@ std::vector<double> resample_branches(const identify::Curve& simulated, const id
     if (begin >= end) continue;
     const std::size_t model_end = std::max(branch_end(model_branches, b), model_branches[b] + 2);
     const identify::Curve branch = slice(simulated, model_branches[b], std::min(model_end, simulated.x.size()));
-    const std::vector<double> at(data.x.begin() + static_cast<std::ptrdiff_t>(begin), data.x.begin() + static_cast<std::ptrdiff_t>(end));
+    const std::vector<double> at(data.x.begin() + static_cast<std::ptrdiff_t>(begin),
+                                 data.x.begin() + static_cast<std::ptrdiff_t>(end));
     const auto values = identify::resample_monotone(branch, at);
     std::copy(values.begin(), values.end(), out.begin() + static_cast<std::ptrdiff_t>(begin));
   }
@@ -72,7 +73,8 @@ std::vector<double> resample_branches(const identify::Curve& simulated, const id
 
 }  // namespace
 
-std::vector<std::vector<double>> raw_residuals(const identify::CurveSet& curves, const std::vector<FitTarget>& targets) {
+std::vector<std::vector<double>> raw_residuals(const identify::CurveSet& curves,
+                                               const std::vector<FitTarget>& targets) {
   std::vector<std::vector<double>> out;
   for (const auto& t : targets) {
     const auto found = curves.find(t.curve);
@@ -116,7 +118,9 @@ std::vector<Eigen::VectorXd> residuals_at(const identify::Model& model, const st
   for (const auto& curves : evaluate_many(model, sets, options.jobs, options.seed)) {
     Eigen::VectorXd r;
     if (!curves.empty()) {
-      try { r = normalised_residual(curves, targets); } catch (const std::exception&) { r.resize(0); }
+      try {
+        r = normalised_residual(curves, targets);
+      } catch (const std::exception&) { r.resize(0); }
     }
     out.push_back(r);
   }
@@ -159,9 +163,17 @@ Eigen::MatrixXd jacobian(Problem& problem, const Eigen::VectorXd& u, const Eigen
   for (Eigen::Index j = 0; j < n; ++j) {
     const bool up = u(j) + h <= 1.0, down = u(j) - h >= 0.0;
     int plus = -1, minus = -1;
-    if (up || !down) { Eigen::VectorXd p = u; p(j) = std::min(1.0, u(j) + h); plus = static_cast<int>(points.size()); points.push_back(p); }
+    if (up || !down) {
+      Eigen::VectorXd p = u;
+      p(j) = std::min(1.0, u(j) + h);
+      plus = static_cast<int>(points.size());
+      points.push_back(p);
+    }
     if (!up || (problem.options.central_differences && down)) {
-      Eigen::VectorXd p = u; p(j) = std::max(0.0, u(j) - h); minus = static_cast<int>(points.size()); points.push_back(p);
+      Eigen::VectorXd p = u;
+      p(j) = std::max(0.0, u(j) - h);
+      minus = static_cast<int>(points.size());
+      points.push_back(p);
     }
     const double hi = plus >= 0 ? points[plus](j) : u(j), lo = minus >= 0 ? points[minus](j) : u(j);
     index.emplace_back(plus, minus);
@@ -192,7 +204,12 @@ Eigen::VectorXd lm_trial(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, con
     Eigen::VectorXd b = -g;
     for (Eigen::Index j = 0; j < n; ++j) {
       A(j, j) += lambda * std::max(JtJ(j, j), 1e-12);
-      if (held[j]) { A.row(j).setZero(); A.col(j).setZero(); A(j, j) = 1.0; b(j) = 0.0; }
+      if (held[j]) {
+        A.row(j).setZero();
+        A.col(j).setZero();
+        A(j, j) = 1.0;
+        b(j) = 0.0;
+      }
     }
     step = A.ldlt().solve(b);
     bool changed = false;
@@ -204,7 +221,8 @@ Eigen::VectorXd lm_trial(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, con
 }
 
 // Broyden's "good" secant update: the smallest change of J for which J s = r(u + s) - r(u).
-void broyden_update(Eigen::MatrixXd& J, const Eigen::VectorXd& s, const Eigen::VectorXd& r_new, const Eigen::VectorXd& r) {
+void broyden_update(Eigen::MatrixXd& J, const Eigen::VectorXd& s, const Eigen::VectorXd& r_new,
+                    const Eigen::VectorXd& r) {
   const double ss = s.squaredNorm();
   if (ss <= 0.0) return;
   J += ((r_new - r) - J * s) * (s.transpose() / ss);
@@ -255,7 +273,10 @@ FitResult fit_least_squares(const identify::Model& model, const identify::Parame
         if (secant) broyden_update(J, trial - u, rt, r);  // still a Jacobian at u: `fresh` unchanged
         lambda *= 4.0;
         // A Jacobian carried over from an earlier point that fails twice is replaced.
-        if (!fresh && attempt >= 1 && !out_of_budget()) { J = jacobian(problem, u, r); fresh = true; }
+        if (!fresh && attempt >= 1 && !out_of_budget()) {
+          J = jacobian(problem, u, r);
+          fresh = true;
+        }
       }
     }
     if (!accepted) {
@@ -273,7 +294,10 @@ FitResult fit_least_squares(const identify::Model& model, const identify::Parame
     }
     // A small decrease on an approximate Jacobian may be a poor direction, not the optimum:
     // check with finite differences before stopping.
-    if (converged || !options.broyden) { J = jacobian(problem, u, r); fresh = true; }
+    if (converged || !options.broyden) {
+      J = jacobian(problem, u, r);
+      fresh = true;
+    }
   }
   FitResult result;
   result.parameters = problem.parameters(u);

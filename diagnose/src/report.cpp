@@ -16,27 +16,47 @@ using detail::format;
 nlohmann::json analysis_json(const ResidualAnalysis& a) {
   nlohmann::json regions = nlohmann::json::array();
   for (const auto& r : a.regions)
-    regions.push_back({{"region", r.label}, {"rms", r.rms}, {"max_abs", r.max_abs}, {"rms_over_sigma", r.rms_over_sigma},
-                       {"max_over_sigma", r.max_over_sigma}, {"x_at_max", r.x_at_max}});
-  return {{"points", a.points}, {"fitted_parameters", a.fitted_parameters}, {"sigma", a.sigma}, {"rms", a.rms},
-          {"max_abs", a.max_abs}, {"rms_over_sigma", a.rms_over_sigma}, {"max_over_sigma", a.max_over_sigma}, {"structural", a.structural}, {"alpha", a.alpha},
-          {"runs_test", {{"runs", a.runs.runs}, {"positive", a.runs.positive}, {"negative", a.runs.negative},
-                         {"z", a.runs.z}, {"p_value", a.runs.p_value}}},
-          {"autocorrelation", {{"lag1", a.autocorrelation.lag1}, {"durbin_watson", a.autocorrelation.durbin_watson},
-                               {"p_value", a.autocorrelation.p_value}}},
-          {"variance", {{"ratio", a.variance.ratio}, {"dof_residual", a.variance.dof_residual},
-                        {"dof_noise", a.variance.dof_noise}, {"p_value", a.variance.p_value}}},
-          {"smooth_structure", {{"statistic", a.smooth.statistic}, {"basis", a.smooth.basis},
-                                {"p_value", a.smooth.p_value}}},
+    regions.push_back({{"region", r.label},
+                       {"rms", r.rms},
+                       {"max_abs", r.max_abs},
+                       {"rms_over_sigma", r.rms_over_sigma},
+                       {"max_over_sigma", r.max_over_sigma},
+                       {"x_at_max", r.x_at_max}});
+  return {{"points", a.points},
+          {"fitted_parameters", a.fitted_parameters},
+          {"sigma", a.sigma},
+          {"rms", a.rms},
+          {"max_abs", a.max_abs},
+          {"rms_over_sigma", a.rms_over_sigma},
+          {"max_over_sigma", a.max_over_sigma},
+          {"structural", a.structural},
+          {"alpha", a.alpha},
+          {"runs_test",
+           {{"runs", a.runs.runs},
+            {"positive", a.runs.positive},
+            {"negative", a.runs.negative},
+            {"z", a.runs.z},
+            {"p_value", a.runs.p_value}}},
+          {"autocorrelation",
+           {{"lag1", a.autocorrelation.lag1},
+            {"durbin_watson", a.autocorrelation.durbin_watson},
+            {"p_value", a.autocorrelation.p_value}}},
+          {"variance",
+           {{"ratio", a.variance.ratio},
+            {"dof_residual", a.variance.dof_residual},
+            {"dof_noise", a.variance.dof_noise},
+            {"p_value", a.variance.p_value}}},
+          {"smooth_structure",
+           {{"statistic", a.smooth.statistic}, {"basis", a.smooth.basis}, {"p_value", a.smooth.p_value}}},
           {"regions", regions},
           {"worst_region", a.worst_region >= 0 ? nlohmann::json(a.regions[a.worst_region].label) : nlohmann::json()}};
 }
 
 std::string tests_row(const std::string& label, const ResidualAnalysis& a) {
   return format("| %s | %.3g | %.3g | %.3g | %d | %.3g | %.3f | %.3g | %.3g | %.3g | %.4g (%d) | %.3g | %s |\n",
-                label.c_str(), a.alpha, a.rms_over_sigma, a.max_over_sigma, a.runs.runs, a.runs.p_value, a.autocorrelation.lag1,
-                a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value, a.smooth.statistic, a.smooth.basis,
-                a.smooth.p_value, a.structural ? "structure" : "noise");
+                label.c_str(), a.alpha, a.rms_over_sigma, a.max_over_sigma, a.runs.runs, a.runs.p_value,
+                a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value,
+                a.smooth.statistic, a.smooth.basis, a.smooth.p_value, a.structural ? "structure" : "noise");
 }
 
 // Control characters would end a gnuplot command and start another: they become '?'.
@@ -44,8 +64,10 @@ std::string gnuplot_quote(const std::string& text) {
   std::string out = "'";
   for (char c : text) {
     const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) out += '?';
-    else out += (c == '\'') ? std::string("''") : std::string(1, c);
+    if (u < 0x20 || u == 0x7f)
+      out += '?';
+    else
+      out += (c == '\'') ? std::string("''") : std::string(1, c);
   }
   return out + "'";
 }
@@ -82,7 +104,8 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
         "else { set terminal png size 900,800 noenhanced }\n"
      << "set output " << gnuplot_quote(png + ".tmp") << "\nset grid\nset key below\nset multiplot layout 2,1\n"
      << "set title " << gnuplot_quote(target.name + ": " + verdict_text(d.verdict)) << "\n"
-     << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label) << "\n"
+     << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label)
+     << "\n"
      << "plot " << gnuplot_quote(data) << " u 1:2 w p pt 7 ps 0.5 t 'target', '' u 1:3 w l lw 2 t 'base fit'"
      << (aug ? ", '' u 1:4 w l lw 2 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
      << "set title 'residual (fit - target)'\nset ylabel " << gnuplot_quote("residual, " + target.data.y_label) << "\n"
@@ -106,32 +129,54 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
 nlohmann::json to_json(const Diagnosis& d) {
   nlohmann::json screening = nlohmann::json::array();
   for (const auto& s : d.screening)
-    screening.push_back({{"effect", s.effect}, {"score", s.score}, {"p_value", s.p_value},
-                         {"fraction_explained", s.fraction_explained}, {"evaluated", s.evaluated}});
+    screening.push_back({{"effect", s.effect},
+                         {"score", s.score},
+                         {"p_value", s.p_value},
+                         {"fraction_explained", s.fraction_explained},
+                         {"evaluated", s.evaluated}});
   nlohmann::json refits = nlohmann::json::array();
   for (const auto& r : d.refits)
-    refits.push_back({{"effect", r.effect}, {"parameters", r.fit.parameters}, {"chi_square", r.fit.chi_square},
-                      {"bic", r.bic}, {"aicc", r.aicc}, {"delta_bic", r.delta_bic}, {"delta_aicc", r.delta_aicc},
-                      {"passes", r.passes}, {"evaluations", r.fit.evaluations}, {"residual", analysis_json(r.analysis)}});
+    refits.push_back({{"effect", r.effect},
+                      {"parameters", r.fit.parameters},
+                      {"chi_square", r.fit.chi_square},
+                      {"bic", r.bic},
+                      {"aicc", r.aicc},
+                      {"delta_bic", r.delta_bic},
+                      {"delta_aicc", r.delta_aicc},
+                      {"passes", r.passes},
+                      {"evaluations", r.fit.evaluations},
+                      {"residual", analysis_json(r.analysis)}});
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : d.targets) targets.push_back({{"name", t.name}, {"curve", t.curve}, {"sigma", t.sigma}});
   return {{"verdict", verdict_text(d.verdict)},
           {"effect", d.chosen >= 0 ? nlohmann::json(d.refits[d.chosen].effect) : nlohmann::json()},
-          {"summary", d.summary}, {"bic_threshold", d.bic_threshold}, {"noise_given", d.noise_given},
+          {"summary", d.summary},
+          {"bic_threshold", d.bic_threshold},
+          {"noise_given", d.noise_given},
           {"targets", targets},
-          {"base", {{"parameters", d.base.parameters}, {"chi_square", d.base.chi_square}, {"bic", d.base_bic},
-                    {"aicc", d.base_aicc}, {"evaluations", d.base.evaluations},
-                    {"residual", analysis_json(d.base_analysis)}}},
-          {"screening", screening}, {"refits", refits}, {"notes", d.notes},
-          {"cost", {{"evaluations", d.evaluations}, {"base_evaluations", d.base_evaluations},
-                    {"screening_evaluations", d.screening_evaluations}, {"refit_evaluations", d.refit_evaluations},
-                    {"wall_seconds", d.wall_seconds}}}};
+          {"base",
+           {{"parameters", d.base.parameters},
+            {"chi_square", d.base.chi_square},
+            {"bic", d.base_bic},
+            {"aicc", d.base_aicc},
+            {"evaluations", d.base.evaluations},
+            {"residual", analysis_json(d.base_analysis)}}},
+          {"screening", screening},
+          {"refits", refits},
+          {"notes", d.notes},
+          {"cost",
+           {{"evaluations", d.evaluations},
+            {"base_evaluations", d.base_evaluations},
+            {"screening_evaluations", d.screening_evaluations},
+            {"refit_evaluations", d.refit_evaluations},
+            {"wall_seconds", d.wall_seconds}}}};
 }
 
 std::string markdown_report(const Diagnosis& d) {
   std::ostringstream md;
   md << "# demfit diagnose\n\n**Verdict: " << verdict_text(d.verdict) << "**"
-     << (d.chosen >= 0 ? " — `" + d.refits[d.chosen].effect + "`" : std::string()) << "\n\n" << d.summary << "\n\n";
+     << (d.chosen >= 0 ? " — `" + d.refits[d.chosen].effect + "`" : std::string()) << "\n\n"
+     << d.summary << "\n\n";
   md << "## Noise level\n\n| target | points | sigma (y units) | source |\n|---|---|---|---|\n";
   for (const auto& t : d.targets)
     md << format("| %s | %zu | %.4g | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
@@ -139,7 +184,8 @@ std::string markdown_report(const Diagnosis& d) {
   md << "\n## Residual tests (family-wise level alpha per row, each test at alpha/4; a candidate must pass "
         "at its level to be named; RMS and max of r/sigma with each target divided by its own noise level)\n\n"
         "| fit | alpha | RMS/sigma | max/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "
-        "| variance p | smooth-structure stat (dof) | smooth p | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| variance p | smooth-structure stat (dof) | smooth p | verdict "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   md << tests_row("base", d.base_analysis);
   for (const auto& r : d.refits) md << tests_row("base + " + r.effect, r.analysis);
   md << "\n## Gap per region (RMS and max of the residual / the noise level of the region's target)\n\n"
@@ -155,15 +201,16 @@ std::string markdown_report(const Diagnosis& d) {
       md << format(" | %.3g | %.3g", r.analysis.regions[g].rms_over_sigma, r.analysis.regions[g].max_over_sigma);
     md << " |\n";
   }
-  md << "\n## Screening (score test at the base optimum)\n\n| effect | score | p | share of residual SS |\n|---|---|---|---|\n";
+  md << "\n## Screening (score test at the base optimum)\n\n| effect | score | p | share of residual SS "
+        "|\n|---|---|---|---|\n";
   for (const auto& s : d.screening)
     md << format("| %s | %.4g | %.3g | %.3g |%s\n", s.effect.c_str(), s.score, s.p_value, s.fraction_explained,
                  s.evaluated ? "" : " (a perturbed run failed)");
   md << "\n## Re-identification and criterion (threshold: delta BIC > " << format("%.3g", d.bic_threshold)
      << " and residual = noise)\n\n| model | parameters | chi-square | BIC | delta BIC | AICc | delta AICc | named |\n"
         "|---|---|---|---|---|---|---|---|\n";
-  md << format("| base | %zu | %.5g | %.5g | 0 | %.5g | 0 | - |\n", d.base_variables.size(), d.base.chi_square, d.base_bic,
-               d.base_aicc);
+  md << format("| base | %zu | %.5g | %.5g | 0 | %.5g | 0 | - |\n", d.base_variables.size(), d.base.chi_square,
+               d.base_bic, d.base_aicc);
   for (std::size_t i = 0; i < d.refits.size(); ++i) {
     const auto& r = d.refits[i];
     md << format("| base + %s | %zu | %.5g | %.5g | %.4g | %.5g | %.4g | %s |\n", r.effect.c_str(), r.fit.values.size(),

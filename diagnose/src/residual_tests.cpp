@@ -209,7 +209,10 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
         double rss = 0.0;
         for (int i = begin; i < end; ++i) {
           rss += s.residual[i] * s.residual[i];
-          if (std::abs(s.residual[i]) >= r.max_abs) { r.max_abs = std::abs(s.residual[i]); r.x_at_max = s.x[i]; }
+          if (std::abs(s.residual[i]) >= r.max_abs) {
+            r.max_abs = std::abs(s.residual[i]);
+            r.x_at_max = s.x[i];
+          }
         }
         r.rms = std::sqrt(rss / (end - begin));
         r.rms_over_sigma = r.rms / s.sigma;
@@ -241,8 +244,8 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
   }
   a.smooth = smooth_structure_test(xs, rs, dof_noise);
   const double per_test = alpha / 4.0;  // Bonferroni over the four tests
-  a.structural = a.runs.p_value < per_test || a.autocorrelation.p_value < per_test ||
-                 a.variance.p_value < per_test || a.smooth.p_value < per_test;
+  a.structural = a.runs.p_value < per_test || a.autocorrelation.p_value < per_test || a.variance.p_value < per_test ||
+                 a.smooth.p_value < per_test;
   for (std::size_t i = 0; i < a.regions.size(); ++i)
     if (a.worst_region < 0 || a.regions[i].rms_over_sigma > a.regions[a.worst_region].rms_over_sigma)
       a.worst_region = static_cast<int>(i);

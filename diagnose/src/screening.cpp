@@ -60,7 +60,11 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
     const Eigen::Index m = static_cast<Eigen::Index>(c.parameters.size());
     Eigen::MatrixXd S(r.size(), m);
     for (Eigen::Index j = 0; j < m; ++j, ++k) {
-      if (rs[k].size() != r.size()) { s.evaluated = false; S.col(j).setZero(); continue; }
+      if (rs[k].size() != r.size()) {
+        s.evaluated = false;
+        S.col(j).setZero();
+        continue;
+      }
       S.col(j) = (rs[k] - r) / steps[k];
     }
     s.sensitivity = S;

@@ -14,10 +14,14 @@ namespace demfit::diagnose {
 
 const char* verdict_text(Verdict verdict) {
   switch (verdict) {
-    case Verdict::no_missing_effect: return "no missing effect";
-    case Verdict::effect_identified: return "missing effect identified";
-    case Verdict::unexplained_structural: return "unexplained structural residual";
-    case Verdict::ambiguous: return "ambiguous: several effects explain the residual";
+    case Verdict::no_missing_effect:
+      return "no missing effect";
+    case Verdict::effect_identified:
+      return "missing effect identified";
+    case Verdict::unexplained_structural:
+      return "unexplained structural residual";
+    case Verdict::ambiguous:
+      return "ambiguous: several effects explain the residual";
   }
   return "?";
 }
@@ -52,13 +56,15 @@ namespace {
 using detail::format;
 
 std::string tests_text(const ResidualAnalysis& a) {
-  return format("runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
-                "smooth structure p = %.3g",
-                a.runs.p_value, a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio,
-                a.variance.p_value, a.smooth.p_value);
+  return format(
+      "runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
+      "smooth structure p = %.3g",
+      a.runs.p_value, a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value,
+      a.smooth.p_value);
 }
 
-std::vector<FitTarget> make_targets(const identify::StudySpec& study, double given_sigma, std::vector<std::string>& notes) {
+std::vector<FitTarget> make_targets(const identify::StudySpec& study, double given_sigma,
+                                    std::vector<std::string>& notes) {
   std::vector<FitTarget> targets;
   for (const auto& t : study.targets) {
     if (t.metric != identify::CurveMetric::mse)
@@ -74,7 +80,8 @@ std::vector<FitTarget> make_targets(const identify::StudySpec& study, double giv
       const double floor = 1e-9 * std::max(scale, 1e-300);
       if (f.sigma < floor) {
         f.sigma = floor;
-        notes.push_back("target '" + t.name + "': the data look noise-free; noise level floored at 1e-9 of max|y| (give --noise)");
+        notes.push_back("target '" + t.name +
+                        "': the data look noise-free; noise level floored at 1e-9 of max|y| (give --noise)");
       }
     }
     targets.push_back(f);
@@ -117,14 +124,16 @@ std::string summarise(const Diagnosis& d) {
     where = "; largest misfit in " + a.regions[a.worst_region].label +
             format(" (RMS/sigma %.3g)", a.regions[a.worst_region].rms_over_sigma);
   // Each target normalised by its own noise level before pooling (targets may differ in units).
-  const std::string base_numbers = format("base fit RMS/sigma %.3g, max/sigma %.3g", a.rms_over_sigma, a.max_over_sigma);
+  const std::string base_numbers =
+      format("base fit RMS/sigma %.3g, max/sigma %.3g", a.rms_over_sigma, a.max_over_sigma);
   switch (d.verdict) {
     case Verdict::no_missing_effect:
-      return "No missing effect: the base residual is consistent with noise (" + tests_text(a) + "); " +
-             base_numbers + ".";
+      return "No missing effect: the base residual is consistent with noise (" + tests_text(a) + "); " + base_numbers +
+             ".";
     case Verdict::effect_identified: {
       const CandidateFit& c = d.refits[d.chosen];
-      return "Missing effect: '" + c.effect + "'" + format(" (delta BIC %.4g > %.3g, delta AICc %.4g). ", c.delta_bic, d.bic_threshold, c.delta_aicc) +
+      return "Missing effect: '" + c.effect + "'" +
+             format(" (delta BIC %.4g > %.3g, delta AICc %.4g). ", c.delta_bic, d.bic_threshold, c.delta_aicc) +
              "Residual before: " + tests_text(a) + where + ". After: " + tests_text(c.analysis) +
              format(". RMS/sigma %.3g -> %.3g, max/sigma %.3g -> %.3g (each target by its own noise level).",
                     a.rms_over_sigma, c.analysis.rms_over_sigma, a.max_over_sigma, c.analysis.max_over_sigma);
@@ -132,11 +141,14 @@ std::string summarise(const Diagnosis& d) {
     case Verdict::ambiguous: {
       std::string names;
       for (int i : d.tied)
-        names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" + format(" (delta BIC %.4g)", d.refits[i].delta_bic);
+        names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" +
+                 format(" (delta BIC %.4g)", d.refits[i].delta_bic);
       return "Ambiguous: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers +
              ". Each of " + names +
-             format(" is favoured over the base by more than %.3g in BIC, and their BICs are within %.3g of each "
-                    "other", d.bic_threshold, d.bic_threshold) +
+             format(
+                 " is favoured over the base by more than %.3g in BIC, and their BICs are within %.3g of each "
+                 "other",
+                 d.bic_threshold, d.bic_threshold) +
              ": these data cannot tell them apart; no effect is named (add a curve or case that separates them).";
     }
     case Verdict::unexplained_structural: {
@@ -144,15 +156,16 @@ std::string summarise(const Diagnosis& d) {
       if (!d.refits.empty()) {
         const auto it = std::max_element(d.refits.begin(), d.refits.end(),
                                          [](const auto& x, const auto& y) { return x.delta_bic < y.delta_bic; });
-        best = " Best candidate '" + it->effect + "'" + format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
+        best = " Best candidate '" + it->effect + "'" +
+               format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
                (it->analysis.structural ? ", residual still structural (" + tests_text(it->analysis) + ")"
                                         : std::string(", below the criterion")) +
                ".";
       } else {
         best = " No candidate effects were given.";
       }
-      return "Unexplained structural residual: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers + "." + best +
-             " No candidate explains it; no effect is named.";
+      return "Unexplained structural residual: the base residual is not noise (" + tests_text(a) + where + "); " +
+             base_numbers + "." + best + " No candidate explains it; no effect is named.";
     }
   }
   return "";
@@ -175,8 +188,8 @@ struct FitContext {
 // a corner minimum of the box (a long first step can land there), and a base fit caught in a local
 // minimum would look like a structural residual: then further starts follow,
 // v_lo + (v_hi - v_lo) i / base_starts, and the best is kept.
-FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets,
-                   int& evaluations) {
+FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables,
+                   const std::vector<FitTarget>& targets, int& evaluations) {
   FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, c.options.fit);
   evaluations += best.evaluations;
   bool on_bound = false;
@@ -225,7 +238,8 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
     seed.leftCols(d.base.jacobian.cols()) = d.base.jacobian;
     for (std::size_t j = 0; j < effect.parameters.size(); ++j)
       seed.col(d.base.jacobian.cols() + static_cast<Eigen::Index>(j)) =
-          score.sensitivity.col(static_cast<Eigen::Index>(j)) * (effect.parameters[j].upper - effect.parameters[j].lower);
+          score.sensitivity.col(static_cast<Eigen::Index>(j)) *
+          (effect.parameters[j].upper - effect.parameters[j].lower);
   }
   bool fitted = false;
   for (int start = 0; start < std::max(1, c.options.refit_starts); ++start) {
@@ -338,14 +352,15 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
   d.base_bic = bic(d.base.chi_square, k_base, context.points);
   d.base_aicc = aicc(d.base.chi_square, k_base, context.points);
-  progress(options, started, format("base fit done: %d evaluations, residual %s", d.base_evaluations,
-                                    d.base_analysis.structural ? "structural" : "noise"));
+  progress(options, started,
+           format("base fit done: %d evaluations, residual %s", d.base_evaluations,
+                  d.base_analysis.structural ? "structural" : "noise"));
 
   // 3. Screening (always: it is cheap and the report shows it).
-  d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step, options.fit,
-                                  &d.screening_evaluations);
-  progress(options, started, format("screening of %zu candidates done: %d evaluations", candidates.size(),
-                                    d.screening_evaluations));
+  d.screening = screen_candidates(model, d.base, d.base_variables, d.targets, candidates, options.screen_step,
+                                  options.fit, &d.screening_evaluations);
+  progress(options, started,
+           format("screening of %zu candidates done: %d evaluations", candidates.size(), d.screening_evaluations));
   auto finish = [&] {
     d.summary = summarise(d);
     d.evaluations = d.base_evaluations + d.screening_evaluations + d.refit_evaluations;
@@ -359,9 +374,11 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   // 3b. Re-identify every candidate that screened about as well as the best, with its extra parameters.
   const std::vector<int> order = refit_order(d.screening, options);
   for (std::size_t rank = 0; rank < order.size(); ++rank) {
-    progress(options, started, format("re-fit %zu/%zu: base + %s", rank + 1, order.size(), candidates[order[rank]].name.c_str()));
+    progress(options, started,
+             format("re-fit %zu/%zu: base + %s", rank + 1, order.size(), candidates[order[rank]].name.c_str()));
     CandidateFit f;
-    if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f)) d.refits.push_back(std::move(f));
+    if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f))
+      d.refits.push_back(std::move(f));
   }
   decide_verdict(d, options.bic_threshold);
   finish();

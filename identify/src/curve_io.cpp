@@ -37,8 +37,7 @@ std::size_t column_index(const std::vector<std::string>& header, const std::stri
   if (known.size() > 200) known = known.substr(0, 200) + "...";
   for (char& c : known)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name +
-                           "'; the header has: " + known);
+  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name + "'; the header has: " + known);
 }
 
 double parse_number(const std::string& text, const std::filesystem::path& path, int line) {
@@ -51,8 +50,8 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
     std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
     for (char& c : shown)
       if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line) +
-                             ": '" + shown + "' is not a number; fix the value");
+    throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line) + ": '" + shown +
+                             "' is not a number; fix the value");
   }
   return value;
 }
@@ -71,8 +70,9 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
     // Excel writes a UTF-8 byte-order mark before the header: accept it.
     if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (line.size() > kMaxCurveLineBytes)
-      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) + ": longer than " +
-                               std::to_string(kMaxCurveLineBytes) + " bytes; is this a curve CSV file?");
+      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) +
+                               ": longer than " + std::to_string(kMaxCurveLineBytes) +
+                               " bytes; is this a curve CSV file?");
     const std::string content = trim(line);
     if (content.empty() || content[0] == '#') continue;
     const auto fields = split_fields(content);
@@ -83,9 +83,8 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
       continue;
     }
     if (fields.size() != header.size())
-      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) +
-                               ": " + std::to_string(fields.size()) + " fields, header has " +
-                               std::to_string(header.size()));
+      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) + ": " +
+                               std::to_string(fields.size()) + " fields, header has " + std::to_string(header.size()));
     if (curve.x.size() >= kMaxCurvePoints)
       throw std::runtime_error("curve file '" + path.string() + "': more than " + std::to_string(kMaxCurvePoints) +
                                " points; thin the curve (a few hundred points describe it)");
@@ -93,14 +92,15 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
     curve.y.push_back(parse_number(fields[iy], path, line_number));
   }
   if (header.empty())
-    throw std::runtime_error("curve file '" + path.string() + "': no header line; the first line names the columns with units, e.g. volume_cm3,pressure_MPa");
+    throw std::runtime_error(
+        "curve file '" + path.string() +
+        "': no header line; the first line names the columns with units, e.g. volume_cm3,pressure_MPa");
   if (curve.x.size() < 2)
     throw std::runtime_error("curve file '" + path.string() + "': fewer than 2 points; a curve needs at least 2");
   return curve;
 }
 
-Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column,
-                     const std::string& y_column) {
+Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column, const std::string& y_column) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
     throw std::runtime_error("curve file '" + path.string() + "' is a folder; give a CSV file");
@@ -108,8 +108,9 @@ Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_col
   if (!in) throw std::runtime_error("curve file '" + path.string() + "' cannot be opened; check the path");
   const auto size = std::filesystem::file_size(path, error);
   if (!error && size > kMaxCurveFileBytes)
-    throw std::runtime_error("curve file '" + path.string() + "': " + std::to_string(size) + " bytes, above the limit of " +
-                             std::to_string(kMaxCurveFileBytes) + " bytes; thin the curve");
+    throw std::runtime_error("curve file '" + path.string() + "': " + std::to_string(size) +
+                             " bytes, above the limit of " + std::to_string(kMaxCurveFileBytes) +
+                             " bytes; thin the curve");
   return parse_curve_csv(in, path, x_column, y_column);
 }
 

@@ -11,15 +11,14 @@
 
 namespace demfit::identify {
 
-EvaluationOutcome evaluate_safely(const Model& model, const ParameterSet& parameters, const EvaluationContext& context) {
+EvaluationOutcome evaluate_safely(const Model& model, const ParameterSet& parameters,
+                                  const EvaluationContext& context) {
   EvaluationOutcome outcome;
   const auto start = std::chrono::steady_clock::now();
   try {
     outcome.curves = model.evaluate(parameters, context);
     outcome.ok = true;
-  } catch (const std::exception& e) {
-    outcome.error = e.what();
-  } catch (...) {
+  } catch (const std::exception& e) { outcome.error = e.what(); } catch (...) {
     outcome.error = "unknown exception in the model";
   }
   // One line: error messages go into CSV files and progress lines.
@@ -44,7 +43,10 @@ std::vector<EvaluationOutcome> Evaluator::evaluate_points(const Model& model, co
 }
 
 ThreadPoolEvaluator::ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed)
-    : models_(experiment_models(model)), jobs_(jobs < 1 ? 1 : jobs), threads_per_job_(threads_per_job < 1 ? 1 : threads_per_job), seed_(seed) {}
+    : models_(experiment_models(model)),
+      jobs_(jobs < 1 ? 1 : jobs),
+      threads_per_job_(threads_per_job < 1 ? 1 : threads_per_job),
+      seed_(seed) {}
 
 std::vector<EvaluationOutcome> ThreadPoolEvaluator::evaluate_jobs(const std::vector<EvaluationJob>& batch,
                                                                   const DoneCallback& on_done) {

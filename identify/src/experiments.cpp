@@ -8,13 +8,13 @@
 namespace demfit::identify {
 
 ExperimentSetModel::ExperimentSetModel(const StudySpec& spec, std::vector<std::unique_ptr<Model>> models) {
-  if (spec.experiments.empty())
-    throw std::invalid_argument("ExperimentSetModel: the study has no \"experiments\"");
+  if (spec.experiments.empty()) throw std::invalid_argument("ExperimentSetModel: the study has no \"experiments\"");
   if (models.size() != spec.experiments.size())
     throw std::invalid_argument("ExperimentSetModel: " + std::to_string(models.size()) + " models for " +
                                 std::to_string(spec.experiments.size()) + " experiments");
   for (std::size_t e = 0; e < models.size(); ++e) {
-    if (!models[e]) throw std::invalid_argument("ExperimentSetModel: no model for experiment " + spec.experiments[e].name);
+    if (!models[e])
+      throw std::invalid_argument("ExperimentSetModel: no model for experiment " + spec.experiments[e].name);
     Experiment experiment{spec.experiments[e].name, std::move(models[e]), spec.experiments[e].fixed_parameters, {}};
     experiment.accepted = experiment.model->parameter_names();
     experiments_.push_back(std::move(experiment));
@@ -118,7 +118,8 @@ EvaluationOutcome combine_experiment_outcomes(const std::vector<std::string>& na
       point.ok = false;
       continue;
     }
-    for (auto& [curve, values] : outcomes[e].curves) point.curves[experiment_curve_key(names[e], curve)] = std::move(values);
+    for (auto& [curve, values] : outcomes[e].curves)
+      point.curves[experiment_curve_key(names[e], curve)] = std::move(values);
   }
   if (!point.ok) point.curves.clear();
   return point;

@@ -13,8 +13,10 @@ std::string gnuplot_quote(const std::string& text) {
   std::string out = "'";
   for (char c : text) {
     const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) out += '?';
-    else out += (c == '\'') ? std::string("''") : std::string(1, c);
+    if (u < 0x20 || u == 0x7f)
+      out += '?';
+    else
+      out += (c == '\'') ? std::string("''") : std::string(1, c);
   }
   return out + "'";
 }
@@ -26,15 +28,14 @@ std::string gnuplot_png(const std::filesystem::path& png, const std::string& com
   const std::string temporary_png = name + suffix;
   const std::string script = name + ".gp" + suffix;
   try {
-    write_file_atomically(path_inside(folder, script),
-                          "out = " + gnuplot_quote(temporary_png) + "\n" +
-                              "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
-                              "else { set terminal png size 900,600 noenhanced }\n"
-                              "set output out\nset grid\nset key below\n" +
-                              commands + "\nunset output\n");
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+    write_file_atomically(
+        path_inside(folder, script),
+        "out = " + gnuplot_quote(temporary_png) + "\n" +
+            "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
+            "else { set terminal png size 900,600 noenhanced }\n"
+            "set output out\nset grid\nset key below\n" +
+            commands + "\nunset output\n");
+  } catch (const std::exception& e) { return e.what(); }
   const int status = run_program({"gnuplot", script}, folder);
   std::error_code ignored;
   std::filesystem::remove(folder / script, ignored);

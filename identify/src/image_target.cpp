@@ -21,7 +21,8 @@ Curve read_image_target(const ImageTargetSpec& image, const std::filesystem::pat
   options.points = image.points;
   const imaging::SurfaceProfile profile = imaging::extract_surface(photo, imaging::DrumFrame{image.diameter}, options);
   if (profile.x.size() < 2)
-    throw std::runtime_error("image target '" + file.string() + "': fewer than 2 surface points found; check "
+    throw std::runtime_error("image target '" + file.string() +
+                             "': fewer than 2 surface points found; check "
                              "image_diameter, image_margin and image_threshold");
   Curve curve{"x_mm", "z_mm", {}, {}};
   for (std::size_t i = 0; i < profile.x.size(); ++i) {

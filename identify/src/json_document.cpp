@@ -23,15 +23,19 @@ void check_depth(const std::string& text, const std::string& source) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
+    if (c == '"')
+      in_string = true;
     else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
         throw std::runtime_error(source + ": line " + std::to_string(line_of(text, i)) + ": nested deeper than " +
-                                 std::to_string(kMaxJsonDepth) + " levels; demfit inputs are at most a few levels deep");
+                                 std::to_string(kMaxJsonDepth) +
+                                 " levels; demfit inputs are at most a few levels deep");
     } else if (c == ']' || c == '}') {
       --depth;
     }
@@ -62,7 +66,9 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
   std::string duplicate;
   const auto callback = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     switch (event) {
-      case nlohmann::json::parse_event_t::object_start: keys.emplace_back(); break;
+      case nlohmann::json::parse_event_t::object_start:
+        keys.emplace_back();
+        break;
       case nlohmann::json::parse_event_t::object_end:
         if (!keys.empty()) keys.pop_back();
         break;
@@ -70,7 +76,8 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
         if (!keys.empty() && !keys.back().insert(parsed.get<std::string>()).second && duplicate.empty())
           duplicate = parsed.get<std::string>();
         break;
-      default: break;
+      default:
+        break;
     }
     return true;
   };
@@ -78,8 +85,8 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
   try {
     json = nlohmann::json::parse(text, callback);
   } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(source + " is not valid JSON (line " + std::to_string(line_of(text, e.byte ? e.byte - 1 : 0)) +
-                             "): " + one_line(e.what(), 160));
+    throw std::runtime_error(source + " is not valid JSON (line " +
+                             std::to_string(line_of(text, e.byte ? e.byte - 1 : 0)) + "): " + one_line(e.what(), 160));
   } catch (const nlohmann::json::exception& e) {
     // e.g. a number beyond double range (1e999): found by fuzz/fuzz_readers.
     throw std::runtime_error(source + " is not valid JSON: " + one_line(e.what(), 160));

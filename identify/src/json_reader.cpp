@@ -9,8 +9,7 @@
 
 namespace demfit::identify::detail {
 
-JsonReader::JsonReader(const nlohmann::json& object, std::string path)
-    : object_(object), path_(std::move(path)) {
+JsonReader::JsonReader(const nlohmann::json& object, std::string path) : object_(object), path_(std::move(path)) {
   if (!object_.is_object())
     throw std::runtime_error("study: " + (path_.empty() ? std::string("top level") : path_) +
                              ": expected a JSON object {...}");
@@ -59,18 +58,17 @@ double JsonReader::number(const std::string& key) {
   return result;
 }
 
-double JsonReader::number_or(const std::string& key, double fallback) {
-  return has(key) ? number(key) : fallback;
-}
+double JsonReader::number_or(const std::string& key, double fallback) { return has(key) ? number(key) : fallback; }
 
 int JsonReader::integer_or(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
   const auto& value = raw(key);
   if (!value.is_number_integer()) fail(key, "expected an integer, got " + json_excerpt(value));
   // get<int>() would wrap silently (issue #13: max_iterations overflow).
-  if (value.is_number_unsigned() ? value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
-                                 : (value.get<std::int64_t>() > std::numeric_limits<int>::max() ||
-                                    value.get<std::int64_t>() < std::numeric_limits<int>::min()))
+  if (value.is_number_unsigned()
+          ? value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+          : (value.get<std::int64_t>() > std::numeric_limits<int>::max() ||
+             value.get<std::int64_t>() < std::numeric_limits<int>::min()))
     fail(key, "integer " + json_excerpt(value) + " is out of range");
   return value.get<int>();
 }

@@ -21,7 +21,7 @@ class JsonReader {
   std::string text(const std::string& key);
   std::string text_or(const std::string& key, const std::string& fallback);
   bool boolean_or(const std::string& key, bool fallback);
-  JsonReader object(const std::string& key);           // nested object; must exist
+  JsonReader object(const std::string& key);  // nested object; must exist
   std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   // Throws on the first key that no accessor asked for (unknown keys are errors).
   void finish() const;

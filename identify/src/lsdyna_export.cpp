@@ -15,11 +15,11 @@ namespace {
 constexpr int kField = 10;
 
 ParameterSet with_defaults(const ParameterSet& given) {
-  ParameterSet p = {{"ndamp", 0.0}, {"tdamp", 0.0}, {"frics", 0.0}, {"fricr", 0.0}, {"normk", 0.01},
-                    {"sheark", 2.0 / 7.0}, {"dc", 0.0}, {"wall_frics", 0.0}, {"wall_fricd", 0.0},
-                    {"wall_damp", 0.0}, {"wall_sfp", 1.0}};
+  ParameterSet p = {{"ndamp", 0.0},      {"tdamp", 0.0},        {"frics", 0.0},   {"fricr", 0.0},
+                    {"normk", 0.01},     {"sheark", 2.0 / 7.0}, {"dc", 0.0},      {"wall_frics", 0.0},
+                    {"wall_fricd", 0.0}, {"wall_damp", 0.0},    {"wall_sfp", 1.0}};
   for (const auto& [name, value] : given) p[name] = value;
-  if (!given.count("fricd")) p["fricd"] = p["frics"];   // LS-DYNA: FRICD defaults to FRICS
+  if (!given.count("fricd")) p["fricd"] = p["frics"];  // LS-DYNA: FRICD defaults to FRICS
   return p;
 }
 
@@ -103,8 +103,10 @@ std::string lsdyna_field(double value) {
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
     std::string text = shorten_exponent(buffer);
     // Fortran reads ".0048707" as 0.0048707: dropping the leading zero buys one digit.
-    if (text.rfind("0.", 0) == 0) text.erase(0, 1);
-    else if (text.rfind("-0.", 0) == 0) text.erase(1, 1);
+    if (text.rfind("0.", 0) == 0)
+      text.erase(0, 1);
+    else if (text.rfind("-0.", 0) == 0)
+      text.erase(1, 1);
     // One leading blank keeps neighbouring fields apart for the human reader.
     if (static_cast<int>(text.size()) <= kField - 1) return std::string(kField - text.size(), ' ') + text;
   }
@@ -124,16 +126,13 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<Pa
   std::ostringstream out;
   out << "*KEYWORD\n" << comment_line("demfit export: " + title);
   for (const auto& c : comments) out << comment_line(c);
-  out
-      << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
-      << effect_warnings(parameters, model_parameters)
-      << "*CONTROL_DISCRETE_ELEMENT\n"
+  out << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
+      << effect_warnings(parameters, model_parameters) << "*CONTROL_DISCRETE_ELEMENT\n"
       << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
       << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),
                lsdyna_field(p.at("fricr")), lsdyna_field(p.at("normk")), lsdyna_field(p.at("sheark"))})
       << "$    GAMMA       VOL       ANG       GAP    unused    IGNORE      NBUF  PARALLEL\n"
-      << card({blank()})
-      << "$    LNORM    LSHEAR    unused     FRICD        DC      NCRB        BT        DT\n"
+      << card({blank()}) << "$    LNORM    LSHEAR    unused     FRICD        DC      NCRB        BT        DT\n"
       << card({blank(), blank(), blank(), lsdyna_field(p.at("fricd")), lsdyna_field(p.at("dc"))})
       << "*DEFINE_DE_TO_SURFACE_COUPLING\n"
       << "$ SLAVE/MASTER/STYPE/MTYPE are placeholders: set them to your DES and surface sets.\n"
@@ -156,8 +155,9 @@ ParameterSet parse_lsdyna_keywords(const std::string& text) {
   const auto control = data_lines_after(text, "*CONTROL_DISCRETE_ELEMENT");
   const auto coupling = data_lines_after(text, "*DEFINE_DE_TO_SURFACE_COUPLING");
   if (control.size() < 3 || coupling.size() < 2)
-    throw std::runtime_error("LS-DYNA keywords: *CONTROL_DISCRETE_ELEMENT needs 3 cards and "
-                             "*DEFINE_DE_TO_SURFACE_COUPLING 2 cards");
+    throw std::runtime_error(
+        "LS-DYNA keywords: *CONTROL_DISCRETE_ELEMENT needs 3 cards and "
+        "*DEFINE_DE_TO_SURFACE_COUPLING 2 cards");
   ParameterSet p;
   const char* card1[] = {"ndamp", "tdamp", "frics", "fricr", "normk", "sheark"};
   for (int i = 0; i < 6; ++i) p[card1[i]] = field_value(control[0], i, NAN);

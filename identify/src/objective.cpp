@@ -28,8 +28,16 @@ std::vector<double> cumulative_arc(const double* xy, int points) {
 // Point at arc length s along an interleaved polyline (clamped to its ends).
 void point_at(const double* xy, const std::vector<double>& arc, double s, double& x, double& y) {
   const int n = static_cast<int>(arc.size());
-  if (s <= arc.front()) { x = xy[0]; y = xy[1]; return; }
-  if (s >= arc.back()) { x = xy[2 * n - 2]; y = xy[2 * n - 1]; return; }
+  if (s <= arc.front()) {
+    x = xy[0];
+    y = xy[1];
+    return;
+  }
+  if (s >= arc.back()) {
+    x = xy[2 * n - 2];
+    y = xy[2 * n - 1];
+    return;
+  }
   const int i = static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin());  // arc[i-1] <= s < arc[i]
   const double length = arc[i] - arc[i - 1];
   const double t = length > 0.0 ? (s - arc[i - 1]) / length : 0.0;
@@ -86,8 +94,14 @@ std::vector<double> resample_monotone(const Curve& curve, const std::vector<doub
   std::vector<double> out(at_x.size());
   for (std::size_t k = 0; k < at_x.size(); ++k) {
     const double x = at_x[k];
-    if (x <= xs.front()) { out[k] = ys.front(); continue; }   // flat extrapolation
-    if (x >= xs.back()) { out[k] = ys.back(); continue; }
+    if (x <= xs.front()) {
+      out[k] = ys.front();
+      continue;
+    }  // flat extrapolation
+    if (x >= xs.back()) {
+      out[k] = ys.back();
+      continue;
+    }
     const std::size_t i = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();  // xs[i-1] <= x < xs[i]
     const double dx = xs[i] - xs[i - 1];
     const double t = dx > 0.0 ? (x - xs[i - 1]) / dx : 0.0;
@@ -151,8 +165,7 @@ Eigen::VectorXd CompositeObjective::responses(const CurveSet& curves) const {
   Eigen::VectorXd out(response_size());
   for (std::size_t t = 0; t < targets_.size(); ++t) {
     const auto found = curves.find(targets_[t].curve);
-    if (found == curves.end())
-      throw std::runtime_error("the model produced no curve '" + targets_[t].curve + "'");
+    if (found == curves.end()) throw std::runtime_error("the model produced no curve '" + targets_[t].curve + "'");
     const Curve& curve = found->second;
     if (curve.x.size() != curve.y.size() || curve.x.size() < 2)
       throw std::runtime_error("curve '" + targets_[t].curve + "' has fewer than 2 points");
@@ -211,20 +224,27 @@ Eigen::VectorXd CompositeObjective::mapping_residuals(const Prepared& p, const d
   double best_value = fill(0.0, 1.0);
   for (int i = 1; i <= scan; ++i) {
     const double value = fill(span * i / scan, 1.0);
-    if (value < best_value) { best_value = value; best = i; }
+    if (value < best_value) {
+      best_value = value;
+      best = i;
+    }
   }
   double a = span * std::max(0, best - 1) / scan, b = span * std::min(scan, best + 1) / scan;
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
   for (int iteration = 0; iteration < 40; ++iteration) {
     const double c = b - golden * (b - a), d = a + golden * (b - a);
-    if (fill(c, 1.0) < fill(d, 1.0)) b = d; else a = c;
+    if (fill(c, 1.0) < fill(d, 1.0))
+      b = d;
+    else
+      a = c;
   }
   const double refined = 0.5 * (a + b);
   if (fill(refined, 1.0) > best_value) fill(span * best / scan, 1.0);
   return r;
 }
 
-double CompositeObjective::profile_area_residual(const TargetSpec& target, const Prepared& p, const double* values) const {
+double CompositeObjective::profile_area_residual(const TargetSpec& target, const Prepared& p,
+                                                 const double* values) const {
   // Mean gap over the common x-range: area / (length of the common range), scaled by s. A
   // (predicted) range that misses the target's gets the whole target range (ends held flat).
   const std::vector<double>& x = target.data.x;
@@ -245,12 +265,13 @@ Eigen::VectorXd CompositeObjective::residuals(const Eigen::VectorXd& responses) 
     if (target.metric == CurveMetric::mse) {
       const int n = static_cast<int>(target.data.y.size());
       const double factor = std::sqrt(target.weight / n) / p.y_scale;
-      for (int i = 0; i < n; ++i) r(residual_offsets_[t] + i) = factor * (responses(offsets_[t] + i) - target.data.y[i]);
+      for (int i = 0; i < n; ++i)
+        r(residual_offsets_[t] + i) = factor * (responses(offsets_[t] + i) - target.data.y[i]);
     } else if (target.metric == CurveMetric::profile_area) {
-      r(residual_offsets_[t]) = std::sqrt(target.weight) * profile_area_residual(target, p, responses.data() + offsets_[t]);
+      r(residual_offsets_[t]) =
+          std::sqrt(target.weight) * profile_area_residual(target, p, responses.data() + offsets_[t]);
     } else {
-      const Eigen::VectorXd part =
-          mapping_residuals(p, responses.data() + offsets_[t], computed_stations(p.stations));
+      const Eigen::VectorXd part = mapping_residuals(p, responses.data() + offsets_[t], computed_stations(p.stations));
       r.segment(residual_offsets_[t], 2 * p.stations) = std::sqrt(target.weight / p.stations) * part;
     }
   }
@@ -270,7 +291,8 @@ Curve CompositeObjective::response_curve(const Eigen::VectorXd& responses, int t
   Curve curve{t.data.x_label, t.data.y_label, {}, {}};
   if (t.metric != CurveMetric::curve_mapping) {
     curve.x = t.data.x;
-    for (std::size_t i = 0; i < t.data.x.size(); ++i) curve.y.push_back(responses(offsets_[target] + static_cast<int>(i)));
+    for (std::size_t i = 0; i < t.data.x.size(); ++i)
+      curve.y.push_back(responses(offsets_[target] + static_cast<int>(i)));
   } else {
     const Prepared& p = prepared_[target];
     for (int k = 0; k < computed_stations(p.stations); ++k) {

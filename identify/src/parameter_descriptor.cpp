@@ -23,9 +23,7 @@ bool ParameterRange::contains(double value) const {
   return above && below;
 }
 
-bool ParameterRange::contains_interval(double lo, double hi) const {
-  return lo <= hi && contains(lo) && contains(hi);
-}
+bool ParameterRange::contains_interval(double lo, double hi) const { return lo <= hi && contains(lo) && contains(hi); }
 
 std::string ParameterRange::to_string() const {
   const bool open_lo = lower_open || std::isinf(lower);

@@ -143,7 +143,8 @@ PosteriorEstimate sample_posterior_from_runs(const RunSample& s, const std::vect
   out.correlation = cov.cwiseQuotient(sd * sd.transpose());
   out.draws.resize(static_cast<Eigen::Index>(plotted.size()), n);
   for (std::size_t i = 0; i < plotted.size(); ++i)
-    for (int j = 0; j < n; ++j) out.draws(static_cast<Eigen::Index>(i), j) = unit_to_physical(variables[j], plotted[i](j));
+    for (int j = 0; j < n; ++j)
+      out.draws(static_cast<Eigen::Index>(i), j) = unit_to_physical(variables[j], plotted[i](j));
   return out;
 }
 
@@ -167,7 +168,8 @@ std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vec
     for (int c = 0; c < n; ++c) {
       g << "unset arrow\nset xlabel " << detail::gnuplot_quote(variables[c].name) << " font ',8'\n";
       if (c > r) {
-        g << "unset border\nunset tics\nunset xlabel\nunset ylabel\nplot [0:1][0:1] NaN notitle\nset border\nset tics\n";
+        g << "unset border\nunset tics\nunset xlabel\nunset ylabel\nplot [0:1][0:1] NaN notitle\nset border\nset "
+             "tics\n";
         continue;
       }
       // Panels span the draws (padded 5 %), not the bounds: a well-pinned parameter would be a spike.

@@ -22,8 +22,9 @@ Curve relative_axis_curve(const Curve& curve, const std::string& axis, const std
   out.y_label = curve.y_label;
   const auto underscore = curve.x_label.rfind('_');
   if (axis == "from_contact") {
-    out.x_label = underscore == std::string::npos ? curve.x_label + "_change"
-                                                  : curve.x_label.substr(0, underscore) + "_change" + curve.x_label.substr(underscore);
+    out.x_label = underscore == std::string::npos
+                      ? curve.x_label + "_change"
+                      : curve.x_label.substr(0, underscore) + "_change" + curve.x_label.substr(underscore);
   } else if (axis == "strain") {
     if (xc == 0.0) throw std::runtime_error("curve '" + name + "': x is 0 at first contact; strain is undefined");
     out.x_label = "volumetric_strain_1";

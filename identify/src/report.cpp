@@ -31,10 +31,12 @@ std::string csv_text(const std::string& text) {
   return out + "\"";
 }
 
-const EvaluationRecord* find_best(const std::vector<EvaluationRecord>& runs, const std::optional<nlohmann::json>& result) {
+const EvaluationRecord* find_best(const std::vector<EvaluationRecord>& runs,
+                                  const std::optional<nlohmann::json>& result) {
   if (result) {
     for (const auto& r : runs)
-      if (r.iteration == result->at("best_iteration").get<int>() && r.point == result->at("best_point").get<int>()) return &r;
+      if (r.iteration == result->at("best_iteration").get<int>() && r.point == result->at("best_point").get<int>())
+        return &r;
   }
   const EvaluationRecord* best = nullptr;
   for (const auto& r : runs)
@@ -50,7 +52,8 @@ std::string evaluations_csv(const StudySpec& spec, const std::vector<EvaluationR
   for (const auto& r : runs) {
     out << r.iteration << "," << r.point << "," << r.kind << "," << (r.ok ? "ok" : "failed") << ","
         << csv_number(r.objective) << "," << csv_number(r.wall_seconds);
-    for (const auto& v : spec.variables) out << "," << csv_number(r.parameters.count(v.name) ? r.parameters.at(v.name) : NAN);
+    for (const auto& v : spec.variables)
+      out << "," << csv_number(r.parameters.count(v.name) ? r.parameters.at(v.name) : NAN);
     out << "," << csv_text(r.error) << "\n";
   }
   return out.str();
@@ -78,16 +81,22 @@ std::string iterations_csv(const StudySpec& spec, const std::vector<IterationRec
 nlohmann::json best_parameters_json(const StudySpec& spec, const EvaluationRecord& best,
                                     const std::optional<nlohmann::json>& result) {
   const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
-  nlohmann::json json = {{"study", spec.name}, {"model", spec.model_reference}, {"objective", best.objective},
+  nlohmann::json json = {{"study", spec.name},
+                         {"model", spec.model_reference},
+                         {"objective", best.objective},
                          {"run", {{"iteration", best.iteration}, {"point", best.point}}},
                          {"finished", result.has_value()},
                          {"converged", result ? result->value("converged", false) : false},
                          {"parameters", best.parameters}};
-  for (const auto& e : spec.experiments) json["experiments"][e.name] = {{"case", e.model_reference}, {"overrides", e.model_overrides}};
+  for (const auto& e : spec.experiments)
+    json["experiments"][e.name] = {{"case", e.model_reference}, {"overrides", e.model_overrides}};
   json["variables"] = nlohmann::json::object();
   for (const auto& v : spec.variables) {
-    nlohmann::json entry = {{"value", best.parameters.at(v.name)}, {"initial", v.initial}, {"lower", v.lower},
-                            {"upper", v.upper}, {"log_scale", v.log_scale}};
+    nlohmann::json entry = {{"value", best.parameters.at(v.name)},
+                            {"initial", v.initial},
+                            {"lower", v.lower},
+                            {"upper", v.upper},
+                            {"log_scale", v.log_scale}};
     if (uncertainty.is_object()) {
       // The reported interval (the same object as in report.md and the export), then the
       // linearised estimate for comparison.
@@ -125,7 +134,8 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
   write_file_atomically(output_dir / "study_resolved.json", store.study_json().dump(2) + "\n");
   summary.files_written += 3;
   if (best) {
-    write_file_atomically(output_dir / "best_parameters.json", best_parameters_json(spec, *best, result).dump(2) + "\n");
+    write_file_atomically(output_dir / "best_parameters.json",
+                          best_parameters_json(spec, *best, result).dump(2) + "\n");
     ++summary.files_written;
     for (const auto& target : spec.targets) {
       // File names from user strings go through the one slug function and stay in output_dir.
@@ -148,7 +158,8 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
       summary.files_written += static_cast<int>(images.size());
     }
   }
-  write_file_atomically(output_dir / "report.md", detail::report_markdown(spec, runs, iterations, best, result, images));
+  write_file_atomically(output_dir / "report.md",
+                        detail::report_markdown(spec, runs, iterations, best, result, images));
   ++summary.files_written;
   return summary;
 }

@@ -25,7 +25,8 @@ std::pair<std::vector<double>, std::vector<double>> region_band(const std::vecto
   return {to_std(rbf_surrogate::from_unit(variables, lower)), to_std(rbf_surrogate::from_unit(variables, upper))};
 }
 
-std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
+std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& spec,
+                                                             const std::vector<EvaluationRecord>& runs,
                                                              const std::vector<IterationRecord>& iterations,
                                                              const EvaluationRecord* best,
                                                              const std::filesystem::path& output_dir) {
@@ -33,8 +34,10 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
   std::string warning;
   auto plot = [&](const std::string& name, const std::string& commands) {
     const std::string problem = gnuplot_png(output_dir / name, commands);
-    if (problem.empty()) images.push_back(name);
-    else if (warning.empty()) warning = problem;
+    if (problem.empty())
+      images.push_back(name);
+    else if (warning.empty())
+      warning = problem;
   };
   const std::string csv_setup = "set datafile separator ','\nset key autotitle columnhead\n";
   // gnuplot runs inside output_dir: data files are named relative to it (slugs, never a path).
@@ -43,8 +46,8 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
     for (const auto& t : spec.targets) {
       if (!best->curves.count(t.curve)) continue;
       plot(safe_slug("target_" + t.name + ".png"),
-           csv_setup + "set title " + gnuplot_quote("target '" + t.name + "' vs best run (objective " +
-                                                    format_number(best->objective) + ")") +
+           csv_setup + "set title " +
+               gnuplot_quote("target '" + t.name + "' vs best run (objective " + format_number(best->objective) + ")") +
                "\nset xlabel " + gnuplot_quote(t.data.x_label) + "\nset ylabel " + gnuplot_quote(t.data.y_label) +
                "\nplot " + file("target_" + t.name + ".csv") + " using 1:2 with points pt 7 ps 0.6 title 'target', " +
                file("best_" + t.name + ".csv") + " using 1:2 with lines lw 2 title 'best run'");
@@ -53,13 +56,14 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
   bool positive = false;
   for (const auto& r : runs) positive = positive || (r.ok && r.objective > 0.0);
   if (!runs.empty()) {
-    plot("objective_history.png",
-         csv_setup + "set title 'objective per run and best per iteration'\nset xlabel 'iteration'\n"
-                     "set ylabel 'composite objective (-)'\n" +
-             (positive ? "set logscale y\n" : "") + "plot " + file("evaluations.csv") +
-             " using 1:5 with points pt 6 title 'evaluated runs', " + file("iterations.csv") +
-             " using 1:3 with linespoints lw 2 title 'best so far', " + file("iterations.csv") +
-             " using 1:4 with linespoints dt 2 title 'predicted optimum'");
+    plot("objective_history.png", csv_setup +
+                                      "set title 'objective per run and best per iteration'\nset xlabel 'iteration'\n"
+                                      "set ylabel 'composite objective (-)'\n" +
+                                      (positive ? "set logscale y\n" : "") + "plot " + file("evaluations.csv") +
+                                      " using 1:5 with points pt 6 title 'evaluated runs', " + file("iterations.csv") +
+                                      " using 1:3 with linespoints lw 2 title 'best so far', " +
+                                      file("iterations.csv") +
+                                      " using 1:4 with linespoints dt 2 title 'predicted optimum'");
   }
   if (!iterations.empty()) {
     for (std::size_t j = 0; j < spec.variables.size(); ++j) {
@@ -70,8 +74,8 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
                "\nset xlabel 'iteration'\nset ylabel " + gnuplot_quote(v.name) + "\n" +
                (v.log_scale ? "set logscale y\n" : "") + "set style fill transparent solid 0.25 noborder\nplot " +
                file("iterations.csv") + " using 1:" + std::to_string(optimum + 1) + ":" + std::to_string(optimum + 2) +
-               " with filledcurves title 'subregion', " + file("iterations.csv") + " using 1:" +
-               std::to_string(optimum) + " with linespoints lw 2 title 'predicted optimum', " +
+               " with filledcurves title 'subregion', " + file("iterations.csv") +
+               " using 1:" + std::to_string(optimum) + " with linespoints lw 2 title 'predicted optimum', " +
                file("evaluations.csv") + " using 1:" + std::to_string(7 + j) + " with points pt 1 title 'runs'");
     }
   }
@@ -110,7 +114,8 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
         "half-width, used only when the posterior could not be computed.\n";
   if (uncertainty.value("jacobian", std::string()) == "regression") {
     md << "\nFor comparison, the linearised half-widths (conditional on the other variables; "
-          "`linearised_ci95_half_width` in best_parameters.json) use Cov = s² (JᵀJ)⁻¹. J is the slope of a linear regression of the "
+          "`linearised_ci95_half_width` in best_parameters.json) use Cov = s² (JᵀJ)⁻¹. J is the slope of a linear "
+          "regression of the "
           "evaluated residual vectors on the variables over the "
        << uncertainty["runs_used"] << " runs nearest the optimum; s² = residual variance at the best run ("
        << uncertainty["degrees_of_freedom"] << " degrees of freedom) plus the regression's scatter (simulation noise, "
@@ -131,16 +136,20 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
   md << "\n";
   for (std::size_t i = 0; i < spec.variables.size(); ++i) {
     md << "| " << spec.variables[i].name << " |";
-    for (std::size_t j = 0; j < spec.variables.size(); ++j) md << " " << number_or_dash(uncertainty["correlation"][i][j]) << " |";
+    for (std::size_t j = 0; j < spec.variables.size(); ++j)
+      md << " " << number_or_dash(uncertainty["correlation"][i][j]) << " |";
     md << "\n";
   }
 }
 
 const char* metric_label(CurveMetric metric) {
   switch (metric) {
-    case CurveMetric::mse: return "MSE";
-    case CurveMetric::curve_mapping: return "curve mapping";
-    case CurveMetric::profile_area: return "profile area";
+    case CurveMetric::mse:
+      return "MSE";
+    case CurveMetric::curve_mapping:
+      return "curve mapping";
+    case CurveMetric::profile_area:
+      return "profile area";
   }
   return "?";
 }
@@ -162,10 +171,10 @@ void targets_section(std::ostringstream& md, const StudySpec& spec, const Evalua
   std::vector<double> terms(spec.targets.size(), std::nan(""));
   try {
     terms = objective.target_objectives(objective.responses(best.curves));
-  } catch (const std::exception&) {
-  }
+  } catch (const std::exception&) {}
   const auto misfits = target_misfits(spec.targets, best.curves);
-  md << "\n## Targets (best run)\n\n| experiment | target | simulated curve | points | metric | weight | objective term "
+  md << "\n## Targets (best run)\n\n| experiment | target | simulated curve | points | metric | weight | objective "
+        "term "
         "| RMS misfit | differing area |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& experiment : experiment_names(spec)) {
     for (std::size_t t = 0; t < spec.targets.size(); ++t) {
@@ -173,12 +182,13 @@ void targets_section(std::ostringstream& md, const StudySpec& spec, const Evalua
       if (target.experiment != experiment) continue;
       const auto& m = misfits[t];
       const std::string y_unit = " (" + target.data.y_label + ")";
-      md << "| " << (experiment.empty() ? "-" : experiment) << " | `" << target.name << "` | `" << target.curve << "` | "
-         << target.data.x.size() << " | " << metric_label(target.metric) << " | " << format_number(target.weight) << " | "
-         << format_number(terms[t]) << " | " << (m.available ? format_number(m.rms) + y_unit : "-") << " | "
-         << (m.available && m.area >= 0.0 ? format_number(m.area) + " (" + target.data.x_label + " × " +
-                                                 target.data.y_label + ")"
-                                           : "-")
+      md << "| " << (experiment.empty() ? "-" : experiment) << " | `" << target.name << "` | `" << target.curve
+         << "` | " << target.data.x.size() << " | " << metric_label(target.metric) << " | "
+         << format_number(target.weight) << " | " << format_number(terms[t]) << " | "
+         << (m.available ? format_number(m.rms) + y_unit : "-") << " | "
+         << (m.available && m.area >= 0.0
+                 ? format_number(m.area) + " (" + target.data.x_label + " × " + target.data.y_label + ")"
+                 : "-")
          << " |\n";
     }
   }
@@ -212,16 +222,17 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   int failed = 0;
   for (const auto& r : runs) failed += r.ok ? 0 : 1;
   md << "# demfit identification report: " << spec.name << "\n\n"
-     << model_lines(spec)
-     << "- status: "
-     << (result ? (result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
-                                                     : "finished, iteration limit reached")
-                : "NOT finished (report built from the runs stored so far)")
+     << model_lines(spec) << "- status: "
+     << (result
+             ? (result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
+                                                  : "finished, iteration limit reached")
+             : "NOT finished (report built from the runs stored so far)")
      << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
      << ", points per iteration: " << spec.points_per_iteration << "\n"
-     << "- strategy: " << (spec.strategy == SamplingStrategy::srsm ? "SRSM domain reduction"
-                          : spec.strategy == SamplingStrategy::adaptive_infill ? "adaptive infill"
-                                                                               : "batch expected improvement")
+     << "- strategy: "
+     << (spec.strategy == SamplingStrategy::srsm              ? "SRSM domain reduction"
+         : spec.strategy == SamplingStrategy::adaptive_infill ? "adaptive infill"
+                                                              : "batch expected improvement")
      << ", surrogate: RBF " << spec.basis << " ("
      << (spec.responses == ResponseMode::curve_points ? "one output per curve point" : "principal-component scores")
      << "), seed " << spec.seed << "\n";
@@ -239,7 +250,8 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
     md << "\n";
   }
   if (!diagnostics.misfits.empty()) {
-    md << "## Misfit of the best run\n\n| target | RMS misfit | unit | noise of the data (2nd differences) | misfit / noise |\n"
+    md << "## Misfit of the best run\n\n| target | RMS misfit | unit | noise of the data (2nd differences) | misfit / "
+          "noise |\n"
           "|---|---|---|---|---|\n";
     for (const auto& m : diagnostics.misfits)
       md << "| " << m.target << " | " << format_number(m.rms) << " | " << m.y_label << " | " << format_number(m.noise)

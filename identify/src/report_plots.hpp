@@ -19,7 +19,8 @@ std::pair<std::vector<double>, std::vector<double>> region_band(const std::vecto
                                                                 const IterationRecord& iteration);
 // Writes the PNG plots (needs the CSV files already in output_dir). Returns the image file names
 // written and a warning ("" if all went well).
-std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
+std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& spec,
+                                                             const std::vector<EvaluationRecord>& runs,
                                                              const std::vector<IterationRecord>& iterations,
                                                              const EvaluationRecord* best,
                                                              const std::filesystem::path& output_dir);

@@ -30,7 +30,8 @@ ReportedInterval reported_interval(const nlohmann::json& uncertainty, const std:
       return out;
     }
   }
-  const nlohmann::json half = uncertainty.value("ci_half_width", nlohmann::json::object()).value(variable, nlohmann::json());
+  const nlohmann::json half =
+      uncertainty.value("ci_half_width", nlohmann::json::object()).value(variable, nlohmann::json());
   out.identifiable = !flagged(uncertainty.value("unidentifiable", nlohmann::json()), variable);
   if (!half.is_number() || !std::isfinite(half.get<double>())) return out;
   out.available = true;

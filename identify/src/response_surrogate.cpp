@@ -60,11 +60,13 @@ Eigen::VectorXd ResponseSurrogate::predict(const Eigen::VectorXd& unit_x) const 
   return mean_ + basis_ * out;
 }
 
-double ResponseSurrogate::predicted_objective(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const {
+double ResponseSurrogate::predicted_objective(const Eigen::VectorXd& unit_x,
+                                              const CompositeObjective& objective) const {
   return objective.objective(predict(unit_x));
 }
 
-Eigen::VectorXd ResponseSurrogate::objective_gradient(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const {
+Eigen::VectorXd ResponseSurrogate::objective_gradient(const Eigen::VectorXd& unit_x,
+                                                      const CompositeObjective& objective) const {
   const Eigen::Index d = unit_x.size();
   Eigen::VectorXd gradient(d);
   const Eigen::VectorXd width = fit_box_.width();

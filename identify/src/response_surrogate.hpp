@@ -19,7 +19,7 @@ class ResponseSurrogate {
   // points: rows in unit coordinates; responses: rows = runs. Points outside fit_box are allowed.
   ResponseSurrogate(const Eigen::MatrixXd& points, const Eigen::MatrixXd& responses, const rbf_surrogate::Box& fit_box,
                     const StudySpec& spec);
-  Eigen::VectorXd predict(const Eigen::VectorXd& unit_x) const;   // response vector
+  Eigen::VectorXd predict(const Eigen::VectorXd& unit_x) const;  // response vector
   double predicted_objective(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const;
   // Gradient of the predicted objective (central differences in local coordinates).
   Eigen::VectorXd objective_gradient(const Eigen::VectorXd& unit_x, const CompositeObjective& objective) const;
@@ -31,7 +31,7 @@ class ResponseSurrogate {
   rbf_surrogate::RbfNetwork network_;
   bool principal_components_ = false;
   Eigen::VectorXd mean_;
-  Eigen::MatrixXd basis_;   // m x k (principal directions) when principal_components_
+  Eigen::MatrixXd basis_;  // m x k (principal directions) when principal_components_
 };
 
 rbf_surrogate::RbfOptions rbf_options(const StudySpec& spec);

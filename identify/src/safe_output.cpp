@@ -68,7 +68,8 @@ bool check_folder(const fs::path& folder, const std::vector<fs::path>& inputs, c
   shown += folder.string();
   shown += "'";
   if (target == cwd)
-    throw std::runtime_error(option + ": " + shown + " is the working folder; demfit writes into a folder of its own, "
+    throw std::runtime_error(option + ": " + shown +
+                             " is the working folder; demfit writes into a folder of its own, "
                              "give a new name such as results/run1");
   if (is_within(cwd, target))
     throw std::runtime_error(option + ": " + shown + " is a parent of the working folder; give a new folder name");
@@ -76,7 +77,8 @@ bool check_folder(const fs::path& folder, const std::vector<fs::path>& inputs, c
   const fs::file_status status = fs::symlink_status(folder, error);
   if (!fs::exists(status)) return false;
   if (fs::is_symlink(status))
-    throw std::runtime_error(option + ": " + shown + " is a symbolic link; give a real folder (demfit does not write through links)");
+    throw std::runtime_error(option + ": " + shown +
+                             " is a symbolic link; give a real folder (demfit does not write through links)");
   if (!fs::is_directory(status))
     throw std::runtime_error(option + ": " + shown + " is an existing file, not a folder; choose another name");
   const bool marked = fs::exists(fs::symlink_status(folder / kOutputMarker, error));
@@ -146,8 +148,8 @@ void check_user_text(const std::string& field, const std::string& text) {
 std::string safe_slug(const std::string& text) {
   std::string out;
   for (char c : text) {
-    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-                      c == '-' || c == '.';
+    const bool keep =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
     out += keep ? c : '_';
     if (out.size() >= 80) break;
   }
@@ -182,9 +184,8 @@ void check_replaceable_folder(const fs::path& folder, const std::vector<fs::path
 }
 
 void mark_output_folder(const fs::path& folder, const std::string& command) {
-  write_file_atomically(folder / kOutputMarker,
-                        "This folder was created by demfit (" + command +
-                            "). demfit may replace it or the files in it on a later run.\n");
+  write_file_atomically(folder / kOutputMarker, "This folder was created by demfit (" + command +
+                                                    "). demfit may replace it or the files in it on a later run.\n");
 }
 
 int remove_stale_temporaries(const fs::path& folder) {

@@ -22,8 +22,9 @@ StoreLock::StoreLock(const std::filesystem::path& folder) {
     ::close(fd_);
     fd_ = -1;
     if (error == EWOULDBLOCK)
-      throw std::runtime_error("study store '" + (folder / "study.db").string() +
-                               "' is in use by another demfit process; wait for it to finish or use another --out folder");
+      throw std::runtime_error(
+          "study store '" + (folder / "study.db").string() +
+          "' is in use by another demfit process; wait for it to finish or use another --out folder");
     throw std::runtime_error("study store in '" + folder.string() + "': cannot lock (" + std::strerror(error) + ")");
   }
 }

@@ -48,8 +48,12 @@ struct Run {
 class StudyLoop {
  public:
   StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
-      : spec_(spec), model_(model), options_(options), objective_(spec.targets),
-        variables_(detail::rbf_variables(spec)), dims_(static_cast<int>(spec.variables.size())),
+      : spec_(spec),
+        model_(model),
+        options_(options),
+        objective_(spec.targets),
+        variables_(detail::rbf_variables(spec)),
+        dims_(static_cast<int>(spec.variables.size())),
         pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
         evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
         store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)),
@@ -84,8 +88,8 @@ class StudyLoop {
   Evaluator& evaluator_;
   StudyStore store_;
   std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
-  std::vector<Run> runs_;                 // successful runs, in (iteration, point) order
-  std::vector<VectorXd> all_points_;      // every run (failed ones too), in order
+  std::vector<Run> runs_;                            // successful runs, in (iteration, point) order
+  std::vector<VectorXd> all_points_;                 // every run (failed ones too), in order
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
   double evaluated_wall_ = 0.0;
   std::string first_error_;
@@ -207,7 +211,8 @@ std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
   try {
     return detail::ResponseSurrogate(x, y, box, spec_);
   } catch (const std::exception& e) {
-    if (options_.progress) std::fprintf(stderr, "demfit: warning: surrogate fit failed (%s); using the best run\n", e.what());
+    if (options_.progress)
+      std::fprintf(stderr, "demfit: warning: surrogate fit failed (%s); using the best run\n", e.what());
     return std::nullopt;
   }
 }
@@ -270,8 +275,7 @@ RunSample StudyLoop::uncertainty_sample(const Run& best, const Box& final_region
   const int minimum = maximum;
   std::vector<VectorXd> units;
   for (const Run& r : runs_) units.push_back(r.unit);
-  const std::vector<int> chosen =
-      detail::nearest_distinct(units, best.unit, final_region.width(), minimum, maximum);
+  const std::vector<int> chosen = detail::nearest_distinct(units, best.unit, final_region.width(), minimum, maximum);
   RunSample sample;
   sample.unit_points.resize(chosen.size(), dims_);
   sample.residuals.resize(chosen.size(), objective_.residual_size());
@@ -303,7 +307,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
     const auto estimate = estimate_uncertainty_from_runs(sample, spec_.variables);
     uncertainty = detail::uncertainty_json(spec_, estimate);
     std::string posterior_warning;  // issue 15: marginal intervals that stay right with poorly pinned parameters
-    uncertainty["posterior"] = detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
+    uncertainty["posterior"] =
+        detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
     if (options_.progress && !posterior_warning.empty())
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
@@ -311,7 +316,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
       result.ci_half_width[name] = estimate.ci_half_width[j];
       result.standard_error[name] = estimate.standard_error[j];
       if (estimate.unidentifiable[j]) result.unidentifiable.push_back(name);
-      if (!estimate.least_squares_estimate.empty()) result.least_squares_estimate[name] = estimate.least_squares_estimate[j];
+      if (!estimate.least_squares_estimate.empty())
+        result.least_squares_estimate[name] = estimate.least_squares_estimate[j];
     }
     for (const auto& v : spec_.variables)
       result.intervals[v.name] = reported_interval(uncertainty, v.name, result.best.at(v.name));
@@ -320,12 +326,17 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
       for (int j = 0; j < dims_; ++j) result.correlation[i][j] = estimate.correlation(i, j);
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  store_.put_result({{"best_iteration", best.iteration}, {"best_point", best.point},
-                     {"best_objective", best.objective}, {"best_parameters", result.best},
+  store_.put_result({{"best_iteration", best.iteration},
+                     {"best_point", best.point},
+                     {"best_objective", best.objective},
+                     {"best_parameters", result.best},
                      {"best_variables", detail::variable_values(spec_, variables_, best.unit)},
-                     {"runs", result.runs}, {"failed_runs", result.failed_runs},
-                     {"iterations", result.iterations}, {"converged", converged},
-                     {"wall_seconds", result.wall_seconds}, {"uncertainty", uncertainty}});
+                     {"runs", result.runs},
+                     {"failed_runs", result.failed_runs},
+                     {"iterations", result.iterations},
+                     {"converged", converged},
+                     {"wall_seconds", result.wall_seconds},
+                     {"uncertainty", uncertainty}});
   const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);
   if (options_.progress) {
     if (!report.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", report.plot_warning.c_str());

@@ -52,7 +52,8 @@ StudySpec checked_against(const StudySpec& spec, const Model& model,
     convert(t.data.y, unit_factor(t.data.y_label, m.y_label, field + ".y_column"));
     if (column_unit(t.data.x_label).known && column_unit(m.x_label).known) t.data.x_label = m.x_label;
     if (column_unit(t.data.y_label).known && column_unit(m.y_label).known) t.data.y_label = m.y_label;
-    if (m.x.empty()) throw std::runtime_error(field + ".curve: the model's curve '" + t.curve + "' is empty at the initial point");
+    if (m.x.empty())
+      throw std::runtime_error(field + ".curve: the model's curve '" + t.curve + "' is empty at the initial point");
     const auto [tlo, thi] = std::minmax_element(t.data.x.begin(), t.data.x.end());
     const auto [mlo, mhi] = std::minmax_element(m.x.begin(), m.x.end());
     if (std::min(*thi, *mhi) <= std::max(*tlo, *mlo))

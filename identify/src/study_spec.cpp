@@ -73,9 +73,11 @@ ImageTargetSpec parse_image_target(JsonReader& in) {
   if (!(image.diameter > 0.0)) in.fail("image_diameter", "must be > 0 (inner drum diameter in metres, e.g. 0.084)");
   if (image.threshold > 1.0) in.fail("image_threshold", "must be a grey level in [0, 1], or -1 for automatic (Otsu)");
   if (material != "dark" && material != "light")
-    in.fail("image_material", "'" + material + "' is unknown; use \"dark\" (powder darker than the background) or \"light\"");
+    in.fail("image_material",
+            "'" + material + "' is unknown; use \"dark\" (powder darker than the background) or \"light\"");
   image.material_is_dark = material == "dark";
-  if (!(image.margin >= 0.0 && image.margin < 1.0)) in.fail("image_margin", "must be in [0, 1) (fraction of the drum radius)");
+  if (!(image.margin >= 0.0 && image.margin < 1.0))
+    in.fail("image_margin", "must be in [0, 1) (fraction of the drum radius)");
   if (image.points < 2) in.fail("image_points", "must be >= 2");
   return image;
 }
@@ -90,14 +92,13 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
   const bool has_csv = in.has("csv");
   if (has_image) {
     if (has_csv || in.has("x") || in.has("y") || in.has("x_column") || in.has("y_column"))
-      in.fail("image", "an image target takes its points from the photo (columns x_mm, z_mm); leave out csv, x, y, "
-                       "x_column and y_column");
+      in.fail("image",
+              "an image target takes its points from the photo (columns x_mm, z_mm); leave out csv, x, y, "
+              "x_column and y_column");
     t.image = parse_image_target(in);
     try {
       t.data = detail::read_image_target(*t.image, base_dir);
-    } catch (const std::exception& e) {
-      in.fail("image", e.what());
-    }
+    } catch (const std::exception& e) { in.fail("image", e.what()); }
   } else {
     const std::string x_column = in.text("x_column");
     const std::string y_column = in.text("y_column");
@@ -163,8 +164,8 @@ void parse_targets(JsonReader& in, const std::string& path, const std::filesyste
   for (std::size_t i = 0; i < targets.size(); ++i) {
     out.push_back(parse_target(targets[i], path + "targets[" + std::to_string(i) + "]", i, base_dir));
     if (!names.insert(safe_slug(out.back().name)).second)
-      in.fail("targets", "two targets are named '" + out.back().name +
-                             "' (or alike in file names); give each a unique \"name\"");
+      in.fail("targets",
+              "two targets are named '" + out.back().name + "' (or alike in file names); give each a unique \"name\"");
   }
 }
 
@@ -209,10 +210,14 @@ void parse_experiments(JsonReader& study, StudySpec& spec) {
 void parse_sampling(JsonReader in, StudySpec& spec) {
   spec.points_per_iteration = in.integer_or("points_per_iteration", 0);
   const std::string strategy = in.text_or("strategy", "srsm");
-  if (strategy == "srsm") spec.strategy = SamplingStrategy::srsm;
-  else if (strategy == "adaptive_infill") spec.strategy = SamplingStrategy::adaptive_infill;
-  else if (strategy == "expected_improvement") spec.strategy = SamplingStrategy::expected_improvement;
-  else in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\", \"adaptive_infill\" or \"expected_improvement\"");
+  if (strategy == "srsm")
+    spec.strategy = SamplingStrategy::srsm;
+  else if (strategy == "adaptive_infill")
+    spec.strategy = SamplingStrategy::adaptive_infill;
+  else if (strategy == "expected_improvement")
+    spec.strategy = SamplingStrategy::expected_improvement;
+  else
+    in.fail("strategy", "'" + strategy + "' is unknown; use \"srsm\", \"adaptive_infill\" or \"expected_improvement\"");
   in.finish();
   if (spec.points_per_iteration < 0) in.fail("points_per_iteration", "must be >= 0 (0 = default 1.5(n+1)+1)");
   // Each point is one simulation run; a huge design is a typo (10^9 once ended in std::bad_alloc).
@@ -238,9 +243,12 @@ void parse_surrogate(JsonReader in, StudySpec& spec) {
   in.finish();
   if (spec.basis != "multiquadric" && spec.basis != "gaussian")
     in.fail("basis", "'" + spec.basis + "' is unknown; use \"multiquadric\" or \"gaussian\"");
-  if (responses == "curve_points") spec.responses = ResponseMode::curve_points;
-  else if (responses == "principal_components") spec.responses = ResponseMode::principal_components;
-  else in.fail("responses", "'" + responses + "' is unknown; use \"curve_points\" or \"principal_components\"");
+  if (responses == "curve_points")
+    spec.responses = ResponseMode::curve_points;
+  else if (responses == "principal_components")
+    spec.responses = ResponseMode::principal_components;
+  else
+    in.fail("responses", "'" + responses + "' is unknown; use \"curve_points\" or \"principal_components\"");
   if (spec.smoothing < 0.0) in.fail("smoothing", "must be >= 0");
 }
 
@@ -257,9 +265,12 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
 
 std::string metric_name(CurveMetric metric) {
   switch (metric) {
-    case CurveMetric::mse: return "mse";
-    case CurveMetric::curve_mapping: return "curve_mapping";
-    case CurveMetric::profile_area: return "profile_area";
+    case CurveMetric::mse:
+      return "mse";
+    case CurveMetric::curve_mapping:
+      return "curve_mapping";
+    case CurveMetric::profile_area:
+      return "profile_area";
   }
   return "mse";
 }
@@ -272,12 +283,20 @@ nlohmann::json model_json(const std::string& reference, const nlohmann::json& ov
 
 // A resolved target: data inline, "source" = where it came from (informational, not hashed).
 nlohmann::json target_json(const TargetSpec& t, const std::string& name, const std::string& curve) {
-  nlohmann::json target = {{"name", name}, {"curve", curve}, {"x_column", t.data.x_label},
-                           {"y_column", t.data.y_label}, {"x", t.data.x}, {"y", t.data.y},
-                           {"metric", metric_name(t.metric)}, {"weight", t.weight}, {"scale", t.scale},
+  nlohmann::json target = {{"name", name},
+                           {"curve", curve},
+                           {"x_column", t.data.x_label},
+                           {"y_column", t.data.y_label},
+                           {"x", t.data.x},
+                           {"y", t.data.y},
+                           {"metric", metric_name(t.metric)},
+                           {"weight", t.weight},
+                           {"scale", t.scale},
                            {"mapping_points", t.mapping_points}};
-  if (!t.csv.empty()) target["source"] = t.csv.generic_string();
-  else if (t.image) target["source"] = t.image->file.generic_string();
+  if (!t.csv.empty())
+    target["source"] = t.csv.generic_string();
+  else if (t.image)
+    target["source"] = t.image->file.generic_string();
   return target;
 }
 
@@ -294,15 +313,18 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
   if (!in.has("demfit_study_version")) in.fail("demfit_study_version", "missing; add \"demfit_study_version\": 1");
   spec.version = in.integer_or("demfit_study_version", 0);
   if (spec.version != kStudyFormatVersion)
-    in.fail("demfit_study_version", "version " + std::to_string(spec.version) + " is not supported; this demfit reads version " +
+    in.fail("demfit_study_version", "version " + std::to_string(spec.version) +
+                                        " is not supported; this demfit reads version " +
                                         std::to_string(kStudyFormatVersion));
   spec.name = in.text_or("name", "study");
   check_user_text("study: name", spec.name);
   const bool experiments = in.has("experiments");
   if (experiments && (in.has("model") || in.has("targets")))
     in.fail("experiments", "give either \"experiments\" or a top-level \"model\" and \"targets\", not both");
-  if (experiments) parse_experiments(in, spec);
-  else parse_model(in.object("model"), spec.model_reference, spec.model_overrides, spec.fixed_parameters);
+  if (experiments)
+    parse_experiments(in, spec);
+  else
+    parse_model(in.object("model"), spec.model_reference, spec.model_overrides, spec.fixed_parameters);
   const auto& variables = in.raw("variables");
   if (!variables.is_array() || variables.empty()) in.fail("variables", "expected a non-empty array of variables");
   std::set<std::string> names;
@@ -314,8 +336,8 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
       in.fail("variables", "'" + name + "' is also in model.fixed_parameters; keep one");
     for (const auto& experiment : spec.experiments)
       if (experiment.fixed_parameters.count(name))
-        in.fail("variables", "'" + name + "' is also in the fixed_parameters of experiment '" + experiment.name +
-                                 "'; keep one");
+        in.fail("variables",
+                "'" + name + "' is also in the fixed_parameters of experiment '" + experiment.name + "'; keep one");
   }
   if (!experiments) parse_targets(in, "", base_dir, spec.targets);
   if (in.has("sampling")) parse_sampling(in.object("sampling"), spec);
@@ -347,8 +369,12 @@ nlohmann::json to_json(const StudySpec& spec) {
   json["name"] = spec.name;
   json["variables"] = nlohmann::json::array();
   for (const auto& v : spec.variables)
-    json["variables"].push_back({{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial},
-                                 {"log_scale", v.log_scale}, {"initial_range", v.initial_range}});
+    json["variables"].push_back({{"name", v.name},
+                                 {"lower", v.lower},
+                                 {"upper", v.upper},
+                                 {"initial", v.initial},
+                                 {"log_scale", v.log_scale},
+                                 {"initial_range", v.initial_range}});
   if (spec.experiments.empty()) {
     json["model"] = model_json(spec.model_reference, spec.model_overrides, spec.fixed_parameters);
     json["targets"] = nlohmann::json::array();
@@ -365,13 +391,14 @@ nlohmann::json to_json(const StudySpec& spec) {
                                      {"targets", targets}});
     }
   }
-  json["sampling"] = {{"points_per_iteration", spec.points_per_iteration},
-                      {"strategy", strategy_name(spec.strategy)}};
+  json["sampling"] = {{"points_per_iteration", spec.points_per_iteration}, {"strategy", strategy_name(spec.strategy)}};
   json["domain_reduction"] = {{"gamma_pan", spec.gamma_pan}, {"gamma_osc", spec.gamma_osc}, {"eta", spec.eta}};
-  json["surrogate"] = {{"basis", spec.basis},
-                       {"responses", spec.responses == ResponseMode::curve_points ? "curve_points" : "principal_components"},
-                       {"smoothing", spec.smoothing}};
-  json["stopping"] = {{"max_iterations", spec.max_iterations}, {"design_tolerance", spec.design_tolerance},
+  json["surrogate"] = {
+      {"basis", spec.basis},
+      {"responses", spec.responses == ResponseMode::curve_points ? "curve_points" : "principal_components"},
+      {"smoothing", spec.smoothing}};
+  json["stopping"] = {{"max_iterations", spec.max_iterations},
+                      {"design_tolerance", spec.design_tolerance},
                       {"objective_tolerance", spec.objective_tolerance}};
   json["seed"] = spec.seed;
   return json;

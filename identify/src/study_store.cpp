@@ -51,11 +51,15 @@ class Statement {
   Statement(const Statement&) = delete;
   Statement& operator=(const Statement&) = delete;
   sqlite3_stmt* get() { return statement_; }
-  void bind(int index, const std::string& text) { sqlite3_bind_text(statement_, index, text.c_str(), -1, SQLITE_TRANSIENT); }
+  void bind(int index, const std::string& text) {
+    sqlite3_bind_text(statement_, index, text.c_str(), -1, SQLITE_TRANSIENT);
+  }
   void bind(int index, int value) { sqlite3_bind_int(statement_, index, value); }
   void bind(int index, double value) {
-    if (std::isfinite(value)) sqlite3_bind_double(statement_, index, value);
-    else sqlite3_bind_null(statement_, index);
+    if (std::isfinite(value))
+      sqlite3_bind_double(statement_, index, value);
+    else
+      sqlite3_bind_null(statement_, index);
   }
 
  private:
@@ -91,16 +95,26 @@ void StudyStore::check_same_model(StudyStore& store, const nlohmann::json& resol
 }
 
 nlohmann::json to_json(const EvaluationRecord& r) {
-  return {{"iteration", r.iteration}, {"point", r.point}, {"kind", r.kind}, {"unit_x", r.unit_x},
-          {"parameters", r.parameters}, {"objective", number_or_null(r.objective)},
-          {"wall_seconds", r.wall_seconds}, {"ok", r.ok}, {"error", r.error}};
+  return {{"iteration", r.iteration},
+          {"point", r.point},
+          {"kind", r.kind},
+          {"unit_x", r.unit_x},
+          {"parameters", r.parameters},
+          {"objective", number_or_null(r.objective)},
+          {"wall_seconds", r.wall_seconds},
+          {"ok", r.ok},
+          {"error", r.error}};
 }
 
 nlohmann::json to_json(const IterationRecord& r) {
-  return {{"iteration", r.iteration}, {"region_center", r.region_center}, {"region_range", r.region_range},
-          {"predicted_optimum", r.predicted_optimum}, {"predicted_parameters", r.predicted_parameters},
+  return {{"iteration", r.iteration},
+          {"region_center", r.region_center},
+          {"region_range", r.region_range},
+          {"predicted_optimum", r.predicted_optimum},
+          {"predicted_parameters", r.predicted_parameters},
           {"predicted_objective", number_or_null(r.predicted_objective)},
-          {"best_objective", number_or_null(r.best_objective)}, {"runs_done", r.runs_done},
+          {"best_objective", number_or_null(r.best_objective)},
+          {"runs_done", r.runs_done},
           {"design_change", number_or_null(r.design_change)},
           {"objective_change", number_or_null(r.objective_change)}};
 }
@@ -135,7 +149,8 @@ void StudyStore::put_meta(const std::string& key, const std::string& value) {
   Statement s(db_, "INSERT OR REPLACE INTO meta(key, value) VALUES(?1, ?2)");
   s.bind(1, key);
   s.bind(2, value);
-  if (sqlite3_step(s.get()) != SQLITE_DONE) throw std::runtime_error(std::string("study store: ") + sqlite3_errmsg(db_));
+  if (sqlite3_step(s.get()) != SQLITE_DONE)
+    throw std::runtime_error(std::string("study store: ") + sqlite3_errmsg(db_));
 }
 
 std::optional<std::string> StudyStore::meta(const std::string& key) const {
@@ -194,15 +209,14 @@ void StudyStore::load() {
   std::optional<std::string> version;
   try {
     version = meta("schema_version");
-  } catch (const std::exception&) {
-    throw std::runtime_error("'" + path_.string() + "' is not a demfit study store");
-  }
+  } catch (const std::exception&) { throw std::runtime_error("'" + path_.string() + "' is not a demfit study store"); }
   if (!version || *version != std::to_string(kStoreSchemaVersion))
     throw std::runtime_error("study store '" + path_.string() + "' has schema version " + version.value_or("?") +
                              ", this demfit reads version " + std::to_string(kStoreSchemaVersion) +
                              "; rerun the study with this version");
-  Statement s(db_, "SELECT iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds, status, error "
-                   "FROM evaluations ORDER BY iteration, point");
+  Statement s(db_,
+              "SELECT iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds, status, error "
+              "FROM evaluations ORDER BY iteration, point");
   while (sqlite3_step(s.get()) == SQLITE_ROW) {
     EvaluationRecord r;
     r.iteration = sqlite3_column_int(s.get(), 0);
@@ -215,7 +229,8 @@ void StudyStore::load() {
     } catch (const nlohmann::json::exception&) {
       // A damaged row names the store and the run instead of a bare JSON error (issue #13).
       throw std::runtime_error("study store '" + path_.string() + "': run " + std::to_string(r.iteration) + "/" +
-                               std::to_string(r.point) + " is corrupted (unreadable parameters or curves); "
+                               std::to_string(r.point) +
+                               " is corrupted (unreadable parameters or curves); "
                                "restore study.db from a copy or rerun into a new --out folder");
     }
     r.objective = sqlite3_column_type(s.get(), 6) == SQLITE_NULL ? std::numeric_limits<double>::quiet_NaN()

@@ -65,9 +65,12 @@ namespace demfit::identify {
 
 const char* strategy_name(SamplingStrategy strategy) {
   switch (strategy) {
-    case SamplingStrategy::srsm: return "srsm";
-    case SamplingStrategy::adaptive_infill: return "adaptive_infill";
-    default: return "expected_improvement";
+    case SamplingStrategy::srsm:
+      return "srsm";
+    case SamplingStrategy::adaptive_infill:
+      return "adaptive_infill";
+    default:
+      return "expected_improvement";
   }
 }
 
@@ -88,7 +91,9 @@ nlohmann::json posterior_json(const StudySpec& spec, const RunSample& sample, co
   }
   nlohmann::json variables = nlohmann::json::object();
   for (std::size_t j = 0; j < spec.variables.size(); ++j)
-    variables[spec.variables[j].name] = {{"median", e.median[j]}, {"lower_95", e.lower[j]}, {"upper_95", e.upper[j]},
+    variables[spec.variables[j].name] = {{"median", e.median[j]},
+                                         {"lower_95", e.lower[j]},
+                                         {"upper_95", e.upper[j]},
                                          {"unidentifiable", static_cast<bool>(e.unidentifiable[j])}};
   std::vector<std::vector<double>> correlation(spec.variables.size(), std::vector<double>(spec.variables.size()));
   for (std::size_t i = 0; i < correlation.size(); ++i)

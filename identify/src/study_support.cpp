@@ -66,8 +66,8 @@ void check_parameter_names(const StudySpec& spec, const Model& model) {
   std::string known;
   for (const auto& n : names) known += (known.empty() ? "" : " ") + n;
   auto known_name = [&](const std::string& name) { return std::find(names.begin(), names.end(), name) != names.end(); };
-  const std::string model_name = spec.experiments.empty() ? "model '" + spec.model_reference + "'"
-                                                          : std::string("any experiment's model");
+  const std::string model_name =
+      spec.experiments.empty() ? "model '" + spec.model_reference + "'" : std::string("any experiment's model");
   for (std::size_t j = 0; j < spec.variables.size(); ++j)
     if (!known_name(spec.variables[j].name))
       throw std::runtime_error("study: variables[" + std::to_string(j) + "].name: '" + spec.variables[j].name +
@@ -85,7 +85,8 @@ void check_declared_curves(const StudySpec& spec, const Model& model) {
   for (std::size_t i = 0; i < spec.targets.size(); ++i) {
     const TargetSpec& t = spec.targets[i];
     const std::string field = "study: targets[" + std::to_string(i) + "]";
-    const auto found = std::find_if(declared.begin(), declared.end(), [&](const CurveDescriptor& c) { return c.name == t.curve; });
+    const auto found =
+        std::find_if(declared.begin(), declared.end(), [&](const CurveDescriptor& c) { return c.name == t.curve; });
     if (found == declared.end()) {
       std::vector<std::string> names;
       for (const auto& c : declared) names.push_back(c.name);
@@ -120,8 +121,9 @@ void check_parameter_bounds(const StudySpec& spec, const Model& model) {
     if (!d || d->valid.contains(value)) continue;
     char text[48];
     std::snprintf(text, sizeof text, "%g", value);
-    throw std::runtime_error("study: model.fixed_parameters." + name + " = " + text + " lies outside the model's valid range " +
-                             d->valid.to_string() + unit_of(*d) + "; change it");
+    throw std::runtime_error("study: model.fixed_parameters." + name + " = " + text +
+                             " lies outside the model's valid range " + d->valid.to_string() + unit_of(*d) +
+                             "; change it");
   }
 }
 
@@ -156,7 +158,8 @@ void check_experiments(const StudySpec& spec, const Model& model) {
       if (d && !d->valid.contains(value)) {
         char text[48];
         std::snprintf(text, sizeof text, "%g", value);
-        throw std::runtime_error(field + " = " + text + " lies outside the valid range " + d->valid.to_string() + "; change it");
+        throw std::runtime_error(field + " = " + text + " lies outside the valid range " + d->valid.to_string() +
+                                 "; change it");
       }
     }
   }
@@ -170,8 +173,9 @@ std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration) {
   return z ^ (z >> 31);
 }
 
-rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
-                                                  const rbf_surrogate::Box& region, std::uint64_t seed) {
+rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate,
+                                                  const CompositeObjective& objective, const rbf_surrogate::Box& region,
+                                                  std::uint64_t seed) {
   const auto function = [&](const Eigen::VectorXd& x, Eigen::VectorXd* gradient) {
     if (gradient) *gradient = surrogate.objective_gradient(x, objective);
     return surrogate.predicted_objective(x, objective);
@@ -228,10 +232,12 @@ namespace demfit::identify::detail {
 nlohmann::json uncertainty_json(const StudySpec& spec, const UncertaintyEstimate& estimate) {
   // JSON has no infinity: an unbounded interval is written as null.
   auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
-  nlohmann::json json = {{"confidence", 0.95}, {"residual_variance", estimate.residual_variance},
+  nlohmann::json json = {{"confidence", 0.95},
+                         {"residual_variance", estimate.residual_variance},
                          {"degrees_of_freedom", estimate.degrees_of_freedom},
                          {"condition_number", finite_or_null(estimate.condition_number)},
-                         {"jacobian", estimate.jacobian_source}, {"runs_used", estimate.runs_used},
+                         {"jacobian", estimate.jacobian_source},
+                         {"runs_used", estimate.runs_used},
                          {"simulation_noise_variance", estimate.simulation_noise_variance}};
   if (!estimate.effect_significance.empty()) json["effect_significance"] = nlohmann::json::object();
   if (!estimate.least_squares_estimate.empty()) json["least_squares_estimate"] = nlohmann::json::object();

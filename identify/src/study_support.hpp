@@ -19,7 +19,7 @@
 namespace demfit::identify::detail {
 
 std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec);
-Eigen::VectorXd initial_values(const StudySpec& spec);   // physical
+Eigen::VectorXd initial_values(const StudySpec& spec);  // physical
 // Iteration-0 region: initial_range around the initial point, shifted to stay in [0, 1].
 rbf_surrogate::Box initial_region(const StudySpec& spec, const std::vector<rbf_surrogate::Variable>& variables);
 // Everything the model receives: its defaults, the study's fixed values, the variables at `unit`.
@@ -47,8 +47,9 @@ void check_experiments(const StudySpec& spec, const Model& model);
 // {""} in the single-model form, else the experiment names in order.
 std::vector<std::string> experiment_names(const StudySpec& spec);
 std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration);
-rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate, const CompositeObjective& objective,
-                                                  const rbf_surrogate::Box& region, std::uint64_t seed);
+rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate,
+                                                  const CompositeObjective& objective, const rbf_surrogate::Box& region,
+                                                  std::uint64_t seed);
 
 // Indices (ascending) of the distinct points (repeated points count once) within one `width` of
 // `center` (distance max_j |x_j - c_j| / width_j <= 1), nearest first, topped up with the next

@@ -34,8 +34,9 @@ void bound_warnings(const StudySpec& spec, const EvaluationRecord& best, std::ve
     const double tolerance = 0.005 * (v.upper - v.lower);
     if (found->second - v.lower <= tolerance || v.upper - found->second <= tolerance)
       warnings.push_back("variable '" + v.name + "' = " + number(found->second) + " lies on its " +
-                         (found->second - v.lower <= tolerance ? "lower" : "upper") + " bound [" + number(v.lower) + ", " +
-                         number(v.upper) + "]: the optimum may lie outside; widen the bounds or check units and fill");
+                         (found->second - v.lower <= tolerance ? "lower" : "upper") + " bound [" + number(v.lower) +
+                         ", " + number(v.upper) +
+                         "]: the optimum may lie outside; widen the bounds or check units and fill");
   }
 }
 
@@ -98,11 +99,10 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
     std::vector<double> simulated;
     try {
       simulated = resample_monotone(curve->second, t.data.x);
-    } catch (const std::exception&) {
-      continue;
-    }
+    } catch (const std::exception&) { continue; }
     double sum = 0.0;
-    for (std::size_t i = 0; i < simulated.size(); ++i) sum += (simulated[i] - t.data.y[i]) * (simulated[i] - t.data.y[i]);
+    for (std::size_t i = 0; i < simulated.size(); ++i)
+      sum += (simulated[i] - t.data.y[i]) * (simulated[i] - t.data.y[i]);
     TargetMisfit m{t.name, t.data.y_label, std::sqrt(sum / static_cast<double>(simulated.size())),
                    second_difference_noise(t.data.y)};
     if (m.noise > 0.0 && m.rms > 3.0 * m.noise)

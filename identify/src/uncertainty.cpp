@@ -7,12 +7,12 @@
 namespace demfit::identify {
 // Inverse of the standard normal CDF (Acklam's rational approximation, |rel. error| < 1.2e-9).
 double normal_quantile(double p) {
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                             1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                             1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
   static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
                              6.680131188771972e+01, -1.328068155288572e+01};
   static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                             -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+                             -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
   static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                              3.754408661907416e+00};
   const double low = 0.02425;
@@ -53,7 +53,7 @@ UncertaintyEstimate linearised_estimate(const Eigen::MatrixXd& jtj, double resid
   for (int j = 0; j < n; ++j) range(j) = variables[j].upper - variables[j].lower;
   const Eigen::MatrixXd normal = range.asDiagonal() * jtj * range.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(normal);
-  const Eigen::VectorXd lambda = eigen.eigenvalues();   // ascending
+  const Eigen::VectorXd lambda = eigen.eigenvalues();  // ascending
   const double largest = std::max(lambda(n - 1), 0.0);
   out.condition_number = lambda(0) > 0.0 ? largest / lambda(0) : std::numeric_limits<double>::infinity();
   // Pseudo-inverse: near-null directions are dropped (their variance is not estimable).
@@ -162,7 +162,7 @@ UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, cons
     X.col(j + 1) = spread(j) > 0.0 ? Eigen::VectorXd(d / spread(j)) : Eigen::VectorXd::Zero(m);
   }
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> qr(X);
-  const Eigen::MatrixXd B = qr.solve(sample.residuals);   // (n+1) x N regression coefficients
+  const Eigen::MatrixXd B = qr.solve(sample.residuals);  // (n+1) x N regression coefficients
   const int dof_fit = m - static_cast<int>(qr.rank());
   if (dof_fit < 1) return nothing_identifiable(n, m);
   // sigma_fit^2: scatter of the runs about the plane, per residual component.
@@ -170,9 +170,9 @@ UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, cons
   const Eigen::MatrixXd pseudo_inverse = qr.pseudoInverse();
   const Eigen::MatrixXd xtx_inverse = pseudo_inverse * pseudo_inverse.transpose();
   // Criterion (c) first: each slope row against its own noise level (see the header).
-  const Eigen::MatrixXd slopes = B.bottomRows(n);   // n x N, per scaled coordinate
+  const Eigen::MatrixXd slopes = B.bottomRows(n);  // n x N, per scaled coordinate
   std::vector<double> significance(n, 0.0);
-  std::vector<int> kept;   // variables with a significant effect
+  std::vector<int> kept;  // variables with a significant effect
   for (int j = 0; j < n; ++j) {
     const double slope = slopes.row(j).norm();
     const double noise = std::sqrt(N * fit_variance * xtx_inverse(j + 1, j + 1));
@@ -197,8 +197,8 @@ UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, cons
   // others are conditional on them (their slopes are noise: keeping them would only mix noise
   // into every direction).
   const int k = static_cast<int>(kept.size());
-  const Eigen::MatrixXd scatter = sample.residuals - X * B;   // m x N, simulation noise of each run
-  Eigen::MatrixXd jacobian(N, k);                              // physical units
+  const Eigen::MatrixXd scatter = sample.residuals - X * B;  // m x N, simulation noise of each run
+  Eigen::MatrixXd jacobian(N, k);                            // physical units
   Eigen::MatrixXd bias(k, k);
   std::vector<VariableSpec> kept_variables;
   for (int a = 0; a < k; ++a) {
@@ -215,7 +215,7 @@ UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, cons
   // The simulation noise is correlated along the curve (a different packing history shifts the
   // whole curve): its effect on the parameters is the sandwich term with Sigma estimated from
   // the runs' scatter about the plane, Sigma = E^T E / dof_fit.
-  const Eigen::MatrixXd projected = scatter * jacobian;        // m x k
+  const Eigen::MatrixXd projected = scatter * jacobian;  // m x k
   const Eigen::MatrixXd meat = projected.transpose() * projected / dof_fit;
   const UncertaintyEstimate sub =
       linearised_estimate(jtj, out.residual_variance, dof, kept_variables, confidence, &meat);

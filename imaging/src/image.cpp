@@ -9,7 +9,6 @@
 #include <iterator>
 #include <stdexcept>
 
-
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wunused-parameter"
@@ -41,7 +40,8 @@ std::string read_bytes(const std::filesystem::path& file) {
 
 std::uint32_t little_endian(const std::string& bytes, std::size_t at, int size) {
   std::uint32_t v = 0;
-  for (int k = size - 1; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
+  for (int k = size - 1; k >= 0; --k)
+    v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
   return v;
 }
 
@@ -63,10 +63,12 @@ bool looks_truncated(const std::string& bytes) {
     const std::uint64_t stride = ((static_cast<std::uint64_t>(std::abs(width)) * bits + 31) / 32) * 4;
     return offset + stride * static_cast<std::uint64_t>(std::abs(height)) > bytes.size();
   }
-  if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xFF && static_cast<unsigned char>(bytes[1]) == 0xD8) {
+  if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xFF &&
+      static_cast<unsigned char>(bytes[1]) == 0xD8) {
     const std::size_t from = bytes.size() > 1024 ? bytes.size() - 1024 : 2;
     for (std::size_t k = bytes.size() - 1; k > from; --k)
-      if (static_cast<unsigned char>(bytes[k - 1]) == 0xFF && static_cast<unsigned char>(bytes[k]) == 0xD9) return false;
+      if (static_cast<unsigned char>(bytes[k - 1]) == 0xFF && static_cast<unsigned char>(bytes[k]) == 0xD9)
+        return false;
     return true;
   }
   return false;
@@ -81,11 +83,12 @@ void append_bytes(void* context, void* data, int size) {
 GreyImage read_grey_image(const std::filesystem::path& file) {
   const std::string bytes = read_bytes(file);
   if (bytes.empty()) throw std::runtime_error("image '" + file.string() + "' is empty; give a BMP, PNG or JPEG file");
-  const std::string truncated = "image '" + file.string() + "' is truncated (its data ends before the picture does); copy the file again";
+  const std::string truncated =
+      "image '" + file.string() + "' is truncated (its data ends before the picture does); copy the file again";
   if (looks_truncated(bytes)) throw std::runtime_error(truncated);
   int width = 0, height = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
-                                                &width, &height, &channels, 1);
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                                                static_cast<int>(bytes.size()), &width, &height, &channels, 1);
   if (pixels == nullptr && std::string(stbi_failure_reason()) == "outofdata") throw std::runtime_error(truncated);
   if (pixels == nullptr)
     throw std::runtime_error("image '" + file.string() + "' cannot be decoded (" + stbi_failure_reason() +
@@ -103,21 +106,27 @@ GreyImage read_grey_image(const std::filesystem::path& file) {
 std::string encode_png(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-    throw std::runtime_error("cannot encode a PNG: the RGB image is empty or its buffer size is not 3 x width x height");
+    throw std::runtime_error(
+        "cannot encode a PNG: the RGB image is empty or its buffer size is not 3 x width x height");
   std::string encoded;
-  if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), 3 * image.width) == 0)
-    throw std::runtime_error("cannot encode a PNG of " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+  if (stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), 3 * image.width) ==
+      0)
+    throw std::runtime_error("cannot encode a PNG of " + std::to_string(image.width) + " x " +
+                             std::to_string(image.height) + " pixels");
   return encoded;
 }
 
 std::string encode_jpeg(const RgbImage& image, int quality) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-    throw std::runtime_error("cannot encode a JPEG: the RGB image is empty or its buffer size is not 3 x width x height");
-  if (quality < 1 || quality > 100) throw std::runtime_error("JPEG quality " + std::to_string(quality) + ": give 1..100");
+    throw std::runtime_error(
+        "cannot encode a JPEG: the RGB image is empty or its buffer size is not 3 x width x height");
+  if (quality < 1 || quality > 100)
+    throw std::runtime_error("JPEG quality " + std::to_string(quality) + ": give 1..100");
   std::string encoded;
   if (stbi_write_jpg_to_func(append_bytes, &encoded, image.width, image.height, 3, image.rgb.data(), quality) == 0)
-    throw std::runtime_error("cannot encode a JPEG of " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+    throw std::runtime_error("cannot encode a JPEG of " + std::to_string(image.width) + " x " +
+                             std::to_string(image.height) + " pixels");
   return encoded;
 }
 

@@ -19,10 +19,12 @@ OccupancyAccumulator::OccupancyAccumulator(const DrumFrame& frame, int pixels) :
   stamp_.assign(covered_count_.size(), 0);
 }
 
-void OccupancyAccumulator::add_snapshot(const std::vector<double>& x, const std::vector<double>& z, const std::vector<double>& radius) {
+void OccupancyAccumulator::add_snapshot(const std::vector<double>& x, const std::vector<double>& z,
+                                        const std::vector<double>& radius) {
   if (x.size() != z.size() || x.size() != radius.size())
-    throw std::runtime_error("occupancy snapshot: x, z and radius have different lengths (" + std::to_string(x.size()) + ", " +
-                             std::to_string(z.size()) + ", " + std::to_string(radius.size()) + "); give one entry per particle");
+    throw std::runtime_error("occupancy snapshot: x, z and radius have different lengths (" + std::to_string(x.size()) +
+                             ", " + std::to_string(z.size()) + ", " + std::to_string(radius.size()) +
+                             "); give one entry per particle");
   for (std::size_t p = 0; p < x.size(); ++p)
     if (!std::isfinite(x[p]) || !std::isfinite(z[p]) || !std::isfinite(radius[p]) || radius[p] < 0.0)
       throw std::runtime_error("occupancy snapshot: particle " + std::to_string(p) +
@@ -50,7 +52,8 @@ void OccupancyAccumulator::add_snapshot(const std::vector<double>& x, const std:
 }
 
 GreyImage OccupancyAccumulator::occupancy() const {
-  if (snapshots_ == 0) throw std::runtime_error("occupancy image: no snapshot was added; add at least one before reading it");
+  if (snapshots_ == 0)
+    throw std::runtime_error("occupancy image: no snapshot was added; add at least one before reading it");
   GreyImage image;
   image.width = image.height = pixels_;
   image.source = "occupancy image";

@@ -52,7 +52,8 @@ double otsu_threshold(const GreyImage& image, double margin) {
   }
   const std::string name = image.source.empty() ? std::string("image") : "image '" + image.source + "'";
   if (best <= 0.0)
-    throw std::runtime_error(name + ": a single grey level inside the compared circle, so no material/empty split exists; "
+    throw std::runtime_error(name +
+                             ": a single grey level inside the compared circle, so no material/empty split exists; "
                              "check that it is a drum photo (not all dark or all light)");
   // Empty bins between the two modes give a plateau of equal variance; its middle keeps the
   // threshold halfway between the modes (Otsu's first maximum would hug the lower mode).

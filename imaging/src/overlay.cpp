@@ -22,8 +22,8 @@ void to_pixel(const RgbImage& image, const DrumFrame& frame, double x, double z,
 
 }  // namespace
 
-void draw_profile(RgbImage& image, const DrumFrame& frame, const SurfaceProfile& profile, std::uint8_t red, std::uint8_t green,
-                  std::uint8_t blue) {
+void draw_profile(RgbImage& image, const DrumFrame& frame, const SurfaceProfile& profile, std::uint8_t red,
+                  std::uint8_t green, std::uint8_t blue) {
   for (std::size_t i = 0; i + 1 < profile.x.size(); ++i) {
     double c0, r0, c1, r1;
     to_pixel(image, frame, profile.x[i], profile.z[i], c0, r0);
@@ -31,7 +31,8 @@ void draw_profile(RgbImage& image, const DrumFrame& frame, const SurfaceProfile&
     const int steps = 1 + static_cast<int>(2.0 * std::max(std::abs(c1 - c0), std::abs(r1 - r0)));
     for (int s = 0; s <= steps; ++s) {
       const double t = static_cast<double>(s) / steps;
-      const int c = static_cast<int>(std::lround(c0 + t * (c1 - c0))), r = static_cast<int>(std::lround(r0 + t * (r1 - r0)));
+      const int c = static_cast<int>(std::lround(c0 + t * (c1 - c0))),
+                r = static_cast<int>(std::lround(r0 + t * (r1 - r0)));
       for (int dr = -1; dr <= 1; ++dr)
         for (int dc = -1; dc <= 1; ++dc) paint(image, c + dc, r + dr, red, green, blue);
     }

@@ -21,15 +21,18 @@ double interpolate(const SurfaceProfile& p, double x) {
 
 void check_profile(const SurfaceProfile& p, const char* which) {
   if (p.x.size() < 2 || p.x.size() != p.z.size())
-    throw std::runtime_error(std::string("profile ") + which + " has fewer than 2 points (or x and z differ in length); extract a surface first");
+    throw std::runtime_error(std::string("profile ") + which +
+                             " has fewer than 2 points (or x and z differ in length); extract a surface first");
 }
 
 // Merged breakpoints of a and b inside their common x-range, and the difference a - b at each.
-void merged_differences(const SurfaceProfile& a, const SurfaceProfile& b, std::vector<double>& x, std::vector<double>& d) {
+void merged_differences(const SurfaceProfile& a, const SurfaceProfile& b, std::vector<double>& x,
+                        std::vector<double>& d) {
   check_profile(a, "a");
   check_profile(b, "b");
   const double lo = std::max(a.x.front(), b.x.front()), hi = std::min(a.x.back(), b.x.back());
-  if (!(hi > lo)) throw std::runtime_error("the two profiles share no x-range; compare profiles of the same drum frame");
+  if (!(hi > lo))
+    throw std::runtime_error("the two profiles share no x-range; compare profiles of the same drum frame");
   x = {lo, hi};
   for (const SurfaceProfile* p : {&a, &b})
     for (double xi : p->x)

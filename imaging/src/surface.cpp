@@ -29,18 +29,23 @@ std::string image_name(const GreyImage& image) {
 void check_inputs(const GreyImage& image, const DrumFrame& frame, const ProfileOptions& options) {
   const std::string name = image_name(image);
   if (image.width != image.height)
-    throw std::runtime_error(name + " is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                             " pixels; a drum image must be square and span the drum diameter in both directions: crop it to the drum");
+    throw std::runtime_error(
+        name + " is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+        " pixels; a drum image must be square and span the drum diameter in both directions: crop it to the drum");
   if (image.width < 32)
-    throw std::runtime_error(name + " is " + std::to_string(image.width) + " pixels wide; at least 32 are needed to find a surface");
+    throw std::runtime_error(name + " is " + std::to_string(image.width) +
+                             " pixels wide; at least 32 are needed to find a surface");
   if (image.value.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     throw std::runtime_error(name + ": pixel buffer size is not width x height");
   if (!(frame.diameter > 0.0) || !std::isfinite(frame.diameter))
-    throw std::runtime_error("drum diameter is " + std::to_string(frame.diameter) + " m; give the inner drum diameter (> 0), e.g. 0.084 m");
+    throw std::runtime_error("drum diameter is " + std::to_string(frame.diameter) +
+                             " m; give the inner drum diameter (> 0), e.g. 0.084 m");
   if (!(options.margin >= 0.0 && options.margin < 1.0))
-    throw std::runtime_error("margin is " + std::to_string(options.margin) + "; give a fraction of the radius in [0, 1), e.g. 0.1");
+    throw std::runtime_error("margin is " + std::to_string(options.margin) +
+                             "; give a fraction of the radius in [0, 1), e.g. 0.1");
   if (options.threshold > 1.0 || std::isnan(options.threshold))
-    throw std::runtime_error("threshold is " + std::to_string(options.threshold) + "; give a grey level in [0, 1] or a negative value for Otsu's");
+    throw std::runtime_error("threshold is " + std::to_string(options.threshold) +
+                             "; give a grey level in [0, 1] or a negative value for Otsu's");
   if (options.points < 2)
     throw std::runtime_error("points is " + std::to_string(options.points) + "; give at least 2 profile abscissae");
 }
@@ -65,12 +70,14 @@ Grid make_grid(int n, const DrumFrame& frame, double margin) {
 }
 
 bool inside(const Grid& grid, int column, int row) {
-  return column >= 0 && column < grid.n && grid.top[column] >= 0 && row >= grid.top[column] && row <= grid.bottom[column];
+  return column >= 0 && column < grid.n && grid.top[column] >= 0 && row >= grid.top[column] &&
+         row <= grid.bottom[column];
 }
 
 // Bed mask: material pixels inside the circle 4-connected to a seed, the lowest circle pixel of a
 // column below the axis (the drum bottom). Depth-first fill with an explicit stack.
-std::vector<unsigned char> bed_mask(const GreyImage& image, const Grid& grid, double threshold, bool dark, int& material_count) {
+std::vector<unsigned char> bed_mask(const GreyImage& image, const Grid& grid, double threshold, bool dark,
+                                    int& material_count) {
   const int n = grid.n;
   std::vector<unsigned char> material(static_cast<std::size_t>(n) * n, 0), bed(material.size(), 0);
   material_count = 0;
@@ -116,7 +123,8 @@ void class_levels(const GreyImage& image, const Grid& grid, double threshold, bo
       const float v = image.value[static_cast<std::size_t>(row) * grid.n + column];
       ((dark ? v < threshold : v > threshold) ? material : empty).push_back(v);
     }
-  for (auto [values, level] : {std::pair{&material, &profile.material_level}, std::pair{&empty, &profile.empty_level}}) {
+  for (auto [values, level] :
+       {std::pair{&material, &profile.material_level}, std::pair{&empty, &profile.empty_level}}) {
     if (values->empty()) continue;
     const auto middle = values->begin() + static_cast<std::ptrdiff_t>(values->size() / 2);
     std::nth_element(values->begin(), middle, values->end());
@@ -127,7 +135,8 @@ void class_levels(const GreyImage& image, const Grid& grid, double threshold, bo
 // Per column: height [m] of the top of the bed, or NaN when the column has no bed pixel or the bed
 // reaches the top of the circle. Sub-pixel: the grey level is interpolated linearly between the
 // topmost bed pixel and the empty pixel above it, and the surface put where it crosses the threshold.
-std::vector<double> column_heights(const GreyImage& image, const Grid& grid, const std::vector<unsigned char>& bed, double threshold) {
+std::vector<double> column_heights(const GreyImage& image, const Grid& grid, const std::vector<unsigned char>& bed,
+                                   double threshold) {
   const int n = grid.n;
   std::vector<double> height(n, std::nan(""));
   for (int column = 0; column < n; ++column) {
@@ -182,7 +191,8 @@ ProfileOptions occupancy_profile_options(const ProfileOptions& photo_options) {
 
 double equivalent_occupancy(const SurfaceProfile& profile) {
   if (profile.material_level == profile.empty_level)
-    throw std::runtime_error("equivalent occupancy: the profile's material and empty grey levels are equal; extract a surface first");
+    throw std::runtime_error(
+        "equivalent occupancy: the profile's material and empty grey levels are equal; extract a surface first");
   return (profile.threshold_used - profile.empty_level) / (profile.material_level - profile.empty_level);
 }
 
@@ -194,14 +204,17 @@ SurfaceProfile extract_surface(const GreyImage& image, const DrumFrame& frame, c
   profile.compared_radius = grid.compared;
   profile.pixel_size = grid.h;
   int material_count = 0;
-  const std::vector<unsigned char> bed = bed_mask(image, grid, profile.threshold_used, options.material_is_dark, material_count);
+  const std::vector<unsigned char> bed =
+      bed_mask(image, grid, profile.threshold_used, options.material_is_dark, material_count);
   class_levels(image, grid, profile.threshold_used, options.material_is_dark, profile);
   sample_profile(grid, column_heights(image, grid, bed, profile.threshold_used), options.points, profile);
   if (profile.x.size() < 2) {
-    const std::string what = material_count == 0 ? "no pixel is material" : "the material fills the circle or does not reach its bottom";
-    throw std::runtime_error(image_name(image) + ": no free surface found inside the compared circle (" + what + " at threshold " +
-                             std::to_string(profile.threshold_used) + ", material " + (options.material_is_dark ? "dark" : "light") +
-                             "); check that it is a drum photo, the threshold, the contrast (--inverted) and the margin");
+    const std::string what =
+        material_count == 0 ? "no pixel is material" : "the material fills the circle or does not reach its bottom";
+    throw std::runtime_error(
+        image_name(image) + ": no free surface found inside the compared circle (" + what + " at threshold " +
+        std::to_string(profile.threshold_used) + ", material " + (options.material_is_dark ? "dark" : "light") +
+        "); check that it is a drum photo, the threshold, the contrast (--inverted) and the margin");
   }
   return profile;
 }

@@ -12,28 +12,28 @@
 namespace demfit::rbf_surrogate::detail {
 
 struct Prepared {
-    Basis basis;
-    Tail tail;
-    WidthCriterion criterion;
-    MatrixXd points;             // n×d
-    MatrixXd d2;                 // n×n squared distances
-    MatrixXd tail_p;             // n×q
-    MatrixXd null_basis;         // n×(n-q), orthonormal, P^T Q = 0
-    MatrixXd scaled_values;      // n×m_eff: outputs / sqrt(m·var), compressed to <= n columns
-    double nearest_mean = 0.0;   // mean nearest-neighbour distance
-    double diameter = 0.0;       // largest pairwise distance
+  Basis basis;
+  Tail tail;
+  WidthCriterion criterion;
+  MatrixXd points;            // n×d
+  MatrixXd d2;                // n×n squared distances
+  MatrixXd tail_p;            // n×q
+  MatrixXd null_basis;        // n×(n-q), orthonormal, P^T Q = 0
+  MatrixXd scaled_values;     // n×m_eff: outputs / sqrt(m·var), compressed to <= n columns
+  double nearest_mean = 0.0;  // mean nearest-neighbour distance
+  double diameter = 0.0;      // largest pairwise distance
 };
 
 // Validates inputs (one-line std::invalid_argument) and builds the width-independent parts.
 Prepared prepare(const MatrixXd& points, const MatrixXd& values, const RbfOptions& options);
 
 struct Spectrum {
-    MatrixXd w;          // n×k = Q V
-    VectorXd eigen;      // k eigenvalues of Q^T A Q
-    MatrixXd z;          // k×m_eff = W^T scaled_values
-    double scale = 1.0;  // max |eigenvalue|, the unit of the relative smoothing
-    double sign = 1.0;
-    double width = 0.0;
+  MatrixXd w;          // n×k = Q V
+  VectorXd eigen;      // k eigenvalues of Q^T A Q
+  MatrixXd z;          // k×m_eff = W^T scaled_values
+  double scale = 1.0;  // max |eigenvalue|, the unit of the relative smoothing
+  double sign = 1.0;
+  double width = 0.0;
 };
 
 Spectrum spectrum(const Prepared& prepared, double width);

@@ -36,8 +36,9 @@ MpiEvaluator::MpiEvaluator(MpiSession& session, MpiEvaluatorOptions options)
     : session_(session), options_(options), alive_(static_cast<std::size_t>(session.size()), true) {
   if (session.rank() != 0) throw std::logic_error("MpiEvaluator lives on rank 0 only");
   if (session.size() < 2) {
-    throw std::runtime_error("--mpi needs at least 2 ranks (rank 0 runs the loop, the others evaluate): "
-                             "start with mpirun -np K, K >= 2");
+    throw std::runtime_error(
+        "--mpi needs at least 2 ranks (rank 0 runs the loop, the others evaluate): "
+        "start with mpirun -np K, K >= 2");
   }
   alive_[0] = false;  // rank 0 runs the loop, not simulations
 }
@@ -52,9 +53,7 @@ MpiEvaluator::~MpiEvaluator() {
 
 int MpiEvaluator::concurrency() const { return std::max(1, live_workers()); }
 
-int MpiEvaluator::live_workers() const {
-  return static_cast<int>(std::count(alive_.begin(), alive_.end(), true));
-}
+int MpiEvaluator::live_workers() const { return static_cast<int>(std::count(alive_.begin(), alive_.end(), true)); }
 
 double MpiEvaluator::current_timeout() const {
   if (options_.run_timeout_seconds > 0.0) return options_.run_timeout_seconds;
@@ -70,12 +69,12 @@ void MpiEvaluator::retire(int worker, const std::string& why) {
   if (MPI_Isend(&lost, 1, MPI_CHAR, worker, tag_stop, MPI_COMM_WORLD, &request) == MPI_SUCCESS) {
     MPI_Request_free(&request);
   }
-  std::cerr << "demfit: warning: MPI rank " << worker << " retired (" << why << "); "
-            << live_workers() << " worker(s) left\n";
+  std::cerr << "demfit: warning: MPI rank " << worker << " retired (" << why << "); " << live_workers()
+            << " worker(s) left\n";
 }
 
-std::vector<identify::EvaluationOutcome> MpiEvaluator::evaluate_jobs(
-    const std::vector<identify::EvaluationJob>& batch, const DoneCallback& on_done) {
+std::vector<identify::EvaluationOutcome> MpiEvaluator::evaluate_jobs(const std::vector<identify::EvaluationJob>& batch,
+                                                                     const DoneCallback& on_done) {
   std::vector<identify::EvaluationOutcome> outcomes(batch.size());
   std::vector<int> attempts(batch.size(), 0);
   std::deque<std::size_t> pending;

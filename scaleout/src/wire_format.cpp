@@ -8,9 +8,7 @@ namespace demfit::scaleout {
 
 using nlohmann::json;
 
-std::string encode_parameters(const identify::ParameterSet& parameters) {
-  return json(parameters).dump();
-}
+std::string encode_parameters(const identify::ParameterSet& parameters) { return json(parameters).dump(); }
 
 identify::ParameterSet decode_parameters(const std::string& text) {
   return json::parse(text).get<identify::ParameterSet>();
@@ -26,7 +24,9 @@ identify::EvaluationJob decode_job(const std::string& text) {
 }
 
 std::string encode_outcome(const identify::EvaluationOutcome& outcome) {
-  return json{{"ok", outcome.ok}, {"error", outcome.error}, {"wall_seconds", outcome.wall_seconds},
+  return json{{"ok", outcome.ok},
+              {"error", outcome.error},
+              {"wall_seconds", outcome.wall_seconds},
               {"curves", identify::curves_to_json(outcome.curves)}}
       .dump();
 }

@@ -63,41 +63,47 @@ void check_clean_failure(const CliRun& run, const std::string& field, const fs::
 TEST_CASE("simulate with malformed JSON fails naming the file and writes nothing") {
   const fs::path dir = scratch("malformed");
   write(dir / "case.json", "{\"case\": \"pellet_compression\", \"particle\": {\"radius\": }");
-  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
-                      "case.json", dir);
+  check_clean_failure(
+      run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+      "case.json", dir);
 }
 
 TEST_CASE("simulate with an unknown key fails naming the dotted key and writes nothing") {
   const fs::path dir = scratch("unknown_key");
   write(dir / "case.json", R"({"case": "pellet_compression", "pellet": {"piston_sped": 0.1}})");
-  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
-                      "pellet.piston_sped", dir);
+  check_clean_failure(
+      run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+      "pellet.piston_sped", dir);
 }
 
 TEST_CASE("simulate with a negative radius fails naming particle.radius and writes nothing") {
   const fs::path dir = scratch("negative_radius");
   write(dir / "case.json", R"({"case": "pellet_compression", "particle": {"radius": -0.001}})");
-  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
-                      "particle.radius", dir);
+  check_clean_failure(
+      run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+      "particle.radius", dir);
 }
 
 TEST_CASE("simulate with a time step above the stable limit fails naming time_step.value and writes nothing") {
   const fs::path dir = scratch("time_step");
   write(dir / "case.json", R"({"case": "rotary_drum", "time_step": {"value": 0.01}})");
-  check_clean_failure(run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
-                      "time_step.value", dir);
+  check_clean_failure(
+      run_demfit("simulate '" + (dir / "case.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+      "time_step.value", dir);
 }
 
 TEST_CASE("simulate with a missing case file fails naming the file and writes nothing") {
   const fs::path dir = scratch("missing");
-  check_clean_failure(run_demfit("simulate '" + (dir / "nope.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
-                      "nope.json", dir);
+  check_clean_failure(
+      run_demfit("simulate '" + (dir / "nope.json").string() + "' --out '" + (dir / "out").string() + "'", dir),
+      "nope.json", dir);
 }
 
 TEST_CASE("simulate with an unknown --set parameter path fails naming it and writes nothing") {
   const fs::path dir = scratch("bad_set");
-  check_clean_failure(run_demfit(std::string("simulate '") + DEMFIT_SOURCE_DIR + "/cases/rotary_drum.json' --set drum.rpmm=30 --out '" +
-                                     (dir / "out").string() + "'",
-                                 dir),
-                      "drum.rpmm", dir);
+  check_clean_failure(
+      run_demfit(std::string("simulate '") + DEMFIT_SOURCE_DIR + "/cases/rotary_drum.json' --set drum.rpmm=30 --out '" +
+                     (dir / "out").string() + "'",
+                 dir),
+      "drum.rpmm", dir);
 }

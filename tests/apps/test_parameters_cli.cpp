@@ -37,7 +37,8 @@ std::string file_text(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("demfit simulate --help lists every model parameter with its unit, valid range and meaning", "[apps][parameters]") {
+TEST_CASE("demfit simulate --help lists every model parameter with its unit, valid range and meaning",
+          "[apps][parameters]") {
   const std::string help = demfit_output("simulate --help");
   for (const ParameterRow& row : parameter_table()) {
     INFO(row.name);
@@ -58,5 +59,6 @@ TEST_CASE("docs/parameters.md is exactly what demfit parameters prints", "[apps]
 TEST_CASE("demfit parameters prints one Markdown row per table row", "[apps][parameters]") {
   const std::string printed = demfit_output("parameters");
   for (const ParameterRow& row : parameter_table())
-    CHECK_THAT(printed, Catch::Contains("| `" + std::string(row.name) + "` | " + row.unit + " | " + row.valid.to_string() + " |"));
+    CHECK_THAT(printed, Catch::Contains("| `" + std::string(row.name) + "` | " + row.unit + " | " +
+                                        row.valid.to_string() + " |"));
 }

@@ -52,7 +52,8 @@ void check_curves_as_declared(const CaseSpec& spec, const CaseResult& result) {
 
 }  // namespace
 
-TEST_CASE("A small pellet compression runs and, with frictionless walls, the bottom plate carries piston force plus weight") {
+TEST_CASE(
+    "A small pellet compression runs and, with frictionless walls, the bottom plate carries piston force plus weight") {
   const CaseSpec spec = small_pellet_case();
   const CaseResult result = run_case(spec, {}, test_options());
   check_curves_as_declared(spec, result);
@@ -146,8 +147,10 @@ class SmallPelletModel final : public demfit::identify::Model {
 
 }  // namespace
 
-TEST_CASE("Table 1 in miniature: the generating NORMK of a small pellet bed lies inside the interval identified from its noisy curve",
-          "[slow]") {
+TEST_CASE(
+    "Table 1 in miniature: the generating NORMK of a small pellet bed lies inside the interval identified from its "
+    "noisy curve",
+    "[slow]") {
   // The Table 1 chain on 120 pellets: curve at NORMK 0.875046, SHEARK 0.299582 plus 1 % noise,
   // identified from the LS-DYNA defaults with the regression uncertainty (issue #4). The
   // least-squares centre must lie within its 95 % interval of the generating NORMK, NORMK must not
@@ -159,10 +162,15 @@ TEST_CASE("Table 1 in miniature: the generating NORMK of a small pellet bed lies
   const nlohmann::json study = {
       {"demfit_study_version", 1},
       {"model", {{"case", "pellet_compression"}}},
-      {"variables", {{{"name", "normk"}, {"lower", 0.01}, {"upper", 2.0}, {"initial", 0.01}, {"log_scale", true}},
-                     {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}}},
-      {"targets", {{{"curve", "pressure_volume"}, {"x_column", "volume_cm3"}, {"y_column", "pressure_MPa"},
-                    {"x", curve.x}, {"y", noisy}}}},
+      {"variables",
+       {{{"name", "normk"}, {"lower", 0.01}, {"upper", 2.0}, {"initial", 0.01}, {"log_scale", true}},
+        {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}}},
+      {"targets",
+       {{{"curve", "pressure_volume"},
+         {"x_column", "volume_cm3"},
+         {"y_column", "pressure_MPa"},
+         {"x", curve.x},
+         {"y", noisy}}}},
       {"sampling", {{"points_per_iteration", 6}}},
       {"stopping", {{"max_iterations", 7}, {"design_tolerance", 0.001}, {"objective_tolerance", 0.001}}},
       {"seed", 1}};
@@ -181,8 +189,8 @@ TEST_CASE("Table 1 in miniature: the generating NORMK of a small pellet bed lies
   // Identifiable, i.e. the interval is narrower than half the bounds (120 pellets at 0.5 MPa give
   // a much less informative curve than the 1450-pellet bed: measured +-0.55 around 1.12 here).
   CHECK(std::find(result.unidentifiable.begin(), result.unidentifiable.end(), "normk") == result.unidentifiable.end());
-  const bool sheark_flagged = std::find(result.unidentifiable.begin(), result.unidentifiable.end(), "sheark") !=
-                              result.unidentifiable.end();
+  const bool sheark_flagged =
+      std::find(result.unidentifiable.begin(), result.unidentifiable.end(), "sheark") != result.unidentifiable.end();
   const double sheark = result.least_squares_estimate.at("sheark");
   CHECK((sheark_flagged || std::abs(sheark - 0.299582) <= result.ci_half_width.at("sheark")));
 }

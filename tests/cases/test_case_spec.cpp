@@ -13,9 +13,7 @@ namespace {
 std::string message_of(const json& document) {
   try {
     parse_case(document);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+  } catch (const std::exception& e) { return e.what(); }
   return "";
 }
 }  // namespace
@@ -30,8 +28,7 @@ TEST_CASE("The shipped case files parse and their resolved JSON parses back to t
 }
 
 TEST_CASE("The pellet case's bulk modulus is E / (3 (1 - 2 nu)) = 1767 MPa as in Table 1") {
-  const CaseSpec spec =
-      parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/pellet_compression.json"));
+  const CaseSpec spec = parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/pellet_compression.json"));
   CHECK(spec.material.bulk_modulus() == Approx(1.06e9 / (3.0 * (1.0 - 0.8))).epsilon(1e-14));
   CHECK(std::lround(spec.material.bulk_modulus() / 1e6) == 1767);
 }
@@ -48,8 +45,9 @@ TEST_CASE("Unknown keys, negative radii and wrong types are rejected with the do
   wrong_type["contact"] = {{"normk", "big"}};
   CHECK(message_of(wrong_type).find("contact.normk") != std::string::npos);
   CHECK(message_of(json{{"case", "mixer"}}).find("case") != std::string::npos);
-  CHECK(message_of(json{{"case", "rotary_drum"}, {"drum", {{"coarse_graining", "xyz"}}}})
-            .find("drum.coarse_graining") != std::string::npos);
+  CHECK(
+      message_of(json{{"case", "rotary_drum"}, {"drum", {{"coarse_graining", "xyz"}}}}).find("drum.coarse_graining") !=
+      std::string::npos);
 }
 
 TEST_CASE("FRICD defaults to FRICS when the file leaves it out (LS-DYNA default)") {
@@ -87,21 +85,25 @@ TEST_CASE("Every case kind has one registry row, found by its case-file name, an
 }
 
 TEST_CASE("A case file carrying another kind's section is refused naming the section") {
-  CHECK(message_of({{"case", "pellet_compression"}, {"drum", json::object()}}) == "'drum' is not allowed in a pellet_compression case");
-  CHECK(message_of({{"case", "rotary_drum"}, {"pellet", json::object()}}) == "'pellet' is not allowed in a rotary_drum case");
+  CHECK(message_of({{"case", "pellet_compression"}, {"drum", json::object()}}) ==
+        "'drum' is not allowed in a pellet_compression case");
+  CHECK(message_of({{"case", "rotary_drum"}, {"pellet", json::object()}}) ==
+        "'pellet' is not allowed in a rotary_drum case");
 }
 
-TEST_CASE("The curves a case declares follow its options: the pellet cycle with unload, the image surface with drum.image") {
+TEST_CASE(
+    "The curves a case declares follow its options: the pellet cycle with unload, the image surface with drum.image") {
   auto names = [](const CaseSpec& spec) {
     std::vector<std::string> out;
     for (const auto& c : produced_curves(spec)) out.push_back(c.name);
     return out;
   };
   json pellet = {{"case", "pellet_compression"}};
-  CHECK(names(parse_case(pellet)) == std::vector<std::string>{"pressure_volume", "bottom_force_volume", "quasi_static_check"});
-  pellet["pellet"] = {{"unload", true}};
   CHECK(names(parse_case(pellet)) ==
-        std::vector<std::string>{"pressure_volume", "bottom_force_volume", "pressure_volume_cycle", "quasi_static_check"});
+        std::vector<std::string>{"pressure_volume", "bottom_force_volume", "quasi_static_check"});
+  pellet["pellet"] = {{"unload", true}};
+  CHECK(names(parse_case(pellet)) == std::vector<std::string>{"pressure_volume", "bottom_force_volume",
+                                                              "pressure_volume_cycle", "quasi_static_check"});
   json drum = {{"case", "rotary_drum"}};
   CHECK(names(parse_case(drum)) == std::vector<std::string>{"torque", "free_surface"});
   drum["drum"] = {{"image", {{"pixels", 200}}}};

@@ -29,11 +29,10 @@ json tiny_overrides(const std::string& case_name) {
   const json off = {{"wall_contact", {{"frics", 0.0}}}, {"contact", {{"fricr", 0.0}, {"normk", 0.05}}}};
   json o = off;
   if (case_name == "pellet_compression") {
-    o["pellet"] = {{"particle_count", 150}, {"container_diameter", 0.024}, {"settle_time", 0.3},
-                   {"piston_speed", 0.2}, {"max_pressure", 0.3e6}, {"max_travel", 0.004},
-                   {"unload", true}, {"curve_points", 20}};
+    o["pellet"] = {{"particle_count", 150}, {"container_diameter", 0.024}, {"settle_time", 0.3}, {"piston_speed", 0.2},
+                   {"max_pressure", 0.3e6}, {"max_travel", 0.004},         {"unload", true},     {"curve_points", 20}};
   } else {
-    o["drum"] = {{"scale_factor", 4.0}, {"duration", 0.15}, {"densify_time", 0.3}, {"torque_interval", 0.01},
+    o["drum"] = {{"scale_factor", 4.0},    {"duration", 0.15},       {"densify_time", 0.3}, {"torque_interval", 0.01},
                  {"surface_window", 0.05}, {"surface_snapshots", 2}, {"surface_points", 21}};
   }
   return o;
@@ -95,8 +94,9 @@ TEST_CASE("Every catalogue parameter is an identified parameter of the cases it 
         CHECK(p.lower <= p.off_value);
         CHECK(p.off_value < p.upper);
         // --set name=upper reaches the field and survives the to_json/parse round trip.
-        json document = json::parse(to_json(parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/" +
-                                                                      case_name + ".json"))).dump());
+        json document = json::parse(
+            to_json(parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/" + case_name + ".json")))
+                .dump());
         apply_setting(document, p.name + "=" + std::to_string(p.upper));
         const CaseSpec spec = parse_case(document);
         const std::string path = parameter_path(p.name);
@@ -109,13 +109,15 @@ TEST_CASE("Every catalogue parameter is an identified parameter of the cases it 
   }
   // The new effect parameters default to their off values in the shipped cases.
   for (const char* name : {"unloading_stiffness_ratio", "surface_energy", "stiffness_exponent", "radius_spread"}) {
-    const double off = std::string(name) == "unloading_stiffness_ratio" || std::string(name) == "stiffness_exponent" ? 1.0 : 0.0;
+    const double off =
+        std::string(name) == "unloading_stiffness_ratio" || std::string(name) == "stiffness_exponent" ? 1.0 : 0.0;
     CHECK(pellet->default_parameters().at(name) == off);
     CHECK(drum->default_parameters().at(name) == off);
   }
   // Plasticity needs unloading, which only the pellet case has.
   const auto drum_effects = effects_for_case("rotary_drum");
-  CHECK(std::none_of(drum_effects.begin(), drum_effects.end(), [](const EffectInfo& e) { return e.name == "plasticity"; }));
+  CHECK(std::none_of(drum_effects.begin(), drum_effects.end(),
+                     [](const EffectInfo& e) { return e.name == "plasticity"; }));
   CHECK_THROWS_WITH(effects_for_case("hopper"), Catch::Contains("hopper"));
 }
 
@@ -153,7 +155,8 @@ TEST_CASE("A polydisperse coarse-grained drum fill settles and rotates (its dens
   // round-off short of its end time, which no step covered (dem_core settle loop); ctest's
   // timeout fails this test if that comes back.
   json document = read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json");
-  document.merge_patch({{"drum", {{"scale_factor", 4.0}, {"duration", 0.05}, {"surface_window", 0.0}, {"surface_snapshots", 1}}}});
+  document.merge_patch(
+      {{"drum", {{"scale_factor", 4.0}, {"duration", 0.05}, {"surface_window", 0.0}, {"surface_snapshots", 1}}}});
   const CaseResult result = run_case(parse_case(document), {{"radius_spread", 0.05}}, test_options());
   CHECK(result.curves.at("free_surface").x.size() >= 2);
 }
@@ -174,10 +177,6 @@ TEST_CASE("Cache keys of cases without effects do not mention the effects, and d
   CHECK(key.at("contact").at("surface_energy") == 0.2);
 }
 
-TEST_CASE("Pellet case: each effect's upper bound changes the curves") {
-  check_effects_on_case("pellet_compression");
-}
+TEST_CASE("Pellet case: each effect's upper bound changes the curves") { check_effects_on_case("pellet_compression"); }
 
-TEST_CASE("Drum case: each effect's upper bound changes the curves") {
-  check_effects_on_case("rotary_drum");
-}
+TEST_CASE("Drum case: each effect's upper bound changes the curves") { check_effects_on_case("rotary_drum"); }

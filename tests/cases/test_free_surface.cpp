@@ -53,8 +53,7 @@ TEST_CASE("The extracted surface of a bed under an inclined plane recovers the p
     CHECK(std::fabs(profile.height[k] - plane(profile.x[k])) <= tolerance);
   }
   // Angle of repose of the plane: atan(0.3) = 16.70 degrees.
-  CHECK(repose_angle_degrees(profile, -0.03, 0.03) ==
-        Approx(std::atan(slope) * 180.0 / std::numbers::pi).margin(0.5));
+  CHECK(repose_angle_degrees(profile, -0.03, 0.03) == Approx(std::atan(slope) * 180.0 / std::numbers::pi).margin(0.5));
 }
 
 TEST_CASE("The extracted surface of a curved bed recovers the curve") {
@@ -77,8 +76,8 @@ TEST_CASE("Particles thrown above the bed, alone or in a small group, do not cha
   const SurfaceOptions options{-0.035, 0.035, 29, 0.1};
   const SurfaceProfile clean = extract_free_surface(bed.positions, bed.radii, options);
   ParticleSet flying = bed;
-  flying.add(0.0, 0.02, 0.0);                 // a single particle 2 cm above the surface
-  flying.add(0.01, 0.015, 0.002);             // a touching pair
+  flying.add(0.0, 0.02, 0.0);      // a single particle 2 cm above the surface
+  flying.add(0.01, 0.015, 0.002);  // a touching pair
   flying.add(0.0115, 0.0165, 0.002);
   const SurfaceProfile with_flyers = extract_free_surface(flying.positions, flying.radii, options);
   REQUIRE(with_flyers.height.size() == clean.height.size());

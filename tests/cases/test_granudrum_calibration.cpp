@@ -78,7 +78,8 @@ TEST_CASE("Surface errors of a profile moved up by 2 mm are 2 mm RMS and 2 mm ti
   }
 }
 
-TEST_CASE("The granudrum report writes side-by-side and overlay pictures per speed and states the errors", "[granudrum]") {
+TEST_CASE("The granudrum report writes side-by-side and overlay pictures per speed and states the errors",
+          "[granudrum]") {
   const identify::StudySpec spec = identify::load_study_file(kSource / "cases" / "granudrum_calibration_quick.json");
   const fs::path dir = scratch("pictures");
   const identify::CurveSet best = shifted_targets(spec, -3.0);
@@ -121,8 +122,13 @@ namespace {
 
 // A tiny GranuDrum (s = 5: ~230 particles, 0.15 s of rotation) for the code paths that run DEM.
 nlohmann::json tiny_drum(double rpm) {
-  return {{"drum", {{"rpm", rpm}, {"scale_factor", 5.0}, {"duration", 0.15}, {"surface_window", 0.05},
-                    {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
+  return {{"drum",
+           {{"rpm", rpm},
+            {"scale_factor", 5.0},
+            {"duration", 0.15},
+            {"surface_window", 0.05},
+            {"surface_snapshots", 3},
+            {"densify_time", 0.1}}}};
 }
 
 // The shipped quick study with the tiny drum, 3 points per iteration and one iteration, written
@@ -134,7 +140,8 @@ fs::path tiny_study(const fs::path& dir) {
     const double rpm = e["model"]["overrides"]["drum"]["rpm"];
     e["model"]["case"] = (kSource / "cases" / "granudrum_mcc.json").string();
     e["model"]["overrides"].merge_patch(tiny_drum(rpm));  // keeps the study's time step (4e-5 s)
-    for (auto& t : e["targets"]) t["image"] = (kSource / "cases" / t["image"].get<std::string>()).lexically_normal().string();
+    for (auto& t : e["targets"])
+      t["image"] = (kSource / "cases" / t["image"].get<std::string>()).lexically_normal().string();
   }
   study["sampling"]["points_per_iteration"] = 3;
   study["stopping"]["max_iterations"] = 1;
@@ -144,7 +151,8 @@ fs::path tiny_study(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and writes its report", "[granudrum][slow]") {
+TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and writes its report",
+          "[granudrum][slow]") {
   const fs::path dir = scratch("tiny");
   ::setenv("DEMFIT_CACHE_DIR", (fs::path(DEMFIT_BINARY_DIR) / "test_cache").c_str(), 1);
   cases::GranudrumOptions options;
@@ -153,10 +161,15 @@ TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and 
   options.study_file = tiny_study(dir);
   options.anchor = true;
   options.resolution_scales = {6.0};  // one coarser run per speed beside the (tiny) anchor
-  options.anchor_overrides = {{"drum", {{"scale_factor", 5.0}, {"duration", 0.15}, {"surface_window", 0.05},
-                                        {"surface_snapshots", 3}, {"densify_time", 0.1}}}};
+  options.anchor_overrides = {{"drum",
+                               {{"scale_factor", 5.0},
+                                {"duration", 0.15},
+                                {"surface_window", 0.05},
+                                {"surface_snapshots", 3},
+                                {"densify_time", 0.1}}}};
   const std::string text = cases::reproduce_granudrum(options);
-  for (const char* f : {"granudrum.md", "granudrum_rpm15_side_by_side.png", "granudrum_rpm45_overlay.png", "study/study.db"})
+  for (const char* f :
+       {"granudrum.md", "granudrum_rpm15_side_by_side.png", "granudrum_rpm45_overlay.png", "study/study.db"})
     CHECK(fs::exists(options.base.out_dir / f));
   CHECK(text.find("source's parameters at s = 1") != std::string::npos);
   CHECK(text.find("| rpm45.surface | ") != std::string::npos);

@@ -31,9 +31,7 @@ json hertz_drum_document() {
 std::string error_of(const json& document) {
   try {
     parse_case(document);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+  } catch (const std::exception& e) { return e.what(); }
   return "";
 }
 
@@ -60,7 +58,10 @@ TEST_CASE("Hertz-Mindlin selected in a case file gives Hertz's elastic contact t
   double start = -1.0, end = -1.0;
   sim.run_until(0.01, [&](dem_core::Simulation& s) {
     if (start < 0.0 && s.contact_count() > 0) start = s.time();
-    if (start >= 0.0 && s.contact_count() == 0) { end = s.time(); return false; }
+    if (start >= 0.0 && s.contact_count() == 0) {
+      end = s.time();
+      return false;
+    }
     return true;
   });
   REQUIRE(end > start);
@@ -181,8 +182,14 @@ TEST_CASE("The GranuDrum case's image surface is lifted on the left, as in the p
   double left = 0.0, right = 0.0;
   int nl = 0, nr = 0;
   for (std::size_t k = 0; k < image.x.size(); ++k) {
-    if (image.x[k] < -10.0) { left += image.y[k]; ++nl; }
-    if (image.x[k] > 10.0) { right += image.y[k]; ++nr; }
+    if (image.x[k] < -10.0) {
+      left += image.y[k];
+      ++nl;
+    }
+    if (image.x[k] > 10.0) {
+      right += image.y[k];
+      ++nr;
+    }
   }
   REQUIRE(nl > 0);
   REQUIRE(nr > 0);

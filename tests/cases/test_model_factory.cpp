@@ -22,7 +22,9 @@ TEST_CASE("Built-in cases are the shipped case files") {
         cases::read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json"));
 }
 
-TEST_CASE("A case model exposes the twelve contact parameters, four effect parameters, restitution and two fill amounts with the case's values as defaults") {
+TEST_CASE(
+    "A case model exposes the twelve contact parameters, four effect parameters, restitution and two fill amounts with "
+    "the case's values as defaults") {
   const auto model = cases::make_model("pellet_compression", json::object(), DEMFIT_SOURCE_DIR);
   CHECK(model->parameter_names().size() == 19);
   CHECK(model->default_parameters().size() == 16);  // LS-DYNA pellet: no restitution, no drum fill
@@ -30,7 +32,8 @@ TEST_CASE("A case model exposes the twelve contact parameters, four effect param
   CHECK(model->default_parameters().at("surface_energy") == 0.0);
   CHECK(model->default_parameters().at("normk") == 0.875046);
   CHECK(model->default_parameters().at("wall_damp") == 0.5);
-  const auto drum = cases::make_model("cases/rotary_drum.json", json{{"drum", {{"scale_factor", 4}}}}, DEMFIT_SOURCE_DIR);
+  const auto drum =
+      cases::make_model("cases/rotary_drum.json", json{{"drum", {{"scale_factor", 4}}}}, DEMFIT_SOURCE_DIR);
   CHECK(drum->default_parameters().at("sheark") == 0.0029);
 }
 
@@ -44,8 +47,13 @@ TEST_CASE("Unknown override keys and unknown references are errors naming them")
 TEST_CASE("A short Table 1 identification on a coarse pellet variant recovers NORMK", "[slow]") {
   setenv("DEMFIT_CACHE_DIR", (std::string(DEMFIT_BINARY_DIR) + "/test_cache").c_str(), 1);
   // Coarse, fast variant: 150 pellets in a 24 mm cylinder, loaded to 1 MPa.
-  const json overrides = {{"pellet", {{"particle_count", 150}, {"container_diameter", 0.024}, {"settle_time", 0.3},
-                                      {"max_pressure", 1.0e6}, {"max_travel", 0.006}, {"curve_points", 30}}}};
+  const json overrides = {{"pellet",
+                           {{"particle_count", 150},
+                            {"container_diameter", 0.024},
+                            {"settle_time", 0.3},
+                            {"max_pressure", 1.0e6},
+                            {"max_travel", 0.006},
+                            {"curve_points", 30}}}};
   const auto model = cases::make_model("pellet_compression", overrides, DEMFIT_SOURCE_DIR);
   const double true_normk = 0.5, true_sheark = 0.3;
   const identify::CurveSet measured = model->evaluate({{"normk", true_normk}, {"sheark", true_sheark}}, {});
@@ -53,10 +61,14 @@ TEST_CASE("A short Table 1 identification on a coarse pellet variant recovers NO
   const json study = {
       {"demfit_study_version", 1},
       {"model", {{"case", "pellet_compression"}, {"overrides", overrides}}},
-      {"variables", json::array({{{"name", "normk"}, {"lower", 0.1}, {"upper", 2.0}, {"initial", 0.2}, {"log_scale", true}},
-                                 {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}})},
-      {"targets", json::array({{{"curve", "pressure_volume"}, {"x_column", "volume_cm3"}, {"y_column", "pressure_MPa"},
-                                {"x", target.x}, {"y", target.y}}})},
+      {"variables",
+       json::array({{{"name", "normk"}, {"lower", 0.1}, {"upper", 2.0}, {"initial", 0.2}, {"log_scale", true}},
+                    {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}})},
+      {"targets", json::array({{{"curve", "pressure_volume"},
+                                {"x_column", "volume_cm3"},
+                                {"y_column", "pressure_MPa"},
+                                {"x", target.x},
+                                {"y", target.y}}})},
       {"sampling", {{"points_per_iteration", 6}}},
       {"stopping", {{"max_iterations", 5}}}};
   const identify::StudySpec spec = identify::parse_study(study, DEMFIT_BINARY_DIR);
@@ -91,9 +103,16 @@ TEST_CASE("The GranuDrum case model exposes the Hertz parameters and its particl
 }
 
 TEST_CASE("The GranuDrum case can take the measured Solidsizer sizes instead of the classes") {
-  const json csv{{"drum", {{"size_distribution", {{"csv", "../data/granudrum_mcc/solidsizer_mcc.csv"}, {"column", "xFmax"},
-                                                  {"unit", "um"}, {"diameter_kind", "max_feret"}, {"min_size", 1050.0},
-                                                  {"max_size", 1500.0}, {"radius", nullptr}, {"number_fraction", nullptr}}}}}};
+  const json csv{{"drum",
+                  {{"size_distribution",
+                    {{"csv", "../data/granudrum_mcc/solidsizer_mcc.csv"},
+                     {"column", "xFmax"},
+                     {"unit", "um"},
+                     {"diameter_kind", "max_feret"},
+                     {"min_size", 1050.0},
+                     {"max_size", 1500.0},
+                     {"radius", nullptr},
+                     {"number_fraction", nullptr}}}}}};
   const cases::CaseSpec spec = cases::resolve_case("cases/granudrum_mcc.json", csv, DEMFIT_SOURCE_DIR);
   CHECK(spec.drum.size_distribution.diameters.size() > 5000);  // of the 7,685 measured sizes
   CHECK(spec.drum.size_distribution.min_diameter() >= 1.05e-3);

@@ -39,8 +39,10 @@ json document_for(const ParameterRow& row) {
 json with_field(json document, const std::string& path, double value, bool integer) {
   const auto dot = path.find('.');
   json& section = document[path.substr(0, dot)];
-  if (integer) section[path.substr(dot + 1)] = static_cast<long long>(value);
-  else section[path.substr(dot + 1)] = value;
+  if (integer)
+    section[path.substr(dot + 1)] = static_cast<long long>(value);
+  else
+    section[path.substr(dot + 1)] = value;
   return document;
 }
 
@@ -49,7 +51,9 @@ bool is_integer(const ParameterRow& row) { return std::string(row.name) == "part
 // Inside values at each end (the end itself when closed, the next double inward when open, a
 // finite stand-in for an infinite end) and values just outside (the end itself when open, the
 // next double outward when closed; none beyond an infinite end).
-double inside_lower(const ParameterRow& r) { return r.valid.lower_open ? std::nextafter(r.valid.lower, kInf) : r.valid.lower; }
+double inside_lower(const ParameterRow& r) {
+  return r.valid.lower_open ? std::nextafter(r.valid.lower, kInf) : r.valid.lower;
+}
 double inside_upper(const ParameterRow& r) {
   if (std::isinf(r.valid.upper)) return 1.0;  // every unbounded row accepts 1 (a drum holds 1 mL)
   return r.valid.upper_open ? std::nextafter(r.valid.upper, -kInf) : r.valid.upper;
@@ -58,24 +62,27 @@ double outside_lower(const ParameterRow& r) {
   if (is_integer(r)) return r.valid.lower - 1.0;
   return r.valid.lower_open ? r.valid.lower : std::nextafter(r.valid.lower, -kInf);
 }
-double outside_upper(const ParameterRow& r) { return r.valid.upper_open ? r.valid.upper : std::nextafter(r.valid.upper, kInf); }
+double outside_upper(const ParameterRow& r) {
+  return r.valid.upper_open ? r.valid.upper : std::nextafter(r.valid.upper, kInf);
+}
 
 std::string parse_error(const json& document) {
   try {
     parse_case(document);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+  } catch (const std::exception& e) { return e.what(); }
   return "";
 }
 
 }  // namespace
 
-TEST_CASE("Every parameter row's valid ends are accepted by the case parser and a value just outside is refused naming the field",
-          "[cases][parameters]") {
+TEST_CASE(
+    "Every parameter row's valid ends are accepted by the case parser and a value just outside is refused naming the "
+    "field",
+    "[cases][parameters]") {
   for (const ParameterRow& row : parameter_table()) {
     const json base = document_for(row);
-    const std::string path = base["contact"].value("law", "") == "hertz_mindlin" && row.hertz_path ? row.hertz_path : row.case_path;
+    const std::string path =
+        base["contact"].value("law", "") == "hertz_mindlin" && row.hertz_path ? row.hertz_path : row.case_path;
     INFO(row.name << " at " << path);
     for (double value : {inside_lower(row), inside_upper(row)}) {
       const CaseSpec spec = parse_case(with_field(base, path, value, is_integer(row)));
@@ -87,8 +94,9 @@ TEST_CASE("Every parameter row's valid ends are accepted by the case parser and 
   }
 }
 
-TEST_CASE("Every parameter row's valid ends are accepted by with_parameters and a value just outside is refused naming it",
-          "[cases][parameters]") {
+TEST_CASE(
+    "Every parameter row's valid ends are accepted by with_parameters and a value just outside is refused naming it",
+    "[cases][parameters]") {
   for (const ParameterRow& row : parameter_table()) {
     INFO(row.name);
     const CaseSpec base = parse_case(document_for(row));
@@ -97,12 +105,14 @@ TEST_CASE("Every parameter row's valid ends are accepted by with_parameters and 
     std::vector<double> outside{outside_lower(row)};
     if (!std::isinf(row.valid.upper)) outside.push_back(outside_upper(row));
     for (double value : outside)
-      CHECK_THROWS_WITH(detail::with_parameters(base, {{row.name, value}}),
-                        Catch::Contains("parameter '" + std::string(row.name) + "'") && Catch::Contains(row.valid.to_string()));
+      CHECK_THROWS_WITH(
+          detail::with_parameters(base, {{row.name, value}}),
+          Catch::Contains("parameter '" + std::string(row.name) + "'") && Catch::Contains(row.valid.to_string()));
   }
 }
 
-TEST_CASE("dem_core's own validation accepts both valid ends of every contact, wall and effect row", "[cases][parameters]") {
+TEST_CASE("dem_core's own validation accepts both valid ends of every contact, wall and effect row",
+          "[cases][parameters]") {
   for (const ParameterRow& row : parameter_table()) {
     if (row.home == ParameterHome::fill) continue;  // the fill amount is the case's, dem_core has no such input
     INFO(row.name);
@@ -124,8 +134,9 @@ TEST_CASE("dem_core's own validation accepts both valid ends of every contact, w
   }
 }
 
-TEST_CASE("The effect catalogue's fitting ranges lie inside the parameter table's valid ranges, with the table's off values",
-          "[cases][parameters]") {
+TEST_CASE(
+    "The effect catalogue's fitting ranges lie inside the parameter table's valid ranges, with the table's off values",
+    "[cases][parameters]") {
   for (const char* case_name : {"pellet_compression", "rotary_drum"})
     for (const EffectInfo& effect : effects_for_case(case_name))
       for (const EffectParameterInfo& p : effect.parameters) {
@@ -144,15 +155,14 @@ TEST_CASE("An unknown parameter name is refused with the table's names listed", 
   std::string message;
   try {
     detail::with_parameters(base, {{"normal_stiffness", 0.1}});
-  } catch (const std::exception& e) {
-    message = e.what();
-  }
+  } catch (const std::exception& e) { message = e.what(); }
   CHECK_THAT(message, Catch::Contains("'normal_stiffness' is unknown"));
   for (const ParameterRow& row : parameter_table()) CHECK_THAT(message, Catch::Contains(std::string(" ") + row.name));
 }
 
-TEST_CASE("parameters_of gives the parameters of the case's contact law and the fill amount in the form the case gives it",
-          "[cases][parameters]") {
+TEST_CASE(
+    "parameters_of gives the parameters of the case's contact law and the fill amount in the form the case gives it",
+    "[cases][parameters]") {
   using Names = std::vector<std::string>;
   auto names_of = [](const CaseSpec& spec) {
     Names names;
@@ -162,7 +172,8 @@ TEST_CASE("parameters_of gives the parameters of the case's contact law and the 
   const std::string dir = std::string(DEMFIT_SOURCE_DIR) + "/cases/";
   CHECK(names_of(parse_case(read_case_json(dir + "pellet_compression.json"))) ==
         Names{"dc", "fricd", "fricr", "frics", "ndamp", "normk", "radius_spread", "sheark", "stiffness_exponent",
-              "surface_energy", "tdamp", "unloading_stiffness_ratio", "wall_damp", "wall_fricd", "wall_frics", "wall_sfp"});
+              "surface_energy", "tdamp", "unloading_stiffness_ratio", "wall_damp", "wall_fricd", "wall_frics",
+              "wall_sfp"});
   // The GranuDrum case is Hertz-Mindlin with its fill given as a particle count.
   CHECK(names_of(parse_case(read_case_json(dir + "granudrum_mcc.json"))) ==
         Names{"fricr", "frics", "particle_count", "restitution", "wall_fricd", "wall_frics"});
@@ -181,8 +192,11 @@ TEST_CASE("A DEM study whose damping bounds reach 1 is refused before the store 
       {"demfit_study_version", 1},
       {"model", {{"case", "pellet_compression"}}},
       {"variables", json::array({{{"name", "ndamp"}, {"lower", 0.1}, {"upper", 1.0}, {"initial", 0.5}}})},
-      {"targets", json::array({{{"curve", "pressure_volume"}, {"x_column", "volume_cm3"}, {"y_column", "pressure_MPa"},
-                                {"x", {50.0, 60.0}}, {"y", {1.0, 0.0}}}})}};
+      {"targets", json::array({{{"curve", "pressure_volume"},
+                                {"x_column", "volume_cm3"},
+                                {"y_column", "pressure_MPa"},
+                                {"x", {50.0, 60.0}},
+                                {"y", {1.0, 0.0}}}})}};
   const demfit::identify::StudySpec spec = demfit::identify::parse_study(study, DEMFIT_BINARY_DIR);
   const auto model = make_study_model(spec);
   demfit::identify::RunOptions options;

@@ -27,7 +27,8 @@ std::filesystem::path temp_dir() {
 // Writes a CSV (UTF-8 BOM, CRLF, two columns like the Solidsizer export) and returns its name.
 std::string write_csv(const std::string& name, const std::vector<std::string>& values) {
   std::ofstream out(temp_dir() / name, std::ios::binary);
-  out << "\xEF\xBB\xBF" << "Particle,xFmax\r\n";
+  out << "\xEF\xBB\xBF"
+      << "Particle,xFmax\r\n";
   for (std::size_t k = 0; k < values.size(); ++k) out << k + 1 << ',' << values[k] << "\r\n";
   return name;
 }
@@ -72,7 +73,8 @@ TEST_CASE("Sampling measured sizes reproduces their distribution above the cut-o
   std::vector<std::string> text;
   std::vector<double> kept;
   for (int k = 0; k < 3000; ++k) {
-    const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53, u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53,
+                 u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
     const double normal = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
     const double size = 1200.0 * std::exp(0.15 * normal);
     char buffer[32];
@@ -134,8 +136,8 @@ TEST_CASE("Sampling is deterministic in the fill seed and changes with it") {
 
 TEST_CASE("Mass fractions become number fractions proportional to w / d^3") {
   // Equal mass in 1 mm and 2 mm classes: 8 times more small particles by number.
-  const SizeDistributionSpec spec = parse_size_distribution(
-      json{{"diameter", {1.0, 2.0}}, {"unit", "mm"}, {"mass_fraction", {0.5, 0.5}}}, "d", {});
+  const SizeDistributionSpec spec =
+      parse_size_distribution(json{{"diameter", {1.0, 2.0}}, {"unit", "mm"}, {"mass_fraction", {0.5, 0.5}}}, "d", {});
   REQUIRE(spec.weights.size() == 2);
   CHECK(spec.weights[0] / spec.weights[1] == Approx(8.0).epsilon(1e-12));
   // E[v] by number = (8 v(1 mm) + v(2 mm)) / 9.
@@ -147,10 +149,9 @@ TEST_CASE("A size CSV with a negative, empty or non-numeric value is refused nam
   auto error_of = [](const std::vector<std::string>& values) {
     const std::string file = write_csv("bad.csv", values);
     try {
-      parse_size_distribution(json{{"csv", file}, {"column", "xFmax"}, {"unit", "um"}}, "drum.size_distribution", temp_dir());
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
+      parse_size_distribution(json{{"csv", file}, {"column", "xFmax"}, {"unit", "um"}}, "drum.size_distribution",
+                              temp_dir());
+    } catch (const std::exception& e) { return std::string(e.what()); }
     return std::string();
   };
   const std::string negative = error_of({"1200", "-5", "1100"});
@@ -159,8 +160,9 @@ TEST_CASE("A size CSV with a negative, empty or non-numeric value is refused nam
   CHECK(error_of({"1200", ""}).find("row 3") != std::string::npos);
   CHECK(error_of({"nan"}).find("row 2") != std::string::npos);
   CHECK(error_of({"12x"}).find("not a number") != std::string::npos);
-  CHECK_THROWS_WITH(parse_size_distribution(json{{"csv", "bad.csv"}, {"column", "xF"}, {"unit", "um"}}, "d", temp_dir()),
-                    Catch::Contains("no column 'xF'"));
+  CHECK_THROWS_WITH(
+      parse_size_distribution(json{{"csv", "bad.csv"}, {"column", "xF"}, {"unit", "um"}}, "d", temp_dir()),
+      Catch::Contains("no column 'xF'"));
   CHECK_THROWS_WITH(parse_size_distribution(json{{"csv", "missing.csv"}, {"column", "xF"}}, "d", temp_dir()),
                     Catch::Contains("missing.csv"));
 }

@@ -17,8 +17,7 @@ struct CollisionResult {
 };
 
 /// Two equal spheres approaching head-on along x at +-speed, no gravity, no friction.
-CollisionResult collide(SimulationSettings settings, const Material& material, double radius, double speed,
-                        double dt) {
+CollisionResult collide(SimulationSettings settings, const Material& material, double radius, double speed, double dt) {
   settings.gravity = {0, 0, 0};
   settings.time_step = dt;
   Simulation sim(settings);
@@ -65,10 +64,10 @@ TEST_CASE("Linear law: restitution from NDAMP matches exp(-pi zeta/sqrt(1-zeta^2
     const double expected_duration = std::numbers::pi / omega_d;
     const double expected_e = std::exp(-std::numbers::pi * zeta / std::sqrt(1.0 - zeta * zeta));
     const CollisionResult r = collide(settings, material, radius, 0.1, expected_duration / 2000.0);
-    INFO("zeta = " << zeta << " e = " << r.restitution << " expected " << expected_e << " duration "
-                   << r.duration << " expected " << expected_duration);
-    CHECK(r.restitution == Approx(expected_e).epsilon(0.01));         // 1 %
-    CHECK(r.duration == Approx(expected_duration).epsilon(0.02));     // 2 %
+    INFO("zeta = " << zeta << " e = " << r.restitution << " expected " << expected_e << " duration " << r.duration
+                   << " expected " << expected_duration);
+    CHECK(r.restitution == Approx(expected_e).epsilon(0.01));      // 1 %
+    CHECK(r.duration == Approx(expected_duration).epsilon(0.02));  // 2 %
   }
 }
 

@@ -47,8 +47,10 @@ Impact pair_impact(const ContactParameters& contact, double speed, double factor
     const double distance = sim.positions()[1].x - sim.positions()[0].x;
     const double closing = sim.velocities()[1].x - sim.velocities()[0].x;
     const double previous = distance - dt * closing;
-    if (distance < 2.0 * radius && start < 0.0) start = sim.time() - dt * (2.0 * radius - distance) / (previous - distance);
-    if (distance >= 2.0 * radius && start >= 0.0) end = sim.time() - dt * (distance - 2.0 * radius) / (distance - previous);
+    if (distance < 2.0 * radius && start < 0.0)
+      start = sim.time() - dt * (2.0 * radius - distance) / (previous - distance);
+    if (distance >= 2.0 * radius && start >= 0.0)
+      end = sim.time() - dt * (distance - 2.0 * radius) / (distance - previous);
   }
   return {(sim.velocities()[1].x - sim.velocities()[0].x) / speed, end - start};
 }
@@ -118,8 +120,9 @@ TEST_CASE("Plasticity: the Walton-Braun spring loads with k1, unloads and reload
   CHECK(h == 5e-6);
 }
 
-TEST_CASE("Plasticity: undamped head-on restitution is 1/sqrt(ratio) for pairs and walls, also with a stiffness exponent",
-          "[dem_core][effects]") {
+TEST_CASE(
+    "Plasticity: undamped head-on restitution is 1/sqrt(ratio) for pairs and walls, also with a stiffness exponent",
+    "[dem_core][effects]") {
   // Energy absorbed on loading (area under k1 delta up to delta_max) vs returned on unloading
   // (area under k2 (delta - delta0)): e^2 = k1/k2 (Walton & Braun 1986); for the power-law
   // variant both areas scale as F_max/(n+1) times their spans, ratio again k1/k2. Tolerance 1 %
@@ -156,7 +159,8 @@ TEST_CASE("Cohesion: a sphere resting on a plane sinks to (m g + F_c)/k_wall wit
   CHECK(resting_overlap(c, 9.81) == Approx((weight + f_c) / k_wall).epsilon(0.002));
 }
 
-TEST_CASE("Cohesion: a sphere hangs under a ceiling when F_c > m g and drops off when F_c < m g", "[dem_core][effects]") {
+TEST_CASE("Cohesion: a sphere hangs under a ceiling when F_c > m g and drops off when F_c < m g",
+          "[dem_core][effects]") {
   // Ceiling plane z = 0 with normal -z, sphere below it, gravity -z. Hanging equilibrium needs
   // k_w delta = F_c - m g > 0 (overlap (F_c - m g)/k_w, tolerance 0.5 %); otherwise it falls.
   const double weight = mass_of(radius) * 9.81;
@@ -176,8 +180,10 @@ TEST_CASE("Cohesion: a sphere hangs under a ceiling when F_c > m g and drops off
     sim.run_until(0.05);
     const double overlap = radius + sim.positions()[0].z;
     INFO("F_c / m g = " << pull_over_weight);
-    if (f_c > weight) CHECK(overlap == Approx((f_c - weight) / k_wall).epsilon(0.005));
-    else CHECK(overlap < -radius);  // fell more than a radius away
+    if (f_c > weight)
+      CHECK(overlap == Approx((f_c - weight) / k_wall).epsilon(0.005));
+    else
+      CHECK(overlap < -radius);  // fell more than a radius away
   }
 }
 
@@ -247,8 +253,10 @@ TEST_CASE("Cohesion presses the surfaces together: a sphere that slides on a til
     sim.run_until(t_end);
     const double travel = sim.positions()[0].x;
     INFO("cohesion " << cohesive << " travel " << travel);
-    if (cohesive) CHECK(std::fabs(travel) < 1e-3 * radius);
-    else CHECK(travel == Approx(0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t_end * t_end).epsilon(0.02));
+    if (cohesive)
+      CHECK(std::fabs(travel) < 1e-3 * radius);
+    else
+      CHECK(travel == Approx(0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t_end * t_end).epsilon(0.02));
   }
 }
 
@@ -282,8 +290,8 @@ TEST_CASE("Stiffness exponent: an elastic impact lasts 2 (delta_max/v) sqrt(pi) 
     const double m_star = 0.5 * mass_of(radius);
     const double v = 0.2, p = n + 1.0;
     const double delta_max = std::pow(p * m_star * v * v / (2.0 * big_k), 1.0 / p);
-    const double expected = 2.0 * delta_max / v * std::sqrt(std::numbers::pi) * std::tgamma(1.0 + 1.0 / p) /
-                            std::tgamma(0.5 + 1.0 / p);
+    const double expected =
+        2.0 * delta_max / v * std::sqrt(std::numbers::pi) * std::tgamma(1.0 + 1.0 / p) / std::tgamma(0.5 + 1.0 / p);
     const Impact impact = pair_impact(c, v, 0.01);
     INFO("exponent " << n << " delta_max/R " << delta_max / radius);
     CHECK(impact.restitution == Approx(1.0).epsilon(0.005));
@@ -291,9 +299,10 @@ TEST_CASE("Stiffness exponent: an elastic impact lasts 2 (delta_max/v) sqrt(pi) 
   }
 }
 
-TEST_CASE("Stiffness exponent and plasticity shrink the automatic step by the tangent stiffness at 5 % overlap, "
-          "and a 5 % overlap impact stays energy-conserving at that step",
-          "[dem_core][effects]") {
+TEST_CASE(
+    "Stiffness exponent and plasticity shrink the automatic step by the tangent stiffness at 5 % overlap, "
+    "and a 5 % overlap impact stays energy-conserving at that step",
+    "[dem_core][effects]") {
   // Undamped, no rotation: automatic step = 0.15 2 pi / omega_n, omega_n^2 = scale k_n/m*, scale =
   // ratio n (delta/d_ref)^(n-1) at delta = 5 % of R for a pair (delta/d_ref = 10).
   const ContactParameters plain;
@@ -326,7 +335,11 @@ TEST_CASE("Effects at their off values give the plain LS-DYNA law's loads", "[de
   // The simulation never uses the effects law with every effect off (it selects the plain law,
   // hence bit-identical results); the effects law itself must still agree with it (1e-13).
   ContactParameters p;
-  p.ndamp = 0.3; p.tdamp = 0.2; p.frics = 0.4; p.fricr = 0.1; p.sheark = 0.3;
+  p.ndamp = 0.3;
+  p.tdamp = 0.2;
+  p.frics = 0.4;
+  p.fricr = 0.1;
+  p.sheark = 0.3;
   CHECK_FALSE(p.effects_enabled());
   const LsDynaLinearLaw plain = make_linear_pair_law(p);
   const LsDynaEffectsLaw effects = make_effects_pair_law(p);
@@ -378,7 +391,8 @@ TEST_CASE("Polydispersity: radii uniform in [R(1-s), R(1+s)], mean volume R^3 (1
   CHECK(hi - lo > 1.8 * s);  // the whole range is used
   CHECK(sum / n == Approx(1.0).margin(4.0 * s / std::sqrt(3.0 * n)));
   // E[(1+su)^3] = 1 + s^2 (odd moments of u vanish).
-  CHECK(sum3 / n == Approx(mean_volume_factor(s)).margin(4.0 * std::sqrt(3.0) * s * std::pow(1.0 + s, 2) / std::sqrt(n)));
+  CHECK(sum3 / n ==
+        Approx(mean_volume_factor(s)).margin(4.0 * std::sqrt(3.0) * s * std::pow(1.0 + s, 2) / std::sqrt(n)));
   CHECK(volume >= q.solid_volume);
   CHECK(volume - q.solid_volume < 4.0 / 3.0 * std::numbers::pi * std::pow(r * (1 + s), 3));
   CHECK(n < 1500.0);  // larger mean volume: fewer spheres for the same solid volume
@@ -440,9 +454,7 @@ TEST_CASE("Effect parameters out of range are refused with the field's name", "[
       s.contact = c;
       s.law = law;
       Simulation sim(s);
-    } catch (const std::runtime_error& e) {
-      return e.what();
-    }
+    } catch (const std::runtime_error& e) { return e.what(); }
     return "";
   };
   ContactParameters c;

@@ -48,13 +48,12 @@ TEST_CASE("A sphere launched sliding decelerates at mu g and rolls at 5/7 of its
   const double rolling_speed = sim.velocities()[0].x;
   const double spin = sim.angular_velocities()[0].y;
   INFO("deceleration " << deceleration << " expected " << mu * g << "; rolling speed " << rolling_speed);
-  CHECK(deceleration == Approx(mu * g).epsilon(0.01));              // 1 %
-  CHECK(rolling_speed == Approx(5.0 / 7.0 * v0).epsilon(0.01));     // 1 %
-  CHECK(spin * radius == Approx(rolling_speed).epsilon(0.01));      // rolling without slip
+  CHECK(deceleration == Approx(mu * g).epsilon(0.01));           // 1 %
+  CHECK(rolling_speed == Approx(5.0 / 7.0 * v0).epsilon(0.01));  // 1 %
+  CHECK(spin * radius == Approx(rolling_speed).epsilon(0.01));   // rolling without slip
 }
 
-TEST_CASE("Wall rolling friction (wall FRICD) decelerates a rolling sphere at 5/7 mu_r g",
-          "[dem_core][friction]") {
+TEST_CASE("Wall rolling friction (wall FRICD) decelerates a rolling sphere at 5/7 mu_r g", "[dem_core][friction]") {
   // Constant torque M = mu_r m g R opposing the spin; rolling without slip: (m + I/R^2) a = -M/R
   // with I = 2/5 m R^2 gives a = -5/7 mu_r g.
   const double mu_r = 0.05, v0 = 0.5;
@@ -93,7 +92,7 @@ TEST_CASE("Particle-particle rolling friction (FRICR) decelerates the relative s
   sim.add_wall(plane);
   const double m = sphere_mass();
   const double k = 0.01 * material.bulk_modulus * radius;
-  const double z_b = radius - 2.0 * m * g / k;           // wall spring carries both weights
+  const double z_b = radius - 2.0 * m * g / k;              // wall spring carries both weights
   const double z_a = z_b + 2.0 * radius - m * g / (k / 2);  // pair spring k/2 carries A
   sim.add_particle({0, 0, z_b}, radius);
   sim.add_particle({0, 0, z_a}, radius, 0, {}, {0, 0, spin0});

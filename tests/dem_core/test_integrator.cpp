@@ -53,8 +53,7 @@ TEST_CASE("Undamped frictionless spheres in a box conserve total energy to 0.1 %
   CHECK(drift < 1.0e-3);
 }
 
-TEST_CASE("Velocity Verlet converges with order 2 (sphere oscillating on a plane spring)",
-          "[dem_core][integrator]") {
+TEST_CASE("Velocity Verlet converges with order 2 (sphere oscillating on a plane spring)", "[dem_core][integrator]") {
   // A sphere resting on a plane under gravity, released from 1.5x its static overlap: it stays in
   // contact and oscillates harmonically, z(t) = z_eq - A cos(omega t), omega = sqrt(k/m),
   // k = NORMK K R (wall spring, SFP = 1), A = 0.5 delta_static.

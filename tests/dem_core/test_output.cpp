@@ -47,7 +47,13 @@ TEST_CASE("Probe time series record wall force, energies and bed height and writ
   probes.add_kinetic_energy();
   probes.add_elastic_energy();
   probes.add_bed_height("bed", {0, 0, 1}, 1.0);
-  sim.run_until(0.05, [&](Simulation& s) { probes.record(s); return true; }, 100);
+  sim.run_until(
+      0.05,
+      [&](Simulation& s) {
+        probes.record(s);
+        return true;
+      },
+      100);
   REQUIRE(probes.times().size() > 5);
   // At rest the floor carries the weight of both spheres: sum m g (1 %).
   const double weight = (sim.masses()[0] + sim.masses()[1]) * 9.81;

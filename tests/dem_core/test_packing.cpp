@@ -58,8 +58,8 @@ TEST_CASE("Drum fill height and segment volume agree with the circle-segment for
 namespace {
 
 /// 250 spheres (R = 1 mm) poured into a 18 mm cylinder and settled; returns the volume fraction.
-double settled_fraction(bool frictionless, SettleReport& report,
-                        std::function<void(double, double)> progress = {}, std::vector<Vec3>* positions = nullptr) {
+double settled_fraction(bool frictionless, SettleReport& report, std::function<void(double, double)> progress = {},
+                        std::vector<Vec3>* positions = nullptr) {
   SimulationSettings settings;
   settings.contact = {0.01, 2.0 / 7.0, 0.5, 0.5, 0.5, -1.0, 0.0, 0.1, 1.0};
   Simulation sim(settings);
@@ -85,7 +85,8 @@ double settled_fraction(bool frictionless, SettleReport& report,
 
 }  // namespace
 
-TEST_CASE("Settling brings a poured bed to rest and frictionless densification packs it denser", "[dem_core][packing]") {
+TEST_CASE("Settling brings a poured bed to rest and frictionless densification packs it denser",
+          "[dem_core][packing]") {
   SettleReport rough, smooth;
   const double phi_rough = settled_fraction(false, rough);
   const double phi_smooth = settled_fraction(true, smooth);
@@ -106,7 +107,8 @@ TEST_CASE("Settling reports its progress after every check and settles the same 
   std::vector<Vec3> quiet_bed, reported_bed;
   std::vector<std::pair<double, double>> calls;
   settled_fraction(true, quiet, {}, &quiet_bed);
-  settled_fraction(true, reported, [&](double elapsed, double end) { calls.emplace_back(elapsed, end); }, &reported_bed);
+  settled_fraction(
+      true, reported, [&](double elapsed, double end) { calls.emplace_back(elapsed, end); }, &reported_bed);
   REQUIRE(!calls.empty());
   for (std::size_t i = 0; i < calls.size(); ++i) {
     CHECK(calls[i].second == 0.5);

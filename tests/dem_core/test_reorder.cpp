@@ -57,7 +57,8 @@ std::vector<Vec3> state_by_id(const Simulation& sim) {
 
 }  // namespace
 
-TEST_CASE("Reordered runs are bit-identical between 1 and 2 threads and keep every particle id", "[dem_core][reorder]") {
+TEST_CASE("Reordered runs are bit-identical between 1 and 2 threads and keep every particle id",
+          "[dem_core][reorder]") {
   Simulation one = turning_drum(1, true), two = turning_drum(2, true);
   one.run_steps(6000);
   two.run_steps(6000);
@@ -78,7 +79,8 @@ TEST_CASE("Reordered runs are bit-identical between 1 and 2 threads and keep eve
   CHECK(one.wall_torque(0) == two.wall_torque(0));
 }
 
-TEST_CASE("Reordering a settled, turning bed changes it only at round-off level: positions by id and torque", "[dem_core][reorder]") {
+TEST_CASE("Reordering a settled, turning bed changes it only at round-off level: positions by id and torque",
+          "[dem_core][reorder]") {
   // Pair members and summation order change with the order, so bits differ. A lost or mis-signed
   // tangential history would move grains by ~1e-5 m over these 1000 steps (friction forces of the
   // order of the weight over 6 ms); round-off stays near 1e-14 m (measured) in a settled bed

@@ -36,8 +36,13 @@ void use_test_cache() { setenv("DEMFIT_CACHE_DIR", DEMFIT_BINARY_DIR "/tests/dia
 nlohmann::json tiny_pellet() {
   return {{"contact", {{"normk", 0.01}, {"fricr", 0.0}}},
           {"wall_contact", {{"frics", 0.0}}},
-          {"pellet", {{"particle_count", 200}, {"container_diameter", 0.02}, {"container_height", 0.04},
-                      {"piston_speed", 0.3}, {"unload", true}, {"max_pressure", 0.3e6}}}};
+          {"pellet",
+           {{"particle_count", 200},
+            {"container_diameter", 0.02},
+            {"container_height", 0.04},
+            {"piston_speed", 0.3},
+            {"unload", true},
+            {"max_pressure", 0.3e6}}}};
 }
 
 // The catalogue's effects for a case as diagnose candidates (the conversion of
@@ -60,14 +65,17 @@ struct Scenario {
   nlohmann::json overrides;
   std::vector<identify::VariableSpec> variables;  // base variables (bounds, initial values)
   identify::ParameterSet truth;                   // base variable values and the hidden effect
-  std::vector<std::string> curves;  // measured curves (targets)
-  std::uint64_t seed = 1;           // noise seed; target k uses seed + k (`simulate --noise` numbers all written curves in name order)
-  double noise = kNoise;            // relative noise level
-  bool noise_given = false;         // diagnose with the true noise level (as `--noise`) instead of estimating it
+  std::vector<std::string> curves;                // measured curves (targets)
+  std::uint64_t seed =
+      1;  // noise seed; target k uses seed + k (`simulate --noise` numbers all written curves in name order)
+  double noise = kNoise;     // relative noise level
+  bool noise_given = false;  // diagnose with the true noise level (as `--noise`) instead of estimating it
 };
 
 Scenario pellet_scenario(const std::string& label, const identify::ParameterSet& hidden, std::uint64_t seed) {
-  Scenario s{label, "pellet_compression", tiny_pellet(),
+  Scenario s{label,
+             "pellet_compression",
+             tiny_pellet(),
              {{"normk", 0.005, 0.02, 0.008, false, 1.0}, {"sheark", 0.1, 0.6, 0.25, false, 1.0}},
              {{"normk", 0.01}, {"sheark", 0.3}},
              // The bottom-plate force separates wall friction (Janssen) from bed stiffness (SPEC 2.1).
@@ -87,12 +95,19 @@ Scenario pellet_scenario(const std::string& label, const identify::ParameterSet&
 // weights and switches the bed to a chaotic slumping block above ~0.5).
 nlohmann::json drum_overrides() {
   return {{"wall_contact", {{"frics", 0.0}}},
-          {"drum", {{"scale_factor", 4.0}, {"rpm", 30.0}, {"duration", 4.0}, {"surface_window", 3.0},
-                    {"surface_snapshots", 60}, {"surface_points", 31}}}};
+          {"drum",
+           {{"scale_factor", 4.0},
+            {"rpm", 30.0},
+            {"duration", 4.0},
+            {"surface_window", 3.0},
+            {"surface_snapshots", 60},
+            {"surface_points", 31}}}};
 }
 
 Scenario drum_scenario(const std::string& label, const identify::ParameterSet& hidden, std::uint64_t seed) {
-  Scenario s{label, "rotary_drum", drum_overrides(),
+  Scenario s{label,
+             "rotary_drum",
+             drum_overrides(),
              {{"frics", 0.1, 0.8, 0.5, false, 1.0}, {"fricr", 0.0, 0.3, 0.2, false, 1.0}},
              {{"frics", 0.3}, {"fricr", 0.1}},
              {"free_surface"},
@@ -150,13 +165,15 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
   std::printf("\n[%s] verdict: %s%s\n", s.label.c_str(), verdict_text(d.verdict),
               d.chosen >= 0 ? (" -> " + d.refits[d.chosen].effect).c_str() : "");
   for (std::size_t t = 0; t < d.targets.size(); ++t)
-    std::printf("  target %s: noise sigma true %.4g, used %.4g\n", d.targets[t].name.c_str(), out.sigma[t], d.targets[t].sigma);
-  std::printf("  base RMS/sigma_true %.2f; worst region %s\n", out.rms_over_true_sigma(d.base),
-              d.base_analysis.worst_region >= 0 ? d.base_analysis.regions[d.base_analysis.worst_region].label.c_str() : "-");
+    std::printf("  target %s: noise sigma true %.4g, used %.4g\n", d.targets[t].name.c_str(), out.sigma[t],
+                d.targets[t].sigma);
+  std::printf(
+      "  base RMS/sigma_true %.2f; worst region %s\n", out.rms_over_true_sigma(d.base),
+      d.base_analysis.worst_region >= 0 ? d.base_analysis.regions[d.base_analysis.worst_region].label.c_str() : "-");
   std::printf("  base tests: runs p %.3g, lag-1 %.3f (p %.3g), variance ratio %.3g (p %.3g), smooth p %.3g -> %s\n",
-              d.base_analysis.runs.p_value, d.base_analysis.autocorrelation.lag1, d.base_analysis.autocorrelation.p_value,
-              d.base_analysis.variance.ratio, d.base_analysis.variance.p_value, d.base_analysis.smooth.p_value,
-              d.base_analysis.structural ? "structure" : "noise");
+              d.base_analysis.runs.p_value, d.base_analysis.autocorrelation.lag1,
+              d.base_analysis.autocorrelation.p_value, d.base_analysis.variance.ratio, d.base_analysis.variance.p_value,
+              d.base_analysis.smooth.p_value, d.base_analysis.structural ? "structure" : "noise");
   for (const auto& sc : d.screening)
     std::printf("  screening %-20s score %10.4g  share %.3f%s\n", sc.effect.c_str(), sc.score, sc.fraction_explained,
                 sc.evaluated ? "" : "  (perturbed run failed)");
@@ -174,10 +191,12 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
     std::printf("  refit     %-20s delta BIC %9.4g  RMS/sigma_true %.2f  residual %s  %s\n", r.effect.c_str(),
                 r.delta_bic, out.rms_over_true_sigma(r.fit), r.analysis.structural ? "structure" : "noise",
                 r.passes ? "PASSES" : "fails");
-    std::printf("            tests: runs p %.3g, lag-1 %.3f (p %.3g), variance ratio %.3g (p %.3g), smooth p %.3g; %s(%d evaluations)\n",
-                r.analysis.runs.p_value, r.analysis.autocorrelation.lag1, r.analysis.autocorrelation.p_value,
-                r.analysis.variance.ratio, r.analysis.variance.p_value, r.analysis.smooth.p_value,
-                values(r.fit, d.base_variables, extra).c_str(), r.fit.evaluations);
+    std::printf(
+        "            tests: runs p %.3g, lag-1 %.3f (p %.3g), variance ratio %.3g (p %.3g), smooth p %.3g; %s(%d "
+        "evaluations)\n",
+        r.analysis.runs.p_value, r.analysis.autocorrelation.lag1, r.analysis.autocorrelation.p_value,
+        r.analysis.variance.ratio, r.analysis.variance.p_value, r.analysis.smooth.p_value,
+        values(r.fit, d.base_variables, extra).c_str(), r.fit.evaluations);
   }
   std::printf("  evaluations %d (base %d, screening %d, re-fits %d), wall time %.1f s\n", d.evaluations,
               d.base_evaluations, d.screening_evaluations, d.refit_evaluations, d.wall_seconds);
@@ -197,8 +216,9 @@ void check_named(const Outcome& o, const std::string& effect) {
 
 }  // namespace
 
-TEST_CASE("A hidden contact plasticity in a loading-unloading pellet compression is named and the gap shrinks to the noise",
-          "[slow]") {
+TEST_CASE(
+    "A hidden contact plasticity in a loading-unloading pellet compression is named and the gap shrinks to the noise",
+    "[slow]") {
   const Outcome o = run(pellet_scenario("pellet, hidden plasticity", {{"unloading_stiffness_ratio", 2.0}}, 11),
                         candidates_for("pellet_compression"));
   check_named(o, "plasticity");
@@ -223,15 +243,17 @@ TEST_CASE("Without a hidden effect the DEM pellet diagnosis reports no missing e
 }
 
 TEST_CASE("A hidden plasticity left out of the candidates is reported as unexplained, not misnamed", "[slow]") {
-  const Outcome o = run(pellet_scenario("pellet, hidden plasticity, not a candidate", {{"unloading_stiffness_ratio", 2.0}}, 14),
-                        candidates_for("pellet_compression", {"plasticity"}));
+  const Outcome o =
+      run(pellet_scenario("pellet, hidden plasticity, not a candidate", {{"unloading_stiffness_ratio", 2.0}}, 14),
+          candidates_for("pellet_compression", {"plasticity"}));
   INFO(o.diagnosis.summary);
   CHECK(o.diagnosis.base_analysis.structural);
   CHECK(o.diagnosis.verdict == Verdict::unexplained_structural);
 }
 
 // The longest test of the suite (~100 runs, ~2 min on 2 cores).
-TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the gap shrinks to the noise", "[slow][drum]") {
+TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the gap shrinks to the noise",
+          "[slow][drum]") {
   // Rolling resistance is a base variable here, so it is not a candidate (cmd_diagnose's rule).
   const Outcome o = run(drum_scenario("drum, hidden wall friction", {{"wall_frics", 0.2}}, 15),
                         candidates_for("rotary_drum", {"rolling_resistance"}, drum_overrides()));
@@ -264,7 +286,8 @@ TEST_CASE("A hidden rolling friction in an s = 4 drum is named or called ambiguo
     const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
     const Diagnosis& d = o.diagnosis;
     INFO("seed " << seed << ": " << d.summary);
-    const bool right_name = d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
+    const bool right_name =
+        d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
     CHECK_FALSE((d.verdict == Verdict::effect_identified && !right_name));  // never another effect
     CHECK((right_name || d.verdict == Verdict::ambiguous));                 // the issue's target
     if (d.verdict == Verdict::ambiguous) {

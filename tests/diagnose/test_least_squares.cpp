@@ -19,8 +19,14 @@ class CycleModel final : public identify::Model {
   identify::ParameterSet default_parameters() const override { return {{"s", 1.0}}; }
   identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext&) const override {
     identify::Curve c{"x", "y", {}, {}};
-    for (int i = 0; i <= 10; ++i) { c.x.push_back(0.1 * i); c.y.push_back(p.at("s") * 0.1 * i); }
-    for (int i = 9; i >= 5; --i) { c.x.push_back(0.1 * i); c.y.push_back(p.at("s") * 0.1 * i - 0.5); }
+    for (int i = 0; i <= 10; ++i) {
+      c.x.push_back(0.1 * i);
+      c.y.push_back(p.at("s") * 0.1 * i);
+    }
+    for (int i = 9; i >= 5; --i) {
+      c.x.push_back(0.1 * i);
+      c.y.push_back(p.at("s") * 0.1 * i - 0.5);
+    }
     return {{"cycle", c}};
   }
 };
@@ -46,7 +52,9 @@ TEST_CASE("Residuals of a loading-unloading target compare each data branch with
   for (std::size_t i = 0; i < data.x.size(); ++i) CHECK(q.front()[i] == Approx(-data.x[i]).margin(1e-12));
 }
 
-TEST_CASE("Broyden updates, with forward or central differences, reach the forward-difference optimum with fewer evaluations") {
+TEST_CASE(
+    "Broyden updates, with forward or central differences, reach the forward-difference optimum with fewer "
+    "evaluations") {
   // Noise-free data of the analytic family at a known point inside the bounds: the optimum is
   // that point with chi-square 0 (up to the fit's tolerance).
   const AnalyticEffectsModel model(101);
@@ -54,7 +62,8 @@ TEST_CASE("Broyden updates, with forward or central differences, reach the forwa
   identify::ParameterSet fixed = model.default_parameters();
   for (const auto& [k, v] : truth) fixed[k] = v;
   const identify::Curve data = model.evaluate(fixed, {}).at("response");
-  const std::vector<FitVariable> variables{{"amplitude", 0.5, 2.0, 1.6}, {"rate", 1.0, 8.0, 5.0}, {"slope", 0.0, 1.5, 0.9}};
+  const std::vector<FitVariable> variables{
+      {"amplitude", 0.5, 2.0, 1.6}, {"rate", 1.0, 8.0, 5.0}, {"slope", 0.0, 1.5, 0.9}};
   const std::vector<FitTarget> targets{{"response", "response", data, 0.01}};
   FitOptions plain;
   plain.broyden = false;

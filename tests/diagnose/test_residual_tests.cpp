@@ -19,7 +19,10 @@ std::vector<double> white_noise(int n, double sigma, unsigned seed) {
 // Exact chi-square upper tail for even k: exp(-x/2) sum_{i<k/2} (x/2)^i / i!.
 double chi_square_upper_even(double x, int k) {
   double term = 1.0, sum = 1.0;
-  for (int i = 1; i < k / 2; ++i) { term *= (x / 2.0) / i; sum += term; }
+  for (int i = 1; i < k / 2; ++i) {
+    term *= (x / 2.0) / i;
+    sum += term;
+  }
   return std::exp(-x / 2.0) * sum;
 }
 }  // namespace
@@ -83,7 +86,7 @@ TEST_CASE("The autocorrelation test estimates the lag-1 correlation of an AR(1) 
   r[0] = e[0];
   for (int i = 1; i < n; ++i) r[i] = 0.6 * r[i - 1] + e[i];
   const AutocorrelationTest t = autocorrelation_test(r);
-  CHECK(t.lag1 == Approx(0.6).margin(0.05));                  // sd of the estimate ~ 0.018
+  CHECK(t.lag1 == Approx(0.6).margin(0.05));  // sd of the estimate ~ 0.018
   CHECK(t.durbin_watson == Approx(2.0 * (1.0 - t.lag1)).margin(0.01));
   CHECK(t.p_value < 1e-6);
 }

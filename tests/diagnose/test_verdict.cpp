@@ -26,7 +26,8 @@ ScreeningScore score(double value) {
 
 }  // namespace
 
-TEST_CASE("Every candidate scoring at least the stated fraction of the best score is re-fitted", "[diagnose][verdict]") {
+TEST_CASE("Every candidate scoring at least the stated fraction of the best score is re-fitted",
+          "[diagnose][verdict]") {
   // Screening order as measured on the drum: the true effect third, within 25 % of the best.
   const std::vector<ScreeningScore> screening{score(148.0), score(120.0), score(9.0), score(150.0), score(36.0)};
   DiagnoseOptions options = expensive_model_options();

@@ -170,8 +170,9 @@ TEST_CASE("An effect candidate whose range leaves the model's valid range is ref
   DiagnoseOptions options;
   options.noise_sigma = kNoise;
   // analytic_effect_candidates' toe_shift range is [0, 0.2].
-  CHECK_THROWS_WITH(run_diagnosis(spec, model, analytic_effect_candidates(), options),
-                    Catch::Contains("effect 'toe_shift'") && Catch::Contains("[0, 0.2]") && Catch::Contains("[0, 0.1]"));
+  CHECK_THROWS_WITH(
+      run_diagnosis(spec, model, analytic_effect_candidates(), options),
+      Catch::Contains("effect 'toe_shift'") && Catch::Contains("[0, 0.2]") && Catch::Contains("[0, 0.1]"));
   CHECK(model.evaluations == 0);
   auto narrowed = analytic_effect_candidates();
   for (auto& c : narrowed)

@@ -33,9 +33,10 @@ TEST_CASE("An exception thrown by the completion callback stops the batch and pr
   std::vector<ParameterSet> batch(20, ParameterSet{});
   ThreadPoolEvaluator pool(model, 2, 1, 0);
   int done = 0;
-  CHECK_THROWS_WITH(pool.evaluate_points(model, batch, [&](std::size_t, const EvaluationOutcome&) {
-                      if (++done == 3) throw std::runtime_error("killed");
-                    }),
+  CHECK_THROWS_WITH(pool.evaluate_points(model, batch,
+                                         [&](std::size_t, const EvaluationOutcome&) {
+                                           if (++done == 3) throw std::runtime_error("killed");
+                                         }),
                     "killed");
   CHECK(done == 3);
 }

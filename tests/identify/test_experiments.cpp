@@ -54,9 +54,10 @@ constexpr double kTrueA = 2.0, kTrueB = 0.5;  // a b = 1, a / b = 4
 
 nlohmann::json experiment(const std::string& name, bool product) {
   const Curve target = CombinationModel(product, nullptr).evaluate({{"a", kTrueA}, {"b", kTrueB}}, {}).at("signal");
-  return {{"name", name},
-          {"model", {{"case", "analytic"}, {"overrides", {{"mode", name}}}}},
-          {"targets", {{{"curve", "signal"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", target.x}, {"y", target.y}}}}};
+  return {
+      {"name", name},
+      {"model", {{"case", "analytic"}, {"overrides", {{"mode", name}}}}},
+      {"targets", {{{"curve", "signal"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", target.x}, {"y", target.y}}}}};
 }
 
 nlohmann::json study(bool with_product, bool with_ratio) {
@@ -75,7 +76,8 @@ nlohmann::json study(bool with_product, bool with_ratio) {
 
 std::unique_ptr<ExperimentSetModel> models_for(const StudySpec& spec, std::atomic<int>* calls) {
   std::vector<std::unique_ptr<Model>> models;
-  for (const auto& e : spec.experiments) models.push_back(std::make_unique<CombinationModel>(e.name == "product", calls));
+  for (const auto& e : spec.experiments)
+    models.push_back(std::make_unique<CombinationModel>(e.name == "product", calls));
   return std::make_unique<ExperimentSetModel>(spec, std::move(models));
 }
 
@@ -100,7 +102,8 @@ TEST_CASE("Two experiments together recover shared parameters that neither pins 
     const auto result = run_study(alone, *models_for(alone, nullptr), quiet(test::fresh_dir("experiments_alone")));
     INFO("alone: " << alone.experiments[0].name << " a " << result.best.at("a") << " b " << result.best.at("b"));
     // The experiment's own combination is matched, but a direction stays free and is flagged.
-    const double combination = product ? result.best.at("a") * result.best.at("b") : result.best.at("a") / result.best.at("b");
+    const double combination =
+        product ? result.best.at("a") * result.best.at("b") : result.best.at("a") / result.best.at("b");
     CHECK(combination == Approx(product ? kTrueA * kTrueB : kTrueA / kTrueB).epsilon(0.01));
     CHECK((flagged(result, "a") || flagged(result, "b")));
   }
@@ -135,7 +138,8 @@ TEST_CASE("An evaluator given points of an experiments model runs every experime
   const std::vector<ParameterSet> points{{{"a", 1.5}, {"b", 0.7}}, {{"a", 3.0}, {"b", 1.2}}, {{"a", 0.9}, {"b", 0.4}}};
   ThreadPoolEvaluator pool(*set, 2, 1, 0);
   std::vector<std::size_t> done;
-  const auto outcomes = pool.evaluate_points(*set, points, [&](std::size_t point, const EvaluationOutcome&) { done.push_back(point); });
+  const auto outcomes =
+      pool.evaluate_points(*set, points, [&](std::size_t point, const EvaluationOutcome&) { done.push_back(point); });
   CHECK(calls.load() == 6);
   std::sort(done.begin(), done.end());
   CHECK(done == std::vector<std::size_t>{0, 1, 2});
@@ -183,9 +187,10 @@ TEST_CASE("The store keeps each experiment's curves under its name and the repor
   CHECK(std::filesystem::exists(dir / "best_ratio.signal.csv"));
 }
 
-TEST_CASE("A variable goes to the experiments whose model accepts it; one that no model accepts is refused before "
-          "the store exists",
-          "[identify][experiments]") {
+TEST_CASE(
+    "A variable goes to the experiments whose model accepts it; one that no model accepts is refused before "
+    "the store exists",
+    "[identify][experiments]") {
   auto json = study(true, true);
   json["variables"].push_back({{"name", "gain"}, {"lower", 0.5}, {"upper", 2.0}});
   const StudySpec spec = parse_study(json, ".");
@@ -240,7 +245,8 @@ TEST_CASE("A failed experiment fails its design point and names the experiment",
 TEST_CASE("Experiment configuration errors are found when the study is parsed", "[identify][experiments]") {
   auto duplicate = study(true, true);
   duplicate["experiments"][1]["name"] = "product";
-  CHECK_THROWS_WITH(parse_study(duplicate, "."), Catch::Contains("experiments[1].name: two experiments are named 'product'"));
+  CHECK_THROWS_WITH(parse_study(duplicate, "."),
+                    Catch::Contains("experiments[1].name: two experiments are named 'product'"));
   auto both = study(true, true);
   both["model"] = {{"case", "analytic"}};
   CHECK_THROWS_WITH(parse_study(both, "."), Catch::Contains("give either \"experiments\" or a top-level"));
@@ -249,7 +255,8 @@ TEST_CASE("Experiment configuration errors are found when the study is parsed", 
   CHECK_THROWS_WITH(parse_study(bad_name, "."), Catch::Contains("experiments[0].name: 'rpm 15'"));
   auto fixed_variable = study(true, false);
   fixed_variable["experiments"][0]["model"]["fixed_parameters"] = {{"a", 1.0}};
-  CHECK_THROWS_WITH(parse_study(fixed_variable, "."), Catch::Contains("also in the fixed_parameters of experiment 'product'"));
+  CHECK_THROWS_WITH(parse_study(fixed_variable, "."),
+                    Catch::Contains("also in the fixed_parameters of experiment 'product'"));
   auto unknown_key = study(true, false);
   unknown_key["experiments"][0]["rpm"] = 15;
   CHECK_THROWS_WITH(parse_study(unknown_key, "."), Catch::Contains("experiments[0].rpm"));
@@ -287,7 +294,8 @@ TEST_CASE("A study with experiments stopped after some points resumes to the sam
           "[identify][experiments]") {
   const StudySpec spec = parse_study(study(true, true), ".");
   std::atomic<int> reference_calls{0}, calls{0};
-  const auto reference = run_study(spec, *models_for(spec, &reference_calls), quiet(test::fresh_dir("experiments_ref")));
+  const auto reference =
+      run_study(spec, *models_for(spec, &reference_calls), quiet(test::fresh_dir("experiments_ref")));
   const auto dir = test::fresh_dir("experiments_resume");
   struct Stop {};
   auto killed = quiet(dir, 2);

@@ -36,7 +36,8 @@ inline nlohmann::json analytic_study(double noise = 0.0, int max_iterations = 12
           {"variables",
            {{{"name", "amplitude"}, {"lower", 0.5}, {"upper", 2.0}, {"initial", 1.0}},
             {{"name", "rate"}, {"lower", 1.0}, {"upper", 8.0}, {"initial", 3.0}, {"log_scale", true}}}},
-          {"targets", {{{"curve", "response"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", target.x}, {"y", target.y}}}},
+          {"targets",
+           {{{"curve", "response"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", target.x}, {"y", target.y}}}},
           {"stopping", {{"max_iterations", max_iterations}, {"design_tolerance", 0.0}, {"objective_tolerance", 0.0}}},
           {"seed", 11}};
 }

@@ -18,8 +18,8 @@ TEST_CASE("Every LS-DYNA field is exactly 10 characters and reads back close to 
 }
 
 TEST_CASE("Exported keyword cards parse back to the identified and default values", "[identify][export]") {
-  const ParameterSet identified{{"ndamp", 0.558648808}, {"tdamp", 0.547304765}, {"frics", 0.437766112},
-                                {"fricr", 0.088137162}, {"normk", 0.095010325}, {"sheark", 0.004870718},
+  const ParameterSet identified{{"ndamp", 0.558648808},      {"tdamp", 0.547304765},      {"frics", 0.437766112},
+                                {"fricr", 0.088137162},      {"normk", 0.095010325},      {"sheark", 0.004870718},
                                 {"wall_frics", 0.398444369}, {"wall_fricd", 0.186624382}, {"wall_damp", 0.101806949}};
   const auto dir = test::fresh_dir("export");
   write_lsdyna_keywords(dir / "out.k", identified, {}, "Table 3 values");
@@ -45,17 +45,21 @@ TEST_CASE("Exported keyword cards parse back to the identified and default value
 // exporter's own parser: NORMK is field 5 (columns 41-50) of *CONTROL_DISCRETE_ELEMENT card 1,
 // SHEARK field 6, FRICD field 4 of card 3; wall DAMP is field 3 of the coupling's card 2.
 TEST_CASE("Exported values sit in the manual's columns of each card", "[identify][export]") {
-  const ParameterSet p{{"normk", 0.875046}, {"sheark", 0.299582}, {"frics", 0.3}, {"fricd", 0.25},
-                       {"wall_damp", 0.101806949}};
+  const ParameterSet p{
+      {"normk", 0.875046}, {"sheark", 0.299582}, {"frics", 0.3}, {"fricd", 0.25}, {"wall_damp", 0.101806949}};
   std::istringstream in(lsdyna_keywords(p, {}, "columns"));
   std::vector<std::string> control, coupling;
   std::vector<std::string>* current = nullptr;
   std::string line;
   while (std::getline(in, line)) {
-    if (line.rfind("*CONTROL_DISCRETE_ELEMENT", 0) == 0) current = &control;
-    else if (line.rfind("*DEFINE_DE_TO_SURFACE_COUPLING", 0) == 0) current = &coupling;
-    else if (!line.empty() && line[0] == '*') current = nullptr;
-    else if (current && !line.empty() && line[0] != '$') current->push_back(line);
+    if (line.rfind("*CONTROL_DISCRETE_ELEMENT", 0) == 0)
+      current = &control;
+    else if (line.rfind("*DEFINE_DE_TO_SURFACE_COUPLING", 0) == 0)
+      current = &coupling;
+    else if (!line.empty() && line[0] == '*')
+      current = nullptr;
+    else if (current && !line.empty() && line[0] != '$')
+      current->push_back(line);
   }
   REQUIRE(control.size() == 3);
   REQUIRE(coupling.size() == 2);
@@ -69,15 +73,19 @@ TEST_CASE("Exported values sit in the manual's columns of each card", "[identify
 
 // The model's descriptors say which effects LS-DYNA cannot carry (off value, no LS-DYNA field).
 std::vector<ParameterDescriptor> plasticity_model() {
-  ParameterDescriptor normk{"normk", "-", {0.0, 1e300, true, true}, 0.01, std::nullopt, "*CONTROL_DISCRETE_ELEMENT NORMK"};
+  ParameterDescriptor normk{"normk", "-",          {0.0, 1e300, true, true},
+                            0.01,    std::nullopt, "*CONTROL_DISCRETE_ELEMENT NORMK"};
   ParameterDescriptor ratio{"unloading_stiffness_ratio", "-", {1.0, 100.0}, 1.0, 1.0, ""};
   return {normk, ratio};
 }
 
-TEST_CASE("An identified effect without an LS-DYNA field is named in a warning comment, not dropped silently", "[identify][export]") {
-  const std::string with_effect = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 2.5}}, plasticity_model(), "plastic");
+TEST_CASE("An identified effect without an LS-DYNA field is named in a warning comment, not dropped silently",
+          "[identify][export]") {
+  const std::string with_effect =
+      lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 2.5}}, plasticity_model(), "plastic");
   CHECK(with_effect.find("$ WARNING: unloading_stiffness_ratio = 2.5 has no LS-DYNA DES field") != std::string::npos);
-  const std::string effect_off = lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 1.0}}, plasticity_model(), "elastic");
+  const std::string effect_off =
+      lsdyna_keywords({{"normk", 0.5}, {"unloading_stiffness_ratio", 1.0}}, plasticity_model(), "elastic");
   CHECK(effect_off.find("WARNING") == std::string::npos);
   CHECK(parse_lsdyna_keywords(with_effect).at("normk") == Approx(0.5));
 }

@@ -8,8 +8,8 @@ using namespace demfit::identify;
 
 namespace {
 TargetSpec target(const Curve& data, CurveMetric metric = CurveMetric::mse, double weight = 1.0) {
-  return TargetSpec{.name = std::string("t"), .curve = std::string("c"), .data = data, .csv = {}, .metric = metric,
-                    .weight = weight};
+  return TargetSpec{
+      .name = std::string("t"), .curve = std::string("c"), .data = data, .csv = {}, .metric = metric, .weight = weight};
 }
 }  // namespace
 
@@ -40,8 +40,14 @@ TEST_CASE("The MSE composite equals (1/P) sum ((f-G)/max|G|)^2 times the weight"
 TEST_CASE("Curve mapping is zero on the target itself and on a longer curve containing it", "[identify][metric]") {
   // A hysteresis loop (non-monotone in x): up along y = x^2, back along y = x.
   Curve loop{"x", "y", {}, {}};
-  for (int i = 0; i <= 20; ++i) { loop.x.push_back(i / 20.0); loop.y.push_back(std::pow(i / 20.0, 2)); }
-  for (int i = 19; i >= 0; --i) { loop.x.push_back(i / 20.0); loop.y.push_back(i / 20.0); }
+  for (int i = 0; i <= 20; ++i) {
+    loop.x.push_back(i / 20.0);
+    loop.y.push_back(std::pow(i / 20.0, 2));
+  }
+  for (int i = 19; i >= 0; --i) {
+    loop.x.push_back(i / 20.0);
+    loop.y.push_back(i / 20.0);
+  }
   const CompositeObjective objective({target(loop, CurveMetric::curve_mapping)});
   CHECK(objective.objective(objective.responses({{"c", loop}})) < 1e-6);
   // The computed curve starts with an extra lead-in segment; mapping must find the offset.

@@ -40,7 +40,8 @@ StudySpec two_experiment_study(const nlohmann::json& narrow_fixed = nlohmann::js
   study.erase("targets");
   nlohmann::json narrow = {{"name", "narrow"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}};
   if (!narrow_fixed.empty()) narrow["model"]["fixed_parameters"] = narrow_fixed;
-  study["experiments"] = {{{"name", "wide"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}}, narrow};
+  study["experiments"] = {{{"name", "wide"}, {"model", {{"case", "analytic"}}}, {"targets", single["targets"]}},
+                          narrow};
   return parse_study(study, ".");
 }
 
@@ -80,15 +81,18 @@ TEST_CASE("A study whose variable bounds leave the model's valid range is refuse
   CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
 }
 
-TEST_CASE("A bound on an open end of the valid range is refused, one just inside it is accepted", "[identify][parameters]") {
+TEST_CASE("A bound on an open end of the valid range is refused, one just inside it is accepted",
+          "[identify][parameters]") {
   nlohmann::json study = test::analytic_study(0.0, 1);
   study["variables"][0]["lower"] = 0.0;  // amplitude's lower end 0 is open
   study["variables"][0]["initial"] = 0.5;
-  CHECK_THROWS_WITH(run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_open"))),
-                    Catch::Contains("(0, 2]"));
+  CHECK_THROWS_WITH(
+      run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_open"))),
+      Catch::Contains("(0, 2]"));
   study["variables"][0]["lower"] = 1e-9;
   study["variables"][0]["upper"] = 2.0;  // the closed upper end itself is valid
-  CHECK_NOTHROW(run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_inside"))));
+  CHECK_NOTHROW(
+      run_study(parse_study(study, "."), BoundedAnalyticModel(), quiet_options(test::fresh_dir("bounds_inside"))));
 }
 
 TEST_CASE("A fixed parameter value outside the model's valid range is refused naming it", "[identify][parameters]") {
@@ -104,7 +108,8 @@ TEST_CASE("A fixed parameter value outside the model's valid range is refused na
   CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
 }
 
-TEST_CASE("A parameter range says which values it contains and prints its open and closed ends", "[identify][parameters]") {
+TEST_CASE("A parameter range says which values it contains and prints its open and closed ends",
+          "[identify][parameters]") {
   const ParameterRange damping{0.0, 1.0, false, true};
   CHECK(damping.contains(0.0));
   CHECK(damping.contains(0.999));
@@ -181,7 +186,9 @@ TEST_CASE("A target naming a curve the model does not declare is refused when th
 class AnalyticModelWithUnits final : public Model {
  public:
   std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
-  std::vector<CurveDescriptor> curves() const override { return {{"response", "volume_cm3", "pressure_MPa"}, {"loop", "x_1", "y_1"}}; }
+  std::vector<CurveDescriptor> curves() const override {
+    return {{"response", "volume_cm3", "pressure_MPa"}, {"loop", "x_1", "y_1"}};
+  }
   ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override { return inner_.evaluate(p, c); }
 

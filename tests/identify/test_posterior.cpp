@@ -68,7 +68,8 @@ RunSample synthetic_sample(std::uint64_t seed, Eigen::Vector3d& truth_unit) {
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < 3; ++j)  // stratified per coordinate, strata shuffled by the draw
       s.unit_points(i, j) = std::clamp(centre(j) - 0.15 + 0.3 * (((i * (2 * j + 7)) % m) + uniform(rng)) / m, 0.0, 1.0);
-    s.residuals.row(i) = (curve(to_physical(s.unit_points.row(i).transpose())) + trajectory_noise(rng) - measured).transpose();
+    s.residuals.row(i) =
+        (curve(to_physical(s.unit_points.row(i).transpose())) + trajectory_noise(rng) - measured).transpose();
     if (s.residuals.row(i).squaredNorm() < s.residuals.row(best).squaredNorm()) best = i;
   }
   s.best_unit = s.unit_points.row(best).transpose();
@@ -119,7 +120,8 @@ TEST_CASE("95 % posterior intervals of the identifiable parameters contain the t
   CHECK(weak <= 0.98);
   CHECK(weak_flagged >= seeds * 2 / 3);
   WARN("coverage: well " << well << ", correlated " << corr << ", weak " << double(inside_weak) / seeds
-                         << ", weak flagged " << weak_flagged << "/" << seeds << ", former conditional interval of the correlated one "
+                         << ", weak flagged " << weak_flagged << "/" << seeds
+                         << ", former conditional interval of the correlated one "
                          << double(conditional_inside_corr) / seeds);
 }
 

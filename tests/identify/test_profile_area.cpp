@@ -51,10 +51,12 @@ TEST_CASE("The profile_area term is the squared mean gap over the common x-range
   // a simulated profile on [5, 15] only: common range [5, 10], gap 1 -> mean gap 1 mm as before
   CHECK(objective.objective(objective.responses({{"surface", line(5, 15, 11, 1.0, 0.0)}})) == Approx(3.0 * 0.25));
   // no common range: the run cannot be compared
-  CHECK_THROWS_WITH(objective.responses({{"surface", line(20, 30, 11, 0.0, 0.0)}}), Catch::Contains("does not overlap"));
+  CHECK_THROWS_WITH(objective.responses({{"surface", line(20, 30, 11, 0.0, 0.0)}}),
+                    Catch::Contains("does not overlap"));
 }
 
-TEST_CASE("The area between profiles equals demfit::imaging's differing area on a shared grid", "[identify][profile_area]") {
+TEST_CASE("The area between profiles equals demfit::imaging's differing area on a shared grid",
+          "[identify][profile_area]") {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> z(-5.0, 5.0);
   for (int trial = 0; trial < 20; ++trial) {
@@ -93,8 +95,13 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
   const auto dir = test::fresh_dir("image_target");
   demfit::identify::write_file_atomically(dir / "drum.png", demfit::imaging::encode_png(picture));
   nlohmann::json study = test::analytic_study();
-  study["targets"] = {{{"name", "surface"}, {"curve", "response"}, {"image", "drum.png"}, {"image_diameter", diameter},
-                       {"image_margin", 0.2}, {"image_points", 21}, {"metric", "profile_area"}}};
+  study["targets"] = {{{"name", "surface"},
+                       {"curve", "response"},
+                       {"image", "drum.png"},
+                       {"image_diameter", diameter},
+                       {"image_margin", 0.2},
+                       {"image_points", 21},
+                       {"metric", "profile_area"}}};
   const StudySpec spec = parse_study(study, dir);
   const TargetSpec& t = spec.targets.at(0);
   CHECK(t.data.x_label == "x_mm");
@@ -112,7 +119,8 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
   study["targets"][0]["x_column"] = "x_mm";
   CHECK_THROWS_WITH(parse_study(study, dir), Catch::Contains("targets[0].image: an image target takes its points"));
   study["targets"][0].erase("x_column");
-  demfit::identify::write_file_atomically(dir / "dark.png", demfit::imaging::encode_png(demfit::imaging::RgbImage{n, n, std::vector<std::uint8_t>(3 * n * n, 10)}));
+  demfit::identify::write_file_atomically(dir / "dark.png", demfit::imaging::encode_png(demfit::imaging::RgbImage{
+                                                                n, n, std::vector<std::uint8_t>(3 * n * n, 10)}));
   study["targets"][0]["image"] = "dark.png";  // no surface to find: one line naming the field
   try {
     parse_study(study, dir);
@@ -127,10 +135,12 @@ TEST_CASE("An image target reads the photo's surface in millimetres in the drum 
   CHECK_THROWS_WITH(parse_study(study, dir), Catch::Contains("targets[0].image_diameter: must be > 0"));
 }
 
-TEST_CASE("A single-model study resolves and hashes exactly as before the experiments form", "[identify][experiments]") {
+TEST_CASE("A single-model study resolves and hashes exactly as before the experiments form",
+          "[identify][experiments]") {
   // Hashes computed by study_hash of commit 3de5f3f (before "experiments" existed) for the shipped
   // study files: an old study.db keeps its hash, so --resume still accepts it.
-  const auto analytic = load_study_file(std::filesystem::path(DEMFIT_SOURCE_DIR) / "tests/identify/data/analytic_study.json");
+  const auto analytic =
+      load_study_file(std::filesystem::path(DEMFIT_SOURCE_DIR) / "tests/identify/data/analytic_study.json");
   CHECK(study_hash(analytic) == 17669872487009600220ull);
   const auto diagnose =
       load_study_file(std::filesystem::path(DEMFIT_SOURCE_DIR) / "tests/diagnose/data/hidden_stiffening_study.json");

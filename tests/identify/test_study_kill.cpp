@@ -41,7 +41,8 @@ std::size_t stored_runs(const std::filesystem::path& db) {
 
 }  // namespace
 
-TEST_CASE("A study killed with SIGKILL resumes to the uninterrupted result without repeating runs", "[identify][resume]") {
+TEST_CASE("A study killed with SIGKILL resumes to the uninterrupted result without repeating runs",
+          "[identify][resume]") {
   const auto spec = parse_study(test::analytic_study(0.01, 4), ".");
   const SlowModel model;
   RunOptions options;
@@ -58,8 +59,7 @@ TEST_CASE("A study killed with SIGKILL resumes to the uninterrupted result witho
   if (child == 0) {
     try {
       run_study(spec, model, options);
-    } catch (...) {
-    }
+    } catch (...) {}
     _exit(0);
   }
   const std::size_t kill_after = spec.points_per_iteration + 2;  // inside iteration 1

@@ -132,8 +132,7 @@ TEST_CASE("With 1 % noise the true parameters lie inside the reported confidence
 TEST_CASE("A variable that does not affect the curve is flagged unidentifiable", "[identify][loop]") {
   auto study = test::analytic_study(0.01, 6);
   study["variables"].push_back({{"name", "ignored"}, {"lower", 0.0}, {"upper", 1.0}, {"initial", 0.5}});
-  const auto result =
-      run_study(parse_study(study, "."), ExtraParameterModel(), quiet_options(test::fresh_dir("flag")));
+  const auto result = run_study(parse_study(study, "."), ExtraParameterModel(), quiet_options(test::fresh_dir("flag")));
   CHECK(result.unidentifiable == std::vector<std::string>{"ignored"});
   CHECK(std::abs(result.best.at("amplitude") - 1.3) <= result.ci_half_width.at("amplitude"));
 }
@@ -256,11 +255,13 @@ TEST_CASE("The reported interval falls back to the linearised one only without a
   CHECK(interval_text(reported_interval(nullptr, "k", 2.0)) == "-");
 }
 
-TEST_CASE("Adaptive infill and principal-component responses also identify the analytic parameters", "[identify][loop]") {
+TEST_CASE("Adaptive infill and principal-component responses also identify the analytic parameters",
+          "[identify][loop]") {
   auto study = test::analytic_study(0.0, 10);
   study["sampling"] = {{"strategy", "adaptive_infill"}};
   study["surrogate"] = {{"responses", "principal_components"}};
-  const auto result = run_study(parse_study(study, "."), AnalyticCurveModel(), quiet_options(test::fresh_dir("adaptive")));
+  const auto result =
+      run_study(parse_study(study, "."), AnalyticCurveModel(), quiet_options(test::fresh_dir("adaptive")));
   CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 2e-2);
   CHECK(std::abs(result.best.at("rate") / 4.2 - 1.0) < 2e-2);
 }
@@ -270,8 +271,8 @@ TEST_CASE("Curve mapping identifies parameters from a hysteresis loop", "[identi
   const Curve loop = model.evaluate({{"amplitude", 1.3}, {"slope", 0.8}}, {}).at("loop");
   nlohmann::json study = test::analytic_study(0.0, 10);
   study["variables"][1] = {{"name", "slope"}, {"lower", 0.0}, {"upper", 2.0}, {"initial", 0.3}};
-  study["targets"][0] = {{"curve", "loop"}, {"x_column", "x_1"}, {"y_column", "y_1"}, {"x", loop.x}, {"y", loop.y},
-                         {"metric", "curve_mapping"}};
+  study["targets"][0] = {{"curve", "loop"}, {"x_column", "x_1"}, {"y_column", "y_1"},
+                         {"x", loop.x},     {"y", loop.y},       {"metric", "curve_mapping"}};
   const auto result = run_study(parse_study(study, "."), model, quiet_options(test::fresh_dir("mapping")));
   CHECK(std::abs(result.best.at("amplitude") / 1.3 - 1.0) < 1e-2);
   CHECK(std::abs(result.best.at("slope") / 0.8 - 1.0) < 2e-2);

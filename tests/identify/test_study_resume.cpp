@@ -27,7 +27,8 @@ RunOptions quiet_options(const std::filesystem::path& dir) {
 
 }  // namespace
 
-TEST_CASE("Resuming after a kill mid-iteration repeats no run and reaches the uninterrupted result", "[identify][resume]") {
+TEST_CASE("Resuming after a kill mid-iteration repeats no run and reaches the uninterrupted result",
+          "[identify][resume]") {
   const auto spec = parse_study(test::analytic_study(0.01, 6), ".");
   const AnalyticCurveModel model;
   const auto reference = run_study(spec, model, quiet_options(test::fresh_dir("resume_reference")));
@@ -87,7 +88,8 @@ TEST_CASE("A store written with another schema version is refused with a message
   run_study(spec, AnalyticCurveModel(), quiet_options(dir));
   sqlite3* db = nullptr;
   REQUIRE(sqlite3_open((dir / "study.db").string().c_str(), &db) == SQLITE_OK);
-  REQUIRE(sqlite3_exec(db, "UPDATE meta SET value = '999' WHERE key = 'schema_version'", nullptr, nullptr, nullptr) == SQLITE_OK);
+  REQUIRE(sqlite3_exec(db, "UPDATE meta SET value = '999' WHERE key = 'schema_version'", nullptr, nullptr, nullptr) ==
+          SQLITE_OK);
   sqlite3_close(db);
   auto options = quiet_options(dir);
   options.resume = true;

@@ -11,9 +11,7 @@ namespace {
 std::string parse_error(const nlohmann::json& study) {
   try {
     parse_study(study, ".");
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
+  } catch (const std::runtime_error& e) { return e.what(); }
   return "no error";
 }
 }  // namespace
@@ -88,8 +86,11 @@ TEST_CASE("A study file reads its target CSV relative to its own folder", "[iden
   const auto dir = test::fresh_dir("study_file");
   std::ofstream(dir / "target.csv") << "volume_cm3,pressure_MPa\n1,0.5\n2,1.5\n3,2.5\n";
   nlohmann::json study = test::analytic_study();
-  study["targets"][0] = {{"curve", "response"}, {"csv", "target.csv"}, {"x_column", "volume_cm3"},
-                         {"y_column", "pressure_MPa"}, {"weight", 2.0}};
+  study["targets"][0] = {{"curve", "response"},
+                         {"csv", "target.csv"},
+                         {"x_column", "volume_cm3"},
+                         {"y_column", "pressure_MPa"},
+                         {"weight", 2.0}};
   std::ofstream(dir / "study.json") << study.dump(2);
   const StudySpec spec = load_study_file(dir / "study.json");
   CHECK(spec.targets[0].data.y == std::vector<double>{0.5, 1.5, 2.5});

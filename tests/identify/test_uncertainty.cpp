@@ -104,7 +104,7 @@ TEST_CASE("The regression estimate on exactly linear runs equals the estimate wi
   for (int i = 0; i < m; ++i)
     sample.residuals.row(i) = (r0 + A * (sample.unit_points.row(i).transpose() - sample.best_unit)).transpose();
   sample.best_residuals = r0;
-  sample.unit_per_physical = Eigen::Vector2d(0.5, 2.0);   // variables of range 2 and 0.5
+  sample.unit_per_physical = Eigen::Vector2d(0.5, 2.0);  // variables of range 2 and 0.5
   const std::vector<VariableSpec> variables{{"a", 0, 2, 1}, {"b", 0, 0.5, 0.25}};
   const auto from_runs = estimate_uncertainty_from_runs(sample, variables);
   const auto exact = estimate_uncertainty(A * sample.unit_per_physical.asDiagonal(), r0, variables);
@@ -119,7 +119,7 @@ TEST_CASE("The regression estimate on exactly linear runs equals the estimate wi
   // The least-squares centre is the Gauss-Newton step of the exact linear model:
   // du = -(A^T A)^-1 A^T r0 (unit coordinates), physical = lower + u * range.
   const Eigen::VectorXd du = -(A.transpose() * A).ldlt().solve(A.transpose() * r0);
-  REQUIRE(du.cwiseAbs().maxCoeff() < 0.05);   // inside the sampled spread: no trust-region cut
+  REQUIRE(du.cwiseAbs().maxCoeff() < 0.05);  // inside the sampled spread: no trust-region cut
   REQUIRE(from_runs.least_squares_estimate.size() == 2);
   CHECK(from_runs.least_squares_estimate[0] == Approx(2.0 * (0.4 + du(0))).epsilon(1e-9));
   CHECK(from_runs.least_squares_estimate[1] == Approx(0.5 * (0.6 + du(1))).epsilon(1e-9));

@@ -42,7 +42,8 @@ inline GreyImage draw_surface(const DrawnDrum& drum, const std::function<double(
           below += z < surface(x);
         }
       const float fraction = static_cast<float>(below) / (kSub * kSub);
-      image.value[static_cast<std::size_t>(row) * drum.pixels + column] = drum.empty + (drum.material - drum.empty) * fraction;
+      image.value[static_cast<std::size_t>(row) * drum.pixels + column] =
+          drum.empty + (drum.material - drum.empty) * fraction;
     }
   return image;
 }

@@ -29,13 +29,16 @@ TEST_CASE("the GranuDrum photos give bed surfaces lifted on the left, straight a
   REQUIRE(rolling.x.size() >= 30u);
   REQUIRE(cascading.x.size() >= 30u);
   const SurfaceLine rolling_line = fit_surface_line(rolling), cascading_line = fit_surface_line(cascading);
-  WARN("15 rpm: angle " << rolling_line.angle_deg << " deg, residual " << rolling_line.residual_rms * 1e3 << " mm, threshold "
-                        << rolling.threshold_used << ", x " << rolling.x.front() * 1e3 << ".." << rolling.x.back() * 1e3 << " mm");
-  WARN("45 rpm: angle " << cascading_line.angle_deg << " deg, residual " << cascading_line.residual_rms * 1e3 << " mm, threshold "
-                        << cascading.threshold_used << ", x " << cascading.x.front() * 1e3 << ".." << cascading.x.back() * 1e3 << " mm");
+  WARN("15 rpm: angle " << rolling_line.angle_deg << " deg, residual " << rolling_line.residual_rms * 1e3
+                        << " mm, threshold " << rolling.threshold_used << ", x " << rolling.x.front() * 1e3 << ".."
+                        << rolling.x.back() * 1e3 << " mm");
+  WARN("45 rpm: angle " << cascading_line.angle_deg << " deg, residual " << cascading_line.residual_rms * 1e3
+                        << " mm, threshold " << cascading.threshold_used << ", x " << cascading.x.front() * 1e3 << ".."
+                        << cascading.x.back() * 1e3 << " mm");
   WARN("material / empty grey levels: 15 rpm " << rolling.material_level << " / " << rolling.empty_level << ", 45 rpm "
-        << cascading.material_level << " / " << cascading.empty_level << "; equivalent occupancy " << equivalent_occupancy(rolling)
-        << ", " << equivalent_occupancy(cascading));
+                                               << cascading.material_level << " / " << cascading.empty_level
+                                               << "; equivalent occupancy " << equivalent_occupancy(rolling) << ", "
+                                               << equivalent_occupancy(cascading));
   for (const SurfaceProfile* p : {&rolling, &cascading}) {
     CHECK(p->z.front() > p->z.back() + 0.03);  // lifted on the left by more than 30 mm
     // Otsu's threshold on the averaged photo is where a pixel is powder about half the time, the

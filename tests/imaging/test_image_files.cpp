@@ -49,7 +49,8 @@ std::string encode_bmp(const GreyImage& image) {
   put(out, 0, 4);
   for (int row = image.height - 1; row >= 0; --row) {
     for (int column = 0; column < image.width; ++column) {
-      const auto byte = static_cast<char>(std::lround(255.0f * image.value[static_cast<std::size_t>(row) * image.width + column]));
+      const auto byte =
+          static_cast<char>(std::lround(255.0f * image.value[static_cast<std::size_t>(row) * image.width + column]));
       out.append(3, byte);
     }
     out.append(stride - 3 * image.width, '\0');
@@ -66,7 +67,8 @@ std::string read_bytes(const fs::path& file) {
 
 double max_difference(const GreyImage& a, const GreyImage& b) {
   double worst = 0.0;
-  for (std::size_t k = 0; k < a.value.size(); ++k) worst = std::max(worst, std::abs(static_cast<double>(a.value[k] - b.value[k])));
+  for (std::size_t k = 0; k < a.value.size(); ++k)
+    worst = std::max(worst, std::abs(static_cast<double>(a.value[k] - b.value[k])));
   return worst;
 }
 
@@ -130,9 +132,12 @@ TEST_CASE("truncated BMP and PNG files are refused as truncated, naming the file
 
 TEST_CASE("a missing file, an empty file and a file that is not an image are refused with the fix") {
   const fs::path dir = scratch("not_image");
-  CHECK_THROWS_WITH(read_grey_image(dir / "absent.png"), Catch::Contains("absent.png") && Catch::Contains("check the path"));
+  CHECK_THROWS_WITH(read_grey_image(dir / "absent.png"),
+                    Catch::Contains("absent.png") && Catch::Contains("check the path"));
   write_bytes(dir / "empty.bmp", "");
-  CHECK_THROWS_WITH(read_grey_image(dir / "empty.bmp"), Catch::Contains("empty.bmp") && Catch::Contains("BMP, PNG or JPEG"));
+  CHECK_THROWS_WITH(read_grey_image(dir / "empty.bmp"),
+                    Catch::Contains("empty.bmp") && Catch::Contains("BMP, PNG or JPEG"));
   write_bytes(dir / "notes.png", "x_mm,z_mm\n1,2\n");
-  CHECK_THROWS_WITH(read_grey_image(dir / "notes.png"), Catch::Contains("notes.png") && Catch::Contains("cannot be decoded"));
+  CHECK_THROWS_WITH(read_grey_image(dir / "notes.png"),
+                    Catch::Contains("notes.png") && Catch::Contains("cannot be decoded"));
 }

@@ -20,7 +20,8 @@ TEST_CASE("a straight surface at a known angle is extracted with the angle withi
   for (double angle : {0.0, 20.0, 35.0, 50.0}) {
     // Bed lifted on the left (clockwise drum as in the GranuDrum photos): dz/dx = -tan(angle).
     const auto surface = [angle](double x) { return 0.002 - std::tan(angle * kDegree) * x; };
-    const SurfaceProfile profile = extract_surface(test::draw_surface(drum, surface), DrumFrame{drum.diameter}, ProfileOptions{});
+    const SurfaceProfile profile =
+        extract_surface(test::draw_surface(drum, surface), DrumFrame{drum.diameter}, ProfileOptions{});
     INFO("angle " << angle << " deg");
     REQUIRE(profile.x.size() == 41u);
     const SurfaceLine line = fit_surface_line(profile);
@@ -35,7 +36,8 @@ TEST_CASE("a known S-curve is extracted within one pixel RMS") {
   const DrawnDrum drum;
   // Cascading-like surface: steep in the middle, flattening towards both walls.
   const auto surface = [](double x) { return 0.001 - 0.022 * std::tanh(x / 0.012); };
-  const SurfaceProfile profile = extract_surface(test::draw_surface(drum, surface), DrumFrame{drum.diameter}, ProfileOptions{});
+  const SurfaceProfile profile =
+      extract_surface(test::draw_surface(drum, surface), DrumFrame{drum.diameter}, ProfileOptions{});
   REQUIRE(profile.x.size() >= 30u);
   CHECK(test::rms_against(profile, surface) < drum.pixel_size());
   // The curve is not a line: a straight fit leaves a residual of several pixels.
@@ -64,8 +66,8 @@ TEST_CASE("a drawn drum outline inside the margin is ignored, and breaks the ext
   const double radius = 0.5 * drum.diameter;
   const auto surface = [](double x) { return 0.003 - std::tan(40.0 * kDegree) * x; };
   GreyImage photo = test::draw_surface(drum, surface);
-  test::paint_ring(photo, drum.diameter, 0.94 * radius, 0.99 * radius, 0.1f);  // dark outline
-  test::paint_ring(photo, drum.diameter, 0.99 * radius, 2.0 * radius, 0.6f);   // grey corners
+  test::paint_ring(photo, drum.diameter, 0.94 * radius, 0.99 * radius, 0.1f);                         // dark outline
+  test::paint_ring(photo, drum.diameter, 0.99 * radius, 2.0 * radius, 0.6f);                          // grey corners
   const SurfaceProfile profile = extract_surface(photo, DrumFrame{drum.diameter}, ProfileOptions{});  // margin 0.1
   REQUIRE(profile.x.size() == 41u);
   CHECK(std::abs(-fit_surface_line(profile).angle_deg - 40.0) < 0.5);
@@ -88,7 +90,8 @@ TEST_CASE("isolated speckles above the bed and light holes inside it do not move
     for (const auto& [offset, grey] : {std::pair{0.003, drum.material}, std::pair{-0.003, drum.empty}}) {
       const int row = static_cast<int>(std::lround((0.5 * drum.diameter - surface(x) - offset) / h));
       for (int r = row - 1; r <= row + 1; ++r)
-        for (int c = column - 1; c <= column + 1; ++c) photo.value[static_cast<std::size_t>(r) * drum.pixels + c] = grey;
+        for (int c = column - 1; c <= column + 1; ++c)
+          photo.value[static_cast<std::size_t>(r) * drum.pixels + c] = grey;
     }
   }
   const SurfaceProfile profile = extract_surface(photo, DrumFrame{drum.diameter}, ProfileOptions{});
@@ -113,14 +116,17 @@ TEST_CASE("a picture that is all dark or all light has no surface and the error 
   dark.width = dark.height = 100;
   dark.source = "dark.png";
   dark.value.assign(100 * 100, 0.05f);
-  CHECK_THROWS_WITH(extract_surface(dark, DrumFrame{}, ProfileOptions{}), Catch::Contains("dark.png") && Catch::Contains("single grey level"));
+  CHECK_THROWS_WITH(extract_surface(dark, DrumFrame{}, ProfileOptions{}),
+                    Catch::Contains("dark.png") && Catch::Contains("single grey level"));
   ProfileOptions fixed;
   fixed.threshold = 0.5;
-  CHECK_THROWS_WITH(extract_surface(dark, DrumFrame{}, fixed), Catch::Contains("dark.png") && Catch::Contains("no free surface"));
+  CHECK_THROWS_WITH(extract_surface(dark, DrumFrame{}, fixed),
+                    Catch::Contains("dark.png") && Catch::Contains("no free surface"));
   GreyImage light = dark;
   light.source = "light.png";
   light.value.assign(100 * 100, 0.95f);
-  CHECK_THROWS_WITH(extract_surface(light, DrumFrame{}, fixed), Catch::Contains("light.png") && Catch::Contains("no pixel is material"));
+  CHECK_THROWS_WITH(extract_surface(light, DrumFrame{}, fixed),
+                    Catch::Contains("light.png") && Catch::Contains("no pixel is material"));
 }
 
 TEST_CASE("a non-square or tiny picture and a non-positive diameter are refused with the fix") {
@@ -129,7 +135,8 @@ TEST_CASE("a non-square or tiny picture and a non-positive diameter are refused 
   wide.height = 100;
   wide.source = "wide.bmp";
   wide.value.assign(120 * 100, 0.5f);
-  CHECK_THROWS_WITH(extract_surface(wide, DrumFrame{}, ProfileOptions{}), Catch::Contains("wide.bmp") && Catch::Contains("square"));
+  CHECK_THROWS_WITH(extract_surface(wide, DrumFrame{}, ProfileOptions{}),
+                    Catch::Contains("wide.bmp") && Catch::Contains("square"));
   GreyImage tiny;
   tiny.width = tiny.height = 16;
   tiny.value.assign(16 * 16, 0.5f);

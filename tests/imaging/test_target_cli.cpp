@@ -39,8 +39,8 @@ std::string slurp(const fs::path& file) {
 }
 
 CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
-  const std::string command = std::string("'") + DEMFIT_EXE + "' " + arguments + " > '" + (dir / "stdout.txt").string() + "' 2> '" +
-                              (dir / "stderr.txt").string() + "'";
+  const std::string command = std::string("'") + DEMFIT_EXE + "' " + arguments + " > '" +
+                              (dir / "stdout.txt").string() + "' 2> '" + (dir / "stderr.txt").string() + "'";
   const int raw = std::system(command.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stdout.txt"), slurp(dir / "stderr.txt")};
 }
@@ -57,7 +57,8 @@ fs::path drawn_photo(const fs::path& dir) {
 TEST_CASE("target from-image writes the profile in millimetres of the drum frame and an overlay") {
   const fs::path dir = scratch("ok");
   const fs::path photo = drawn_photo(dir);
-  const CliRun run = run_demfit("target from-image '" + photo.string() + "' --diameter 84mm --out '" + (dir / "out").string() + "'", dir);
+  const CliRun run = run_demfit(
+      "target from-image '" + photo.string() + "' --diameter 84mm --out '" + (dir / "out").string() + "'", dir);
   INFO("stderr: " << run.error);
   REQUIRE(run.status == 0);
   std::ifstream csv(dir / "out" / "free_surface.csv");
@@ -86,7 +87,9 @@ TEST_CASE("target from-image with a truncated photo fails naming it and writes n
   const fs::path dir = scratch("truncated");
   const std::string png = slurp(drawn_photo(dir));
   std::ofstream(dir / "cut.png", std::ios::binary) << png.substr(0, png.size() / 2);
-  const CliRun run = run_demfit("target from-image '" + (dir / "cut.png").string() + "' --diameter 84mm --out '" + (dir / "out").string() + "'", dir);
+  const CliRun run = run_demfit(
+      "target from-image '" + (dir / "cut.png").string() + "' --diameter 84mm --out '" + (dir / "out").string() + "'",
+      dir);
   CHECK(run.status != 0);
   CHECK(run.error.rfind("demfit: error: ", 0) == 0);
   CHECK(run.error.find("cut.png") != std::string::npos);
@@ -98,7 +101,9 @@ TEST_CASE("target from-image with a diameter lacking its unit or an unknown unit
   const fs::path dir = scratch("diameter");
   const fs::path photo = drawn_photo(dir);
   for (const std::string diameter : {"84", "84cm", "-0.084m"}) {
-    const CliRun run = run_demfit("target from-image '" + photo.string() + "' --diameter " + diameter + " --out '" + (dir / "out").string() + "'", dir);
+    const CliRun run = run_demfit(
+        "target from-image '" + photo.string() + "' --diameter " + diameter + " --out '" + (dir / "out").string() + "'",
+        dir);
     INFO("--diameter " << diameter << ": " << run.error);
     CHECK(run.status != 0);
     CHECK(run.error.find("--diameter") != std::string::npos);
@@ -106,5 +111,7 @@ TEST_CASE("target from-image with a diameter lacking its unit or an unknown unit
     CHECK_FALSE(fs::exists(dir / "out"));
   }
   // 0.084 as a bare number is metres and works.
-  CHECK(run_demfit("target from-image '" + photo.string() + "' --diameter 0.084 --out '" + (dir / "out").string() + "'", dir).status == 0);
+  CHECK(run_demfit("target from-image '" + photo.string() + "' --diameter 0.084 --out '" + (dir / "out").string() + "'",
+                   dir)
+            .status == 0);
 }

@@ -17,7 +17,8 @@ bool identical(const identify::EvaluationOutcome& a, const identify::EvaluationO
   if (a.ok != b.ok || a.curves.size() != b.curves.size()) return false;
   for (const auto& [name, curve] : a.curves) {
     const auto it = b.curves.find(name);
-    if (it == b.curves.end() || curve.x.size() != it->second.x.size() || curve.y.size() != it->second.y.size()) return false;
+    if (it == b.curves.end() || curve.x.size() != it->second.x.size() || curve.y.size() != it->second.y.size())
+      return false;
     if (std::memcmp(curve.x.data(), it->second.x.data(), curve.x.size() * sizeof(double)) != 0) return false;
     if (std::memcmp(curve.y.data(), it->second.y.data(), curve.y.size() * sizeof(double)) != 0) return false;
   }
@@ -43,7 +44,8 @@ int main(int argc, char** argv) {
     scaleout::MpiEvaluatorOptions options;
     options.run_timeout_seconds = 5.0;  // a hung worker is given up after 5 s
     scaleout::MpiEvaluator evaluator(session, options);
-    outcomes = evaluator.evaluate_points(model, batch, [&](std::size_t, const identify::EvaluationOutcome&) { ++callbacks; });
+    outcomes =
+        evaluator.evaluate_points(model, batch, [&](std::size_t, const identify::EvaluationOutcome&) { ++callbacks; });
   }
   const identify::EvaluationContext context{1, 7};
   for (std::size_t i = 0; i + 1 < batch.size(); ++i) {

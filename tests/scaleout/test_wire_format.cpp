@@ -13,8 +13,11 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 }  // namespace
 
 TEST_CASE("Parameter sets survive the trip between ranks bit for bit", "[scaleout]") {
-  const identify::ParameterSet sent{{"normk", 0.875046}, {"sheark", 1.0 / 3.0}, {"tiny", 4.9e-324},
-                                    {"pi", M_PI}, {"negative", -std::nextafter(1.0, 2.0)}};
+  const identify::ParameterSet sent{{"normk", 0.875046},
+                                    {"sheark", 1.0 / 3.0},
+                                    {"tiny", 4.9e-324},
+                                    {"pi", M_PI},
+                                    {"negative", -std::nextafter(1.0, 2.0)}};
   const identify::ParameterSet received = scaleout::decode_parameters(scaleout::encode_parameters(sent));
   REQUIRE(received.size() == sent.size());
   for (const auto& [name, value] : sent) CHECK(same_bits(received.at(name), value));

@@ -84,7 +84,8 @@ TEST_CASE("an optimum on a bound, the iteration limit and a verification far fro
   design.objective = 1.0;
   verification.objective = 1e-18;
   last.predicted_objective = 3e-19;
-  const auto exact = id::study_diagnostics(spec, {design, verification}, {last}, &best, nlohmann::json{{"converged", true}});
+  const auto exact =
+      id::study_diagnostics(spec, {design, verification}, {last}, &best, nlohmann::json{{"converged", true}});
   CHECK(!mentions(exact.warnings, "far from the surrogate's prediction"));
 }
 
@@ -93,7 +94,8 @@ TEST_CASE("a best run far from quasi-static is warned, and so are other runs tha
   const auto spec = spec_with_target(y);
   auto with_check = [&](double k, double largest) {
     auto r = run(k, y);
-    r.curves[id::kQuasiStaticCurve] = {"volume_cm3", "kinetic_over_elastic_energy_per_limit", {3, 2, 1}, {0.1, largest, 0.2}};
+    r.curves[id::kQuasiStaticCurve] = {
+        "volume_cm3", "kinetic_over_elastic_energy_per_limit", {3, 2, 1}, {0.1, largest, 0.2}};
     return r;
   };
   const auto inertial = with_check(1.5, 4.0);
@@ -106,5 +108,6 @@ TEST_CASE("a best run far from quasi-static is warned, and so are other runs tha
   CHECK(!mentions(fine.warnings, "quasi-static"));
   // A model without the check curve (the drum, the analytic model) gets no such warning.
   const auto plain = run(1.5, y);
-  CHECK(!mentions(id::study_diagnostics(spec, {plain}, {}, &plain, nlohmann::json{{"converged", true}}).warnings, "quasi-static"));
+  CHECK(!mentions(id::study_diagnostics(spec, {plain}, {}, &plain, nlohmann::json{{"converged", true}}).warnings,
+                  "quasi-static"));
 }

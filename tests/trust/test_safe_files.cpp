@@ -19,8 +19,8 @@
 #include "trust_harness.hpp"
 
 namespace {
-using trust::Sandbox;
 using nlohmann::json;
+using trust::Sandbox;
 namespace fs = std::filesystem;
 namespace id = demfit::identify;
 
@@ -69,9 +69,7 @@ TEST_CASE("two threads writing the same file at once both succeed and leave no t
     for (int i = 0; i < 200; ++i) {
       try {
         id::write_file_atomically(s.work / "fill.txt", std::string(4000, fill));
-      } catch (const std::exception&) {
-        ++failures;
-      }
+      } catch (const std::exception&) { ++failures; }
     }
   };
   std::thread a(writer, 'a'), b(writer, 'b');
@@ -124,7 +122,8 @@ TEST_CASE("report on a full disk exits non-zero with one line and no temporary l
   CHECK(one_error_line(r, "failed"));
   // The first file over the limit fails: the resolved study (the 20000-point target inline) or
   // the target table; neither may be left half-written.
-  CHECK((r.err.find("study_resolved.json") != std::string::npos || r.err.find("target_response.csv") != std::string::npos));
+  CHECK((r.err.find("study_resolved.json") != std::string::npos ||
+         r.err.find("target_response.csv") != std::string::npos));
   CHECK(!fs::exists(s.work / "rebuilt" / "target_response.csv"));
   CHECK(!fs::exists(s.work / "rebuilt" / "study_resolved.json"));
   CHECK(trust::leftovers(s.work).empty());
@@ -192,7 +191,8 @@ TEST_CASE("resume refuses a changed model and names the field that changed") {
 TEST_CASE("a corrupted row of study.db names the store and the run") {
   Sandbox s("cli_corrupt_row");
   finished_study(s);
-  sql(s.work / "out" / "study.db", "UPDATE evaluations SET parameters = '{\"amplitude\": [' WHERE iteration = 0 AND point = 1");
+  sql(s.work / "out" / "study.db",
+      "UPDATE evaluations SET parameters = '{\"amplitude\": [' WHERE iteration = 0 AND point = 1");
   const auto r = s.run({"report", "out/study.db", "--out", "rebuilt", "--no-plots"});
   INFO(r.err);
   CHECK(one_error_line(r, "run 0/1 is corrupted"));
@@ -233,7 +233,8 @@ TEST_CASE("a target name with ../ and gnuplot syntax writes only slug files insi
     const std::string name = e.path().filename().string();
     CHECK((name == "out" || name == "study.json" || name == "analytic_target.csv"));
   }
-  CHECK(fs::exists(s.work / "out" / id::safe_slug("target_" + study["targets"][0]["name"].get<std::string>() + ".csv")));
+  CHECK(
+      fs::exists(s.work / "out" / id::safe_slug("target_" + study["targets"][0]["name"].get<std::string>() + ".csv")));
 }
 
 TEST_CASE("a CSV with a UTF-8 byte-order mark is read like one without") {
@@ -250,7 +251,8 @@ TEST_CASE("a CSV with a UTF-8 byte-order mark is read like one without") {
 TEST_CASE("threads above the core count are capped with a note") {
   Sandbox s("cli_threads");
   finished_study(s);
-  const auto r = s.run({"identify", "study.json", "--out", "out", "--resume", "--no-plots", "--threads-per-job", "100000"});
+  const auto r =
+      s.run({"identify", "study.json", "--out", "out", "--resume", "--no-plots", "--threads-per-job", "100000"});
   INFO(r.err);
   CHECK(r.status == 0);
   CHECK(r.err.find("note: --threads-per-job 100000 is above the") != std::string::npos);
@@ -266,9 +268,11 @@ TEST_CASE("safe_slug keeps ordinary names and never yields a path") {
 }
 
 TEST_CASE("JSON inputs: duplicate keys, depth and size are refused, a byte-order mark accepted") {
-  CHECK_THROWS_WITH(id::parse_json_document(R"({"a": 1, "b": {"c": 1, "c": 2}})", "x"), Catch::Contains("'c' appears twice"));
+  CHECK_THROWS_WITH(id::parse_json_document(R"({"a": 1, "b": {"c": 1, "c": 2}})", "x"),
+                    Catch::Contains("'c' appears twice"));
   CHECK_NOTHROW(id::parse_json_document(R"({"a": {"c": 1}, "b": {"c": 2}})", "x"));
-  CHECK_THROWS_WITH(id::parse_json_document(std::string(65, '[') + std::string(65, ']'), "x"), Catch::Contains("nested deeper"));
+  CHECK_THROWS_WITH(id::parse_json_document(std::string(65, '[') + std::string(65, ']'), "x"),
+                    Catch::Contains("nested deeper"));
   CHECK_NOTHROW(id::parse_json_document(std::string(64, '[') + std::string(64, ']'), "x"));
   CHECK_NOTHROW(id::parse_json_document("\"[[[[\"", "x"));  // brackets inside strings do not count
   CHECK(id::parse_json_document("\xEF\xBB\xBF{\"a\": 1}", "x")["a"] == 1);

@@ -50,8 +50,8 @@ TEST_CASE("column units are read from the label and converted within a dimension
   CHECK(id::unit_factor("torque_Nmm", "torque_Nm", "f") == Approx(1e-3).epsilon(1e-14));
   CHECK(id::unit_factor("angle_deg", "angle_rad", "f") == Approx(M_PI / 180).epsilon(1e-14));
   CHECK(id::unit_factor("time_min", "time_s", "f") == 60.0);
-  CHECK(id::unit_factor("x_1", "x_mm", "f") == 1.0);      // unknown unit: left as it is
-  CHECK(id::unit_factor("p_mPa", "p_MPa", "f") == 1.0);   // case-sensitive: mPa is not a known unit
+  CHECK(id::unit_factor("x_1", "x_mm", "f") == 1.0);     // unknown unit: left as it is
+  CHECK(id::unit_factor("p_mPa", "p_MPa", "f") == 1.0);  // case-sensitive: mPa is not a known unit
   CHECK_THROWS_WITH(id::unit_factor("volume_mm3", "height_mm", "targets[0].x_column"),
                     Catch::Contains("targets[0].x_column") && Catch::Contains("volume") && Catch::Contains("length"));
 }

@@ -98,9 +98,12 @@ inline std::map<std::string, std::string> snapshot(const fs::path& dir, const fs
       continue;
     }
     const auto status = fs::symlink_status(p);
-    if (fs::is_symlink(status)) files[p.string()] = "link -> " + fs::read_symlink(p).string();
-    else if (fs::is_regular_file(status)) files[p.string()] = read_text(p);
-    else if (fs::is_directory(status)) files[p.string()] = "<dir>";
+    if (fs::is_symlink(status))
+      files[p.string()] = "link -> " + fs::read_symlink(p).string();
+    else if (fs::is_regular_file(status))
+      files[p.string()] = read_text(p);
+    else if (fs::is_directory(status))
+      files[p.string()] = "<dir>";
   }
   return files;
 }

@@ -39,9 +39,8 @@ struct SyntheticNoise {
 // Writes <dir>/<curve>.csv for every curve (with '#' comment lines: case, parameters, and a
 // SYNTHETIC label when noise is added), <dir>/<table>.csv for every table, <dir>/case_resolved.json
 // and <dir>/summary.txt. `parameters` are the evaluated parameters (recorded in the comments).
-void write_case_result(const std::filesystem::path& dir, const CaseResult& result,
-                       const nlohmann::json& resolved_case, const identify::ParameterSet& parameters,
-                       const SyntheticNoise& noise);
+void write_case_result(const std::filesystem::path& dir, const CaseResult& result, const nlohmann::json& resolved_case,
+                       const identify::ParameterSet& parameters, const SyntheticNoise& noise);
 
 // Human-readable summary: the summary lines and, for each curve, a short table of points.
 std::string format_summary(const CaseResult& result, int points_per_curve = 11);

@@ -23,9 +23,9 @@ struct CaseCurve {
 
 struct CaseKindRow {
   CaseKind kind;
-  const char* name;         // "case" in the case file
-  const char* section;      // the kind's own case-file section (no other kind may carry it)
-  const char* summary;      // what it models (SPEC section)
+  const char* name;     // "case" in the case file
+  const char* section;  // the kind's own case-file section (no other kind may carry it)
+  const char* summary;  // what it models (SPEC section)
   std::vector<CaseCurve> curves;
 };
 

@@ -14,15 +14,15 @@
 namespace demfit::cases {
 
 struct CaseRunOptions {
-  int threads = 1;                        // OpenMP threads of the simulation
-  ProgressCallback progress;              // may be empty
-  std::filesystem::path snapshot_dir;     // VTK snapshots at spec.output.snapshot_times; empty = none
-  std::filesystem::path cache_dir;        // settled fills; empty = default_cache_dir()
+  int threads = 1;                     // OpenMP threads of the simulation
+  ProgressCallback progress;           // may be empty
+  std::filesystem::path snapshot_dir;  // VTK snapshots at spec.output.snapshot_times; empty = none
+  std::filesystem::path cache_dir;     // settled fills; empty = default_cache_dir()
 };
 
 struct CaseResult {
-  identify::CurveSet curves;                    // named curves (the Model's output)
-  std::map<std::string, CurveTable> tables;     // file stem -> multi-column table (histories)
+  identify::CurveSet curves;                                 // named curves (the Model's output)
+  std::map<std::string, CurveTable> tables;                  // file stem -> multi-column table (histories)
   std::vector<std::pair<std::string, std::string>> summary;  // (label with unit, value) lines
 };
 
@@ -30,8 +30,7 @@ struct CaseResult {
 // values, so it is shared by every evaluation and cached; `parameters` (identified-parameter
 // names, see parameter_names()) override the contact values for the measured stage only
 // (compression, rotation). Throws std::runtime_error on bad input or a failed simulation.
-CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& parameters,
-                    const CaseRunOptions& options);
+CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& parameters, const CaseRunOptions& options);
 
 // $DEMFIT_CACHE_DIR, else $XDG_CACHE_HOME/demfit, else $HOME/.cache/demfit, else ./.demfit-cache.
 std::filesystem::path default_cache_dir();

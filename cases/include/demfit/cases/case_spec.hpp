@@ -18,15 +18,15 @@ namespace demfit::cases {
 // Particle material (one species per case). The particle spring is NORMK * K * R with
 // K = E / (3 (1 - 2 nu)) (paper section 2, SPEC 1).
 struct MaterialSpec {
-  double radius = 1.0e-3;          // [m]
-  double density = 1000.0;         // [kg/m^3]
-  double youngs_modulus = 1.0e9;   // E [Pa]
-  double poisson_ratio = 0.3;      // nu [-], < 0.5
+  double radius = 1.0e-3;         // [m]
+  double density = 1000.0;        // [kg/m^3]
+  double youngs_modulus = 1.0e9;  // E [Pa]
+  double poisson_ratio = 0.3;     // nu [-], < 0.5
   // Polydispersity (effects library): relative radius spread s, radii uniform in
   // [R(1 - s), R(1 + s)] at the same solid volume (dem_core PackingRequest::radius_spread);
   // 0 = monodisperse (off). Changes the fill, so it is part of the fill cache key when > 0.
-  double radius_spread = 0.0;      // [-], in [0, 0.3]
-  double bulk_modulus() const;     // K [Pa]
+  double radius_spread = 0.0;   // [-], in [0, 0.3]
+  double bulk_modulus() const;  // K [Pa]
 };
 
 // *CONTROL_DISCRETE_ELEMENT (particle pairs, with the effects library) and
@@ -46,14 +46,14 @@ struct PelletSpec {
   double container_diameter = 0.036;  // [m]
   double container_height = 0.064;    // [m]
   long long particle_count = 1450;
-  long long fill_seed = 1;            // seed of the random pouring positions
-  double fill_normk = 0.01;           // NORMK used while pouring/settling the fill (cached)
-  double settle_time = 0.6;           // simulated pouring + settling time [s]
-  double piston_speed = 0.05;         // [m/s], downward
-  double max_pressure = 3.0e6;        // piston pressure that ends loading [Pa]
-  double max_travel = 0.03;           // safety stop of the piston stroke [m]
-  bool unload = false;                // also unload to zero force at the same speed
-  long long curve_points = 60;        // resampled points of pressure_volume (loading part)
+  long long fill_seed = 1;      // seed of the random pouring positions
+  double fill_normk = 0.01;     // NORMK used while pouring/settling the fill (cached)
+  double settle_time = 0.6;     // simulated pouring + settling time [s]
+  double piston_speed = 0.05;   // [m/s], downward
+  double max_pressure = 3.0e6;  // piston pressure that ends loading [Pa]
+  double max_travel = 0.03;     // safety stop of the piston stroke [m]
+  bool unload = false;          // also unload to zero force at the same speed
+  long long curve_points = 60;  // resampled points of pressure_volume (loading part)
 };
 
 // How the drum fill amount is given (exactly one per case file; fill_fraction when none is).
@@ -76,25 +76,25 @@ struct DrumImageSpec {
 
 // SPEC 2.2. Drum axis z through the origin, gravity -y.
 struct DrumSpec {
-  double diameter = 0.1;               // inner diameter [m]
-  double length = 0.025;               // axial length between the end walls [m]
-  double rpm = 60.0;                   // rotation speed [rev/min]
-  double duration = 3.0;               // simulated rotation time [s]
-  double fill_fraction = 0.3;          // bulk fill as a fraction of the drum volume
-  double volume_fraction = 0.64;       // phi of the packed fill and of Table 2
+  double diameter = 0.1;          // inner diameter [m]
+  double length = 0.025;          // axial length between the end walls [m]
+  double rpm = 60.0;              // rotation speed [rev/min]
+  double duration = 3.0;          // simulated rotation time [s]
+  double fill_fraction = 0.3;     // bulk fill as a fraction of the drum volume
+  double volume_fraction = 0.64;  // phi of the packed fill and of Table 2
   CoarseGraining coarse_graining = CoarseGraining::scg;
-  double scale_factor = 1.0;           // s of Table 2 (1 = original particles)
+  double scale_factor = 1.0;  // s of Table 2 (1 = original particles)
   long long fill_seed = 1;
-  double densify_time = 0.4;           // settling before rotation starts [s]
-  double torque_interval = 0.01;       // sampling interval of the torque history [s]
-  double surface_window = 0.1;         // free surface averaged over [duration - window, duration] [s]
-  long long surface_snapshots = 5;     // snapshots averaged in that window
-  long long surface_points = 41;       // abscissae of the free_surface curve
+  double densify_time = 0.4;        // settling before rotation starts [s]
+  double torque_interval = 0.01;    // sampling interval of the torque history [s]
+  double surface_window = 0.1;      // free surface averaged over [duration - window, duration] [s]
+  long long surface_snapshots = 5;  // snapshots averaged in that window
+  long long surface_points = 41;    // abscissae of the free_surface curve
   // General drum (issue 14); at their defaults the case is the paper's drum, unchanged.
   FillBy fill_by = FillBy::fill_fraction;
-  double fill_volume_ml = 0.0;         // bulk fill volume [mL] (fill_by == fill_volume)
-  long long particle_count = 0;        // original-particle count N0 (fill_by == particle_count)
-  double fill_mass = 0.0;              // [kg] (fill_by == fill_mass)
+  double fill_volume_ml = 0.0;             // bulk fill volume [mL] (fill_by == fill_volume)
+  long long particle_count = 0;            // original-particle count N0 (fill_by == particle_count)
+  double fill_mass = 0.0;                  // [kg] (fill_by == fill_mass)
   SizeDistributionSpec size_distribution;  // none = monodisperse particle.radius
   DrumImageSpec image;
 };
@@ -131,8 +131,9 @@ nlohmann::json to_json(const CaseSpec& spec);
 
 // to_json without the effects-library fields that are at their off values (the effect rows of
 // the parameter table, cases/parameter_table.hpp: particle.radius_spread = 0,
-// contact.unloading_stiffness_ratio = 1, contact.surface_energy = 0, contact.stiffness_exponent = 1): the text of a case without effects is the text it had before
-// the effects existed, so cache keys built from it (fills, results) stay valid.
+// contact.unloading_stiffness_ratio = 1, contact.surface_energy = 0, contact.stiffness_exponent = 1): the text of a
+// case without effects is the text it had before the effects existed, so cache keys built from it (fills, results) stay
+// valid.
 nlohmann::json to_key_json(const CaseSpec& spec);
 
 // Reads a case file; a missing file or malformed JSON is an error naming the file.

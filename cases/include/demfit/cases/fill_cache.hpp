@@ -30,8 +30,7 @@ std::filesystem::path fill_cache_path(const std::filesystem::path& cache_dir, co
 
 // Returns the cached fill for `key`, or calls `generate`, stores its result and returns it.
 // `generated` (optional) is set to true when the fill was generated in this call.
-Fill cached_fill(const std::filesystem::path& cache_dir, const std::string& prefix,
-                 const nlohmann::json& key, const std::function<Fill()>& generate,
-                 bool* generated = nullptr);
+Fill cached_fill(const std::filesystem::path& cache_dir, const std::string& prefix, const nlohmann::json& key,
+                 const std::function<Fill()>& generate, bool* generated = nullptr);
 
 }  // namespace demfit::cases

@@ -21,10 +21,10 @@
 namespace demfit::cases {
 
 struct SurfaceOptions {
-  double x_min = -0.05;             // first abscissa [m]
-  double x_max = 0.05;              // last abscissa [m]
-  int points = 41;                  // number of equally spaced abscissae (>= 2)
-  double contact_tolerance = 0.1;   // connected when distance < (1 + tol)(r_i + r_j)
+  double x_min = -0.05;            // first abscissa [m]
+  double x_max = 0.05;             // last abscissa [m]
+  int points = 41;                 // number of equally spaced abscissae (>= 2)
+  double contact_tolerance = 0.1;  // connected when distance < (1 + tol)(r_i + r_j)
 };
 
 // Height of the surface [m] at each abscissa [m]; NaN where no bed particle covers x.
@@ -34,12 +34,11 @@ struct SurfaceProfile {
 };
 
 // Indices of the particles of the largest connected cluster (sorted ascending).
-std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions,
-                                 const std::vector<double>& radii, double contact_tolerance);
+std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
+                                 double contact_tolerance);
 
 SurfaceProfile extract_free_surface(const std::vector<std::array<double, 3>>& positions,
-                                    const std::vector<double>& radii,
-                                    const SurfaceOptions& options);
+                                    const std::vector<double>& radii, const SurfaceOptions& options);
 
 // Point-by-point mean of profiles sampled on the same abscissae; a point is kept (finite) when
 // at least half of the profiles have it. Throws if the abscissae differ.

@@ -21,28 +21,26 @@ void require_known_keys(const nlohmann::json& object, std::string_view path, con
 std::string join_path(std::string_view path, std::string_view key);
 
 // Returns the sub-object `key` of `object` (an empty object when absent); throws if not an object.
-const nlohmann::json& child_object(const nlohmann::json& object, std::string_view path,
-                                   const char* key);
+const nlohmann::json& child_object(const nlohmann::json& object, std::string_view path, const char* key);
 
 enum class Sign { any, positive, non_negative };
 
 // Reads a finite number, `fallback` when the key is absent. Rejects strings, NaN and values that
 // violate `sign`, naming the field.
-double read_number(const nlohmann::json& object, std::string_view path, const char* key,
-                   double fallback, Sign sign = Sign::any);
+double read_number(const nlohmann::json& object, std::string_view path, const char* key, double fallback,
+                   Sign sign = Sign::any);
 
 // Reads an integer >= `minimum` (`fallback` when absent).
-long long read_integer(const nlohmann::json& object, std::string_view path, const char* key,
-                       long long fallback, long long minimum);
+long long read_integer(const nlohmann::json& object, std::string_view path, const char* key, long long fallback,
+                       long long minimum);
 
-bool read_bool(const nlohmann::json& object, std::string_view path, const char* key,
-               bool fallback);
+bool read_bool(const nlohmann::json& object, std::string_view path, const char* key, bool fallback);
 
 std::string read_string(const nlohmann::json& object, std::string_view path, const char* key,
                         const std::string& fallback);
 
 // Reads a number that must lie in [low, high].
-double read_bounded(const nlohmann::json& object, std::string_view path, const char* key,
-                    double fallback, double low, double high);
+double read_bounded(const nlohmann::json& object, std::string_view path, const char* key, double fallback, double low,
+                    double high);
 
 }  // namespace demfit::cases

@@ -17,8 +17,7 @@ namespace demfit::cases {
 // name: "pellet_compression", "rotary_drum", or "analytic" (a cheap analytic curve family used
 // for tests and demos). `overrides` are fixed case settings from the study file ({} for none);
 // unknown keys are errors naming the key. Throws std::runtime_error with a one-line message.
-std::unique_ptr<identify::Model> make_model(const std::string& reference,
-                                            const nlohmann::json& overrides,
+std::unique_ptr<identify::Model> make_model(const std::string& reference, const nlohmann::json& overrides,
                                             const std::filesystem::path& base_dir);
 
 // The model of a whole study: make_model of its "model" in the single-model form, or an

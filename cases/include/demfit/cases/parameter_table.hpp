@@ -26,15 +26,15 @@ enum class ParameterHome { pair_contact, wall_contact, effect, fill };
 enum class ParameterLaws { lsdyna_linear, hertz_mindlin, both };
 
 struct ParameterRow {
-  const char* name;        // identified-parameter name (study variables, --set, fixed overrides)
-  const char* unit;        // "-" for dimensionless
-  const char* meaning;     // one line
+  const char* name;                // identified-parameter name (study variables, --set, fixed overrides)
+  const char* unit;                // "-" for dimensionless
+  const char* meaning;             // one line
   identify::ParameterRange valid;  // accepted by the case file, --set, studies and dem_core
-  double default_value;    // NaN when the case gives it (no default)
-  bool is_effect;          // switches an effect of the catalogue on; off_value meaningful
-  double off_value;        // value at which the effect is absent (effects only)
+  double default_value;            // NaN when the case gives it (no default)
+  bool is_effect;                  // switches an effect of the catalogue on; off_value meaningful
+  double off_value;                // value at which the effect is absent (effects only)
   ParameterHome home;
-  const char* lsdyna;      // "*CARD FIELD"; "" when LS-DYNA has no such field
+  const char* lsdyna;  // "*CARD FIELD"; "" when LS-DYNA has no such field
   ParameterLaws laws;
   bool drum_only;          // exists in rotary_drum cases only
   const char* case_path;   // dotted case-file field of lsdyna_linear files ("contact.normk")

@@ -9,14 +9,14 @@
 namespace demfit::cases {
 
 struct ReproduceOptions {
-  std::filesystem::path out_dir;        // results folder of this reproduction
-  std::filesystem::path data_dir;       // shipped data (data/ of the source tree)
-  std::filesystem::path cases_dir;      // shipped case files (cases/ of the source tree)
-  int jobs = 2;                         // simulations run at once
-  int threads_per_job = 1;              // OpenMP threads per simulation
-  bool quick = false;                   // fewer runs, shorter drum time
-  bool resume = false;                  // continue studies found in out_dir
-  ProgressCallback progress;            // simulation progress (single runs only)
+  std::filesystem::path out_dir;    // results folder of this reproduction
+  std::filesystem::path data_dir;   // shipped data (data/ of the source tree)
+  std::filesystem::path cases_dir;  // shipped case files (cases/ of the source tree)
+  int jobs = 2;                     // simulations run at once
+  int threads_per_job = 1;          // OpenMP threads per simulation
+  bool quick = false;               // fewer runs, shorter drum time
+  bool resume = false;              // continue studies found in out_dir
+  ProgressCallback progress;        // simulation progress (single runs only)
 };
 
 // Table 1: identify NORMK and SHEARK of the pellet case from the shipped synthetic curve,

@@ -14,9 +14,9 @@
 namespace demfit::cases {
 
 struct GranudrumOptions {
-  ReproduceOptions base;               // out_dir, cases_dir, jobs, quick, resume
-  std::filesystem::path study_file;    // empty = cases_dir/granudrum_calibration[_quick].json
-  bool anchor = false;                 // also run the source's published parameters at s = 1
+  ReproduceOptions base;             // out_dir, cases_dir, jobs, quick, resume
+  std::filesystem::path study_file;  // empty = cases_dir/granudrum_calibration[_quick].json
+  bool anchor = false;               // also run the source's published parameters at s = 1
   // With the anchor: the same parameters at these coarse-graining factors too (time step
   // s x the case's), each surface compared with the s = 1 one.
   std::vector<double> resolution_scales{4.0, 3.0, 2.0};
@@ -26,9 +26,9 @@ struct GranudrumOptions {
 
 // Surface errors of one experiment's simulated profile against its photo target.
 struct SurfaceError {
-  std::string target;       // "<experiment>.<target>"
-  double rms_mm = 0.0;      // RMS gap over the common x-range [mm]
-  double area_mm2 = 0.0;    // differing area (area between the surfaces) [mm^2]
+  std::string target;     // "<experiment>.<target>"
+  double rms_mm = 0.0;    // RMS gap over the common x-range [mm]
+  double area_mm2 = 0.0;  // differing area (area between the surfaces) [mm^2]
 };
 
 // Errors of every image target of `spec` against the curves of one design point (keys
@@ -59,10 +59,10 @@ struct ResolutionRow {
 };
 
 struct AnchorResult {
-  std::vector<SurfaceError> errors;         // s = 1 against the photos, one per image target
-  std::vector<ResolutionRow> resolution;    // one per image target and coarse factor
+  std::vector<SurfaceError> errors;       // s = 1 against the photos, one per image target
+  std::vector<ResolutionRow> resolution;  // one per image target and coarse factor
   std::vector<PublishedRun> runs;
-  double wall_seconds = 0.0;                // all of them
+  double wall_seconds = 0.0;  // all of them
 };
 
 // The Markdown section: identified values with intervals, runs and wall time, errors per speed,

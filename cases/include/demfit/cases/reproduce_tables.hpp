@@ -11,7 +11,6 @@ namespace demfit::cases {
 // Table 2 for the drum's original powder (r0, rho0) at phi, for each s in `scales`, both models,
 // with the note on the CVF radius. Radius in mm, volume in mm^3, mass in mg, density kg/m^3,
 // total mass as a multiple of M0.
-std::string format_table2(const OriginalParticle& original, double volume_fraction,
-                          const std::vector<double>& scales);
+std::string format_table2(const OriginalParticle& original, double volume_fraction, const std::vector<double>& scales);
 
 }  // namespace demfit::cases

@@ -25,7 +25,7 @@ struct SizeDistributionSpec {
   // Classes: class sizes in `unit` (as "diameter" or "radius" in the file) and their fractions,
   // by number ("number_fraction") or by mass ("mass_fraction"); fractions are normalised.
   bool classes_as_radius = false;
-  std::vector<double> class_sizes;       // in `unit`, as written
+  std::vector<double> class_sizes;  // in `unit`, as written
   std::vector<double> class_fractions;
   bool mass_fractions = false;
   // Cut-offs in `unit` (of the same quantity as the sizes: diameter, or radius for radius data);

@@ -9,7 +9,6 @@
 namespace demfit::cases {
 
 // Returns y + noise. relative >= 0 (0 returns y unchanged).
-std::vector<double> add_relative_noise(const std::vector<double>& y, double relative,
-                                       std::uint64_t seed);
+std::vector<double> add_relative_noise(const std::vector<double>& y, double relative, std::uint64_t seed);
 
 }  // namespace demfit::cases

@@ -43,9 +43,7 @@ inline constexpr double kStiffnessReferenceOverlap = 0.01;
 inline constexpr double kPlannedOverlapOverReference = 10.0;
 
 /// JKR pull-off force per effective radius, 1.5 pi gamma [N/m].
-inline double cohesion_force_per_radius(double surface_energy) {
-  return 1.5 * std::numbers::pi * surface_energy;
-}
+inline double cohesion_force_per_radius(double surface_energy) { return 1.5 * std::numbers::pi * surface_energy; }
 
 /// Factor by which the effects can raise the normal tangent stiffness above k_n, for the time
 /// step: the loading tangent n (delta/d_ref)^(n-1) at the planned overlap (10 d_ref), times the
@@ -88,12 +86,13 @@ struct EffectsNormal {
       // Without a memory (null) every step is treated as virgin loading.
       const double delta_max = max_overlap != nullptr ? std::max(*max_overlap, delta) : delta;
       if (max_overlap != nullptr) *max_overlap = delta_max;
-      const double span = delta_max / unloading_ratio;  // delta_max - delta0
+      const double span = delta_max / unloading_ratio;    // delta_max - delta0
       const double stretch = delta - (delta_max - span);  // delta - delta0
       if (stretch > 0.0) {
         // k2 (delta - delta0) for n = 1; the loading shape scaled to the unloading span otherwise.
-        elastic = exponent == 1.0 ? unloading_ratio * k * stretch
-                                  : loading_force(k, delta_max, g.effective_radius) * std::pow(stretch / span, exponent);
+        elastic = exponent == 1.0
+                      ? unloading_ratio * k * stretch
+                      : loading_force(k, delta_max, g.effective_radius) * std::pow(stretch / span, exponent);
         energy = elastic * stretch / (exponent + 1.0);
       }
     }

@@ -9,13 +9,13 @@ namespace demfit::dem_core {
 /// a wall). All vectors in the global frame.
 struct ContactGeometry {
   Vec3 normal{};                     ///< unit normal pointing from i towards j
-  double overlap = 0.0;            ///< delta = R_i + R_j - |x_j - x_i| (> 0 in contact) [m]
+  double overlap = 0.0;              ///< delta = R_i + R_j - |x_j - x_i| (> 0 in contact) [m]
   Vec3 contact_velocity{};           ///< velocity of i relative to j at the contact point [m/s]
   Vec3 relative_angular_velocity{};  ///< omega_i - omega_j [rad/s] (wall: omega_i - omega_wall)
-  double effective_mass = 0.0;     ///< m* = m_i m_j/(m_i+m_j); wall: m_i [kg]
-  double effective_radius = 0.0;   ///< R* = R_i R_j/(R_i+R_j); wall: R_i [m]
-  double normal_compliance = 0.0;  ///< sum of both bodies' normal compliances (see ParticleState)
-  double shear_compliance = 0.0;   ///< Hertz–Mindlin: sum of (2-nu)/G; wall adds 0 (rigid)
+  double effective_mass = 0.0;       ///< m* = m_i m_j/(m_i+m_j); wall: m_i [kg]
+  double effective_radius = 0.0;     ///< R* = R_i R_j/(R_i+R_j); wall: R_i [m]
+  double normal_compliance = 0.0;    ///< sum of both bodies' normal compliances (see ParticleState)
+  double shear_compliance = 0.0;     ///< Hertz–Mindlin: sum of (2-nu)/G; wall adds 0 (rigid)
   double inverse_inertia_sum = 0.0;  ///< 1/I_i + 1/I_j (wall: 1/I_i), for the rolling limiter
 };
 
@@ -30,9 +30,9 @@ struct ContactHistory {
 /// Loads a law returns for body i (body j receives the opposite force; the loop turns the
 /// tangential force into torques with the branch vectors of both bodies).
 struct ContactForce {
-  Vec3 force{};             ///< total force on i [N] (normal + tangential)
-  Vec3 tangential_force{};  ///< tangential part of `force`, acting at the contact point [N]
-  Vec3 rolling_torque{};    ///< rolling-resistance torque on i [N·m] (j receives -rolling_torque)
+  Vec3 force{};                 ///< total force on i [N] (normal + tangential)
+  Vec3 tangential_force{};      ///< tangential part of `force`, acting at the contact point [N]
+  Vec3 rolling_torque{};        ///< rolling-resistance torque on i [N·m] (j receives -rolling_torque)
   double elastic_energy = 0.0;  ///< energy stored in the normal and tangential springs [J]
 };
 

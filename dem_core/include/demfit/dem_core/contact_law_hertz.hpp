@@ -24,9 +24,9 @@ struct HertzNormal {
   double beta = 0.0;  ///< from hertz_damping_beta(e), <= 0
 
   struct Result {
-    double force;            ///< repulsive magnitude along -normal on i [N]
-    double contact_radius;   ///< a = sqrt(R* delta) [m]
-    double energy;           ///< 8/15 E* sqrt(R*) delta^{5/2} [J]
+    double force;           ///< repulsive magnitude along -normal on i [N]
+    double contact_radius;  ///< a = sqrt(R* delta) [m]
+    double energy;          ///< 8/15 E* sqrt(R*) delta^{5/2} [J]
   };
   Result evaluate(const ContactGeometry& g) const {
     const double e_star = 1.0 / g.normal_compliance;

@@ -20,10 +20,10 @@ struct LinearNormal {
   double damping_ratio = 0.0;  ///< NDAMP (pairs) or wall DAMP [-]
 
   struct Result {
-    double force;      ///< repulsive magnitude along -normal on i [N]
-    double friction_load;  ///< load of the Coulomb limit and rolling torque (= force) [N]
-    double stiffness;  ///< k_n [N/m]
-    double energy;     ///< 1/2 k_n delta^2 [J]
+    double force;           ///< repulsive magnitude along -normal on i [N]
+    double friction_load;   ///< load of the Coulomb limit and rolling torque (= force) [N]
+    double stiffness;       ///< k_n [N/m]
+    double energy;          ///< 1/2 k_n delta^2 [J]
     double critical_scale;  ///< sqrt(m* k_n) [kg/s], reused by the tangential part
   };
   /// `max_overlap` is unused (same interface as EffectsNormal).

@@ -59,11 +59,11 @@ struct PackingRequest {
   /// sphere volume is R^3 (1 + s^2) (mean_volume_factor): a solid_volume request (count = 0)
   /// therefore keeps the solid volume, hence the volume fraction, and places fewer spheres.
   double radius_spread = 0.0;
-  std::size_t count = 0;    ///< number of spheres; 0 = use solid_volume
+  std::size_t count = 0;      ///< number of spheres; 0 = use solid_volume
   double solid_volume = 0.0;  ///< [m^3] target total sphere volume when count == 0
   std::uint64_t seed = 1;
-  Vec3 up{0, 0, 1};    ///< sites are filled from the lowest (along up) upwards
-  double gap = 0.2;    ///< lattice spacing = 2 radius_max (1 + gap); jitter uses the free gap
+  Vec3 up{0, 0, 1};  ///< sites are filled from the lowest (along up) upwards
+  double gap = 0.2;  ///< lattice spacing = 2 radius_max (1 + gap); jitter uses the free gap
   /// Explicit radii [m] (a sampled size distribution), placed in this order on the lowest sites;
   /// when not empty it replaces radius_min/max/spread and count/solid_volume (count = size).
   /// The sites are those of a monodisperse packing of the largest radius (same random draws per
@@ -79,9 +79,9 @@ struct PackingRequest {
 struct Packing {
   std::vector<Vec3> centers{};   ///< [m]
   std::vector<double> radii{};   ///< [m]
-  double solid_volume = 0.0;   ///< [m^3]
+  double solid_volume = 0.0;     ///< [m^3]
   double volume_fraction = 0.0;  ///< solid_volume / region_volume
-  std::size_t capacity = 0;    ///< lattice sites that fitted in the region
+  std::size_t capacity = 0;      ///< lattice sites that fitted in the region
 };
 
 /// E[r^3]/R^3 = 1 + s^2 for radii uniform in [R(1 - s), R(1 + s)] (relative spread s).
@@ -110,10 +110,10 @@ struct SettleOptions {
 };
 
 struct SettleReport {
-  double simulated_time = 0.0;    ///< [s] spent settling
+  double simulated_time = 0.0;  ///< [s] spent settling
   std::uint64_t steps = 0;
-  double kinetic_energy = 0.0;    ///< [J] at the end
-  bool converged = false;         ///< kinetic-energy criterion met before max_time
+  double kinetic_energy = 0.0;  ///< [J] at the end
+  bool converged = false;       ///< kinetic-energy criterion met before max_time
 };
 
 SettleReport settle(Simulation& simulation, const SettleOptions& options = {});

@@ -18,11 +18,11 @@ struct ParticleState {
   std::vector<Vec3> force{};   ///< [N]
   std::vector<Vec3> torque{};  ///< [N·m] about the particle centre
   // constant properties
-  std::vector<double> radius{};            ///< [m]
-  std::vector<double> mass{};              ///< [kg]
-  std::vector<double> inverse_mass{};      ///< [1/kg]
-  std::vector<double> inverse_inertia{};   ///< 1/I [1/(kg m^2)], I = 2/5 m R^2
-  std::vector<std::size_t> material{};     ///< index into Simulation's material table
+  std::vector<double> radius{};           ///< [m]
+  std::vector<double> mass{};             ///< [kg]
+  std::vector<double> inverse_mass{};     ///< [1/kg]
+  std::vector<double> inverse_inertia{};  ///< 1/I [1/(kg m^2)], I = 2/5 m R^2
+  std::vector<std::size_t> material{};    ///< index into Simulation's material table
   /// Identity: the n-th particle ever added has id n. Equal to the index unless particles were
   /// removed or SimulationSettings::reorder_particles moved them.
   std::vector<std::uint32_t> id{};

@@ -14,8 +14,8 @@ class Simulation;
 
 struct TimeSeries {
   std::string name{};
-  std::string unit{};             ///< e.g. "N", "N_m", "J", "m" (used in the CSV header)
-  std::vector<double> values{};   ///< one per record() call
+  std::string unit{};            ///< e.g. "N", "N_m", "J", "m" (used in the CSV header)
+  std::vector<double> values{};  ///< one per record() call
 };
 
 class ProbeRecorder {

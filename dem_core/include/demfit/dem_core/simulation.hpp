@@ -30,9 +30,9 @@ namespace demfit::dem_core {
 
 struct SimulationSettings {
   ContactLawKind law = ContactLawKind::lsdyna_linear;
-  ContactParameters contact{};            ///< particle–particle parameters (SPEC 1); its effects
-                                          ///< (plasticity, cohesion, stiffness exponent) need the linear law
-  Vec3 gravity{0.0, 0.0, -9.81};        ///< [m/s^2], global frame
+  ContactParameters contact{};    ///< particle–particle parameters (SPEC 1); its effects
+                                  ///< (plasticity, cohesion, stiffness exponent) need the linear law
+  Vec3 gravity{0.0, 0.0, -9.81};  ///< [m/s^2], global frame
   /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). On a shared,
   /// loaded machine run with OMP_WAIT_POLICY=passive: spinning threads waiting at the 3 barriers
   /// per step for a preempted partner made 2 threads 5-10x SLOWER than 1 (measured, load 6-8 on
@@ -69,8 +69,8 @@ class Simulation {
   std::size_t add_material(const Material& material);
   /// Add a solid sphere: centre [m], radius [m] > 0, material index, velocity [m/s], angular
   /// velocity [rad/s]. Returns the particle index. Throws std::runtime_error on bad input.
-  std::size_t add_particle(const Vec3& position, double radius, std::size_t material = 0,
-                           const Vec3& velocity = {}, const Vec3& angular_velocity = {});
+  std::size_t add_particle(const Vec3& position, double radius, std::size_t material = 0, const Vec3& velocity = {},
+                           const Vec3& angular_velocity = {});
   /// Remove the particles whose flag is true (flags.size() == particle_count()); indices of the
   /// remaining particles are compacted in order (their ids are kept); contact histories are dropped.
   void remove_particles(const std::vector<bool>& flags);
@@ -126,11 +126,11 @@ class Simulation {
   [[nodiscard]] const std::vector<Material>& materials() const { return materials_; }
 
   // ---- diagnostics ---------------------------------------------------------------------------
-  [[nodiscard]] double kinetic_energy() const;                ///< translational + rotational [J]
-  [[nodiscard]] double elastic_energy() const;  ///< springs, last force evaluation [J]
+  [[nodiscard]] double kinetic_energy() const;                  ///< translational + rotational [J]
+  [[nodiscard]] double elastic_energy() const;                  ///< springs, last force evaluation [J]
   [[nodiscard]] double gravitational_potential_energy() const;  ///< -sum m g·x [J] (zero at the origin)
-  [[nodiscard]] std::size_t contact_count() const;  ///< particle pairs touching
-  [[nodiscard]] std::size_t wall_contact_count() const;       ///< particle–wall contacts
+  [[nodiscard]] std::size_t contact_count() const;              ///< particle pairs touching
+  [[nodiscard]] std::size_t wall_contact_count() const;         ///< particle–wall contacts
   [[nodiscard]] const NeighborList& neighbor_list() const { return neighbors_; }
   [[nodiscard]] double skin() const;  ///< Verlet skin in use [m]
 
@@ -161,7 +161,7 @@ class Simulation {
   ParticleState particles_;
   // mutable: the loads on the walls are reduced lazily from the per-contact arrays when asked for.
   mutable std::vector<Wall> walls_{};
-  std::vector<Vec3> wall_displacement_at_build_{};  // wall translation when the list was built
+  std::vector<Vec3> wall_displacement_at_build_{};   // wall translation when the list was built
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices.

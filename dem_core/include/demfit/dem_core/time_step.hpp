@@ -43,17 +43,16 @@ struct TimeStepEstimate {
 /// Steps for the given particles; `max_wall_sfp` = largest SFP of the walls (0 if no walls),
 /// `max_wall_damp` = largest wall DAMP. Throws std::runtime_error if there are no particles.
 TimeStepEstimate estimate_time_step(ContactLawKind law, const ParticleState& particles,
-                                    const std::vector<Material>& materials,
-                                    const ContactParameters& contact, double max_wall_sfp,
-                                    double max_wall_damp, double factor);
+                                    const std::vector<Material>& materials, const ContactParameters& contact,
+                                    double max_wall_sfp, double max_wall_damp, double factor);
 
 /// Linear spring-dashpot: contact duration pi/omega_d, omega_d = sqrt(k/m*) sqrt(1 - zeta^2) [s].
 double linear_contact_duration(double effective_mass, double normal_stiffness, double damping_ratio);
 /// Linear spring-dashpot restitution e = exp(-pi zeta / sqrt(1 - zeta^2)).
 double linear_restitution(double damping_ratio);
 /// Hertz elastic impact duration 2.87 (m*^2/(R* E*^2 v))^(1/5) [s] at approach speed v [m/s].
-double hertz_contact_duration(double effective_mass, double effective_radius,
-                              double effective_youngs_modulus, double approach_speed);
+double hertz_contact_duration(double effective_mass, double effective_radius, double effective_youngs_modulus,
+                              double approach_speed);
 /// Young's modulus from bulk modulus and Poisson ratio: E = 3K(1 - 2 nu) [Pa].
 double youngs_modulus(const Material& material);
 

@@ -79,13 +79,13 @@ struct Wall {
   WallGeometry geometry{};
   WallMotion motion{};
   WallContactParameters contact{};
-  Axis torque_axis{};     ///< moves with the wall (translated / rotated with it)
+  Axis torque_axis{};  ///< moves with the wall (translated / rotated with it)
   std::string name{};
-  Vec3 displacement{};    ///< accumulated translation since the wall was added [m]
+  Vec3 displacement{};          ///< accumulated translation since the wall was added [m]
   double rotation_angle = 0.0;  ///< accumulated rotation [rad]
   // Loads exerted BY the particles ON the wall during the last force evaluation:
-  Vec3 force{};           ///< [N]
-  Vec3 moment{};          ///< moment about torque_axis.point [N·m]
+  Vec3 force{};         ///< [N]
+  Vec3 moment{};        ///< moment about torque_axis.point [N·m]
   double torque = 0.0;  ///< moment · torque_axis.direction [N·m]
   std::size_t contact_count = 0;
 };
@@ -93,7 +93,7 @@ struct Wall {
 /// Result of the particle–wall proximity test.
 struct WallProximity {
   bool touching = false;
-  Vec3 normal{};           ///< unit vector from the particle centre towards the wall
+  Vec3 normal{};         ///< unit vector from the particle centre towards the wall
   double overlap = 0.0;  ///< [m], > 0 when touching
 };
 

@@ -33,7 +33,6 @@ std::vector<EffectCandidate> analytic_effect_candidates();
 
 // The candidates of `candidates` whose names are in the comma-separated `list` (spaces
 // ignored); throws naming an unknown name and listing the known ones.
-std::vector<EffectCandidate> select_candidates(const std::vector<EffectCandidate>& candidates,
-                                               const std::string& list);
+std::vector<EffectCandidate> select_candidates(const std::vector<EffectCandidate>& candidates, const std::string& list);
 
 }  // namespace demfit::diagnose

@@ -37,7 +37,7 @@ struct FitTarget {
 };
 
 struct FitOptions {
-  int jobs = 1;                  // model evaluations at once
+  int jobs = 1;  // model evaluations at once
   int max_iterations = 60;
   // Finite-difference step, fraction of each variable's range. 1e-5 suits smooth models; a DEM
   // curve changes chaotically under tiny parameter changes (contact order, trajectory
@@ -52,8 +52,8 @@ struct FitOptions {
   // Stop when the chi-square decreases by less than this (chi-square units): a change far below 1
   // cannot move a BIC comparison whose threshold is 10.
   double absolute_tolerance = 0.01;
-  int max_evaluations = 0;       // stop after about this many model evaluations (0 = no limit)
-  unsigned long seed = 0;        // passed to the model (EvaluationContext)
+  int max_evaluations = 0;  // stop after about this many model evaluations (0 = no limit)
+  unsigned long seed = 0;   // passed to the model (EvaluationContext)
 };
 
 struct FitResult {

@@ -43,19 +43,19 @@ AutocorrelationTest autocorrelation_test(const std::vector<double>& r);
 double f_upper_p(double ratio, double d1, double d2);
 
 struct VarianceTest {
-  double ratio = 1.0;     // (sum r^2 / (n - fitted)) / sigma^2
+  double ratio = 1.0;  // (sum r^2 / (n - fitted)) / sigma^2
   double dof_residual = 0.0;
-  double dof_noise = 0.0; // 0 = sigma known (chi-square test), else F-like test
-  double p_value = 1.0;   // upper tail: residual larger than the noise
+  double dof_noise = 0.0;  // 0 = sigma known (chi-square test), else F-like test
+  double p_value = 1.0;    // upper tail: residual larger than the noise
 };
 // ratio ~ F(n - fitted, dof_noise) under "residual = noise" (dof_noise <= 0: sigma known,
 // chi-square test).
 VarianceTest variance_test(const std::vector<double>& r, double sigma, int fitted, double dof_noise);
 
 struct SmoothStructureTest {
-  int basis = 0;          // Legendre polynomials per segment (degree 0 .. basis-1)
-  double statistic = 0.0; // |projection of r/sigma on the basis|^2
-  double p_value = 1.0;   // F(basis total, dof_noise) upper tail of statistic / basis total
+  int basis = 0;           // Legendre polynomials per segment (degree 0 .. basis-1)
+  double statistic = 0.0;  // |projection of r/sigma on the basis|^2
+  double p_value = 1.0;    // F(basis total, dof_noise) upper tail of statistic / basis total
 };
 // Lack-of-fit against a smooth alternative: the normalised residual projected on Legendre
 // polynomials P_0..P_{K-1} of each segment's abscissa (K = min(8, n/4); x-based when x is
@@ -66,18 +66,18 @@ SmoothStructureTest smooth_structure_test(const std::vector<std::vector<double>>
                                           const std::vector<std::vector<double>>& normalised, double dof_noise);
 
 struct RegionStats {
-  std::string label;      // e.g. "response: x 0..0.33 (first third)"
-  int begin = 0, end = 0; // index range in the residual vector [begin, end)
+  std::string label;       // e.g. "response: x 0..0.33 (first third)"
+  int begin = 0, end = 0;  // index range in the residual vector [begin, end)
   double rms = 0.0, max_abs = 0.0;
-  double rms_over_sigma = 0.0, max_over_sigma = 0.0;   // by the noise level of the region's target
+  double rms_over_sigma = 0.0, max_over_sigma = 0.0;  // by the noise level of the region's target
   double x_at_max = 0.0;
 };
 
 struct ResidualAnalysis {
-  double sigma = 0.0;             // noise level used (estimated or given), per-point units
+  double sigma = 0.0;  // noise level used (estimated or given), per-point units
   int points = 0;
   int fitted_parameters = 0;
-  double rms = 0.0, max_abs = 0.0;   // pooled in y units: meaningful for one target only
+  double rms = 0.0, max_abs = 0.0;  // pooled in y units: meaningful for one target only
   // Every target normalised by its own noise level (r_i / sigma_target), then pooled: the columns
   // reported for several targets with different units (issue 15).
   double rms_over_sigma = 0.0, max_over_sigma = 0.0;
@@ -85,10 +85,10 @@ struct ResidualAnalysis {
   AutocorrelationTest autocorrelation;
   VarianceTest variance;
   SmoothStructureTest smooth;
-  double alpha = 0.01;            // family-wise level; each of the 4 tests at alpha/4 (Bonferroni)
-  bool structural = false;        // some test rejects "residual = noise"
+  double alpha = 0.01;      // family-wise level; each of the 4 tests at alpha/4 (Bonferroni)
+  bool structural = false;  // some test rejects "residual = noise"
   std::vector<RegionStats> regions;
-  int worst_region = -1;          // largest rms_over_sigma
+  int worst_region = -1;  // largest rms_over_sigma
 };
 
 // A residual segment of one target: residuals (model - data) in y units, the data x, the noise

@@ -28,8 +28,8 @@ struct ScreeningScore {
 
 // `base` is the base fit (normalised residual, parameters); `variables` the base fit variables.
 // The base variables' sensitivities come from base.jacobian when it fits (no evaluation), else
-// from one forward difference each. Returns one score per candidate, in candidate order. `step` = perturbation, fraction of each
-// effect parameter's range, away from its off value.
+// from one forward difference each. Returns one score per candidate, in candidate order. `step` = perturbation,
+// fraction of each effect parameter's range, away from its off value.
 std::vector<ScreeningScore> screen_candidates(const identify::Model& model, const FitResult& base,
                                               const std::vector<FitVariable>& variables,
                                               const std::vector<FitTarget>& targets,

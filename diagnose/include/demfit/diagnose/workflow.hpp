@@ -15,13 +15,13 @@
 namespace demfit::diagnose {
 
 struct DiagnoseOptions {
-  double noise_sigma = 0.0;      // > 0: given noise level (y units, all targets); 0 = estimate per target
-  double alpha = 0.01;           // family-wise level of the residual tests on the base fit
+  double noise_sigma = 0.0;  // > 0: given noise level (y units, all targets); 0 = estimate per target
+  double alpha = 0.01;       // family-wise level of the residual tests on the base fit
   // Family-wise level of the tests on an augmented fit before its effect may be named. Larger
   // than alpha on purpose: naming needs positive evidence that the residual became noise, so a
   // candidate that only half-explains an effect outside the list is not named (docs/diagnose.md).
   double alpha_named = 0.05;
-  double bic_threshold = 10.0;   // name an effect only if BIC(base) - BIC(augmented) exceeds this
+  double bic_threshold = 10.0;  // name an effect only if BIC(base) - BIC(augmented) exceeds this
   // Base fits: study initial values, then (only if that fit ends on a bound of some variable)
   // v_lo + (v_hi - v_lo) i / base_starts, i = 1 .. base_starts - 1.
   int base_starts = 2;
@@ -37,7 +37,7 @@ struct DiagnoseOptions {
   // score test's estimate and the base/screening Jacobian (no new finite differences); the others
   // (study initial values + estimate, + mid-range effect) run only if the first does not pass.
   int refit_starts = 3;
-  double screen_step = 0.02;     // score-test perturbation, fraction of the effect range
+  double screen_step = 0.02;  // score-test perturbation, fraction of the effect range
   FitOptions fit;
 };
 
@@ -67,9 +67,9 @@ struct CandidateFit {
   FitResult fit;
   ResidualAnalysis analysis;
   double bic = 0.0, aicc = 0.0;
-  double delta_bic = 0.0;          // BIC(base) - BIC(this): > 0 favours the effect
+  double delta_bic = 0.0;  // BIC(base) - BIC(this): > 0 favours the effect
   double delta_aicc = 0.0;
-  bool passes = false;             // delta_bic > threshold and residual passes the noise tests
+  bool passes = false;  // delta_bic > threshold and residual passes the noise tests
 };
 
 struct Diagnosis {
@@ -81,16 +81,16 @@ struct Diagnosis {
   std::vector<ScreeningScore> screening;  // candidate order
   std::vector<CandidateFit> refits;       // the best few, in screening rank order
   Verdict verdict = Verdict::no_missing_effect;
-  int chosen = -1;                        // index into refits when an effect is identified
-  std::vector<int> tied;                  // ambiguous: the refits that explain it equally well
+  int chosen = -1;        // index into refits when an effect is identified
+  std::vector<int> tied;  // ambiguous: the refits that explain it equally well
   std::vector<EffectCandidate> candidates;
-  double bic_threshold = 10.0;            // as used (DiagnoseOptions)
-  bool noise_given = false;               // sigma given (--noise) rather than estimated
-  std::vector<std::string> notes;         // plain-language statements for the report
+  double bic_threshold = 10.0;     // as used (DiagnoseOptions)
+  bool noise_given = false;        // sigma given (--noise) rather than estimated
+  std::vector<std::string> notes;  // plain-language statements for the report
   // Model evaluations spent: base fit, screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
   double wall_seconds = 0.0;
-  std::string summary;                    // one paragraph: the verdict with its numbers
+  std::string summary;  // one paragraph: the verdict with its numbers
 };
 
 // Information criteria with the likelihood of Gaussian noise of known sigma (normalised

@@ -18,8 +18,7 @@ inline constexpr std::size_t kMaxCurveLineBytes = 4096;
 
 // Reads columns x_column and y_column (header names) from a CSV file. Throws std::runtime_error
 // naming the file and line on a missing column, a non-number or fewer than 2 points.
-Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column,
-                     const std::string& y_column);
+Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column, const std::string& y_column);
 // The same from a stream; `path` names the source in errors.
 Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const std::string& x_column,
                       const std::string& y_column);

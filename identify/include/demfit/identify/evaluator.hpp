@@ -14,8 +14,8 @@ namespace demfit::identify {
 
 struct EvaluationOutcome {
   bool ok = false;
-  CurveSet curves;            // empty when !ok
-  std::string error;          // one line, when !ok
+  CurveSet curves;    // empty when !ok
+  std::string error;  // one line, when !ok
   double wall_seconds = 0.0;
 };
 
@@ -44,9 +44,9 @@ class Evaluator {
   virtual int concurrency() const = 0;
 };
 
-// Threads of this process. A job runs experiment_models(model)[job.experiment]; each calls Model::evaluate with EvaluationContext{threads_per_job,
-// seed}; the caller chooses threads_per_job (the CLI default is 1, so `--jobs` uses `jobs` cores;
-// set jobs x threads_per_job <= cores). A model exception becomes a failed outcome with its message.
+// Threads of this process. A job runs experiment_models(model)[job.experiment]; each calls Model::evaluate with
+// EvaluationContext{threads_per_job, seed}; the caller chooses threads_per_job (the CLI default is 1, so `--jobs` uses
+// `jobs` cores; set jobs x threads_per_job <= cores). A model exception becomes a failed outcome with its message.
 class ThreadPoolEvaluator final : public Evaluator {
  public:
   ThreadPoolEvaluator(const Model& model, int jobs, int threads_per_job, unsigned long seed);

@@ -33,8 +33,8 @@ using ParameterSet = std::map<std::string, double>;
 using CurveSet = std::map<std::string, Curve>;
 
 struct EvaluationContext {
-  int threads = 1;          // OpenMP threads this evaluation may use
-  unsigned long seed = 0;   // study seed, for models with stochastic set-up (kept fixed per study)
+  int threads = 1;         // OpenMP threads this evaluation may use
+  unsigned long seed = 0;  // study seed, for models with stochastic set-up (kept fixed per study)
 };
 
 class Model {

@@ -68,10 +68,10 @@ class CompositeObjective {
  private:
   struct Prepared {
     double y_scale = 1.0;
-    double x_scale = 1.0;                  // curve mapping: x normalisation
-    int stations = 0;                      // curve mapping: target stations K
-    std::vector<double> target_stations;   // normalised, interleaved
-    std::vector<double> station_arc;       // arc length of each target station
+    double x_scale = 1.0;                 // curve mapping: x normalisation
+    int stations = 0;                     // curve mapping: target stations K
+    std::vector<double> target_stations;  // normalised, interleaved
+    std::vector<double> station_arc;      // arc length of each target station
   };
   Eigen::VectorXd mapping_residuals(const Prepared& p, const double* computed, int computed_points) const;
   double profile_area_residual(const TargetSpec& target, const Prepared& p, const double* values) const;

@@ -26,19 +26,19 @@ struct ParameterRange {
 
 struct ParameterDescriptor {
   std::string name;
-  std::string unit;          // "-" for dimensionless; "" when the model does not say
-  ParameterRange valid;      // values evaluate() accepts
+  std::string unit;      // "-" for dimensionless; "" when the model does not say
+  ParameterRange valid;  // values evaluate() accepts
   double default_value = 0.0;
   std::optional<double> off_value;  // value at which an effect parameter switches its effect off
-  std::string lsdyna_field;  // "*CONTROL_DISCRETE_ELEMENT NORMK"; empty when LS-DYNA has none
+  std::string lsdyna_field;         // "*CONTROL_DISCRETE_ELEMENT NORMK"; empty when LS-DYNA has none
 };
 
 // A parameter an effect adds, with its FITTING range [lower, upper] (inside the parameter's
 // valid range, possibly narrower) and the value at which the effect is absent. Used by the case
 // effect catalogue and by diagnose's candidates alike.
 struct EffectParameter {
-  std::string name;        // model parameter name
-  double lower = 0.0;      // fitting bounds, model units
+  std::string name;    // model parameter name
+  double lower = 0.0;  // fitting bounds, model units
   double upper = 1.0;
   double off_value = 0.0;  // value at which the effect vanishes (inside [lower, upper])
   std::string unit;        // "-" for dimensionless
@@ -48,7 +48,8 @@ struct EffectParameter {
 const ParameterDescriptor* find_descriptor(const std::vector<ParameterDescriptor>& descriptors,
                                            const std::string& name);
 // Not on a temporary (e.g. model.parameters()): the pointer would dangle (found by AddressSanitizer).
-const ParameterDescriptor* find_descriptor(std::vector<ParameterDescriptor>&& descriptors, const std::string& name) = delete;
+const ParameterDescriptor* find_descriptor(std::vector<ParameterDescriptor>&& descriptors,
+                                           const std::string& name) = delete;
 
 // Descriptors for bare names: unit unknown, any value accepted (models that declare no ranges).
 std::vector<ParameterDescriptor> unbounded_descriptors(const std::vector<std::string>& names);

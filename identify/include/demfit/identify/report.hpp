@@ -19,7 +19,7 @@ namespace demfit::identify {
 struct ReportSummary {
   int files_written = 0;
   bool plots_written = false;
-  std::string plot_warning;   // why plots were skipped, if they were
+  std::string plot_warning;  // why plots were skipped, if they were
 };
 
 ReportSummary write_report(const StudyStore& store, const std::filesystem::path& output_dir, bool plots = true);

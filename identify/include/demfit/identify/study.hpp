@@ -17,12 +17,12 @@ namespace demfit::identify {
 class Evaluator;
 
 struct RunOptions {
-  int jobs = 1;              // simulations evaluated at once (threads of the evaluator pool)
-  int threads_per_job = 1;   // OpenMP threads given to each simulation (EvaluationContext)
-  bool resume = false;       // continue the study found in output_dir/study.db
+  int jobs = 1;                      // simulations evaluated at once (threads of the evaluator pool)
+  int threads_per_job = 1;           // OpenMP threads given to each simulation (EvaluationContext)
+  bool resume = false;               // continue the study found in output_dir/study.db
   std::filesystem::path output_dir;  // results + study.db; created if missing
-  bool plots = true;         // PNG plots via gnuplot (skipped with a warning if missing)
-  bool progress = true;      // progress lines on stderr
+  bool plots = true;                 // PNG plots via gnuplot (skipped with a warning if missing)
+  bool progress = true;              // progress lines on stderr
   // Test hook: called (serialised) after each evaluation has been committed to the store, with
   // the number of evaluations done in this process. An exception thrown here stops the study
   // at once and propagates out of run_study (simulates a kill after k runs).
@@ -37,9 +37,9 @@ struct RunOptions {
 };
 
 struct StudyResult {
-  ParameterSet best;                    // all model parameters of the best evaluated run
+  ParameterSet best;  // all model parameters of the best evaluated run
   double best_objective = 0.0;
-  int runs = 0;                         // evaluations in the store (finished + failed)
+  int runs = 0;  // evaluations in the store (finished + failed)
   int failed_runs = 0;
   int iterations = 0;
   // The interval every output reports (reported_interval.hpp: posterior marginal, else linearised).
@@ -47,14 +47,14 @@ struct StudyResult {
   // The linearised estimate (conditional on the other variables), kept for comparison and tests.
   std::map<std::string, double> ci_half_width;  // ~95 % confidence half-width per variable
   std::map<std::string, double> standard_error;
-  std::vector<std::string> unidentifiable;      // variables the data cannot pin down (linearised)
+  std::vector<std::string> unidentifiable;  // variables the data cannot pin down (linearised)
   // Centre of the local least-squares fit of the runs near the best one (uncertainty.hpp),
   // per variable; empty when too few runs.
   std::map<std::string, double> least_squares_estimate;
-  std::vector<std::vector<double>> correlation; // variables x variables, study order
+  std::vector<std::vector<double>> correlation;  // variables x variables, study order
   double wall_seconds = 0.0;
-  CurveSet best_curves;                 // the best run's curves as simulated
-  bool converged = false;               // stopped by the tolerances, not the iteration limit
+  CurveSet best_curves;    // the best run's curves as simulated
+  bool converged = false;  // stopped by the tolerances, not the iteration limit
 };
 
 // Runs (or resumes) a study. Throws std::runtime_error when every run failed, when the store

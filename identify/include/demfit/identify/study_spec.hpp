@@ -25,8 +25,8 @@ struct VariableSpec {
   double lower = 0.0;
   double upper = 1.0;
   double initial = 0.5;
-  bool log_scale = false;        // sample and fit in log(value) (needs lower > 0)
-  double initial_range = 1.0;    // width of the iteration-0 region as a fraction of the bounds
+  bool log_scale = false;      // sample and fit in log(value) (needs lower > 0)
+  double initial_range = 1.0;  // width of the iteration-0 region as a fraction of the bounds
 };
 
 enum class CurveMetric {
@@ -38,12 +38,12 @@ enum class CurveMetric {
 // A target read from a drum photo (issue 14): the free-surface profile extracted by
 // demfit::imaging, in the drum frame (origin on the axis, x right, z up), as a curve x_mm, z_mm.
 struct ImageTargetSpec {
-  std::filesystem::path file;     // as written in the study (relative to the study file)
-  double diameter = 0.0;          // [m] inner drum diameter the square picture spans
-  double threshold = -1.0;        // grey level in [0, 1]; < 0 = automatic (Otsu)
-  bool material_is_dark = true;   // "image_material": "dark" (photos) or "light" (inverted)
-  double margin = 0.1;            // fraction of the radius ignored near the drum outline
-  int points = 41;                // abscissae of the profile across the usable chord
+  std::filesystem::path file;    // as written in the study (relative to the study file)
+  double diameter = 0.0;         // [m] inner drum diameter the square picture spans
+  double threshold = -1.0;       // grey level in [0, 1]; < 0 = automatic (Otsu)
+  bool material_is_dark = true;  // "image_material": "dark" (photos) or "light" (inverted)
+  double margin = 0.1;           // fraction of the radius ignored near the drum outline
+  int points = 41;               // abscissae of the profile across the usable chord
 };
 
 // One measured curve to match. In a study with several experiments, `name` and `curve` are
@@ -51,15 +51,15 @@ struct ImageTargetSpec {
 // names), curve "<experiment>/<curve>" (the key in the CurveSet of a design point, which is the
 // union of its experiments' curves; experiments.hpp). to_json writes them unqualified again.
 struct TargetSpec {
-  std::string name;              // unique; used in file names and reports
-  std::string curve;             // simulated curve name in the (design point's) CurveSet
-  Curve data;                    // measured points (loaded from CSV or given inline)
-  std::filesystem::path csv;     // where data came from (empty when inline)
+  std::string name;           // unique; used in file names and reports
+  std::string curve;          // simulated curve name in the (design point's) CurveSet
+  Curve data;                 // measured points (loaded from CSV or given inline)
+  std::filesystem::path csv;  // where data came from (empty when inline)
   CurveMetric metric = CurveMetric::mse;
-  double weight = 1.0;           // weight of this target in the composite objective
-  double scale = 0.0;            // s_p of SPEC 3; 0 = max|G| of the target
-  int mapping_points = 0;        // curve mapping: stations along the curve; 0 = target size
-  std::string experiment = {};   // experiment the target belongs to; "" in the single-model form
+  double weight = 1.0;                        // weight of this target in the composite objective
+  double scale = 0.0;                         // s_p of SPEC 3; 0 = max|G| of the target
+  int mapping_points = 0;                     // curve mapping: stations along the curve; 0 = target size
+  std::string experiment = {};                // experiment the target belongs to; "" in the single-model form
   std::optional<ImageTargetSpec> image = {};  // where data came from when read from a photo
 };
 
@@ -67,15 +67,15 @@ struct TargetSpec {
 // fixed settings and parameters) whose targets share the study's variables. A variable is
 // passed to every experiment whose model accepts it; one that no model accepts is an error.
 struct ExperimentSpec {
-  std::string name;              // letters, digits, '_' and '-'; unique in the study
+  std::string name;  // letters, digits, '_' and '-'; unique in the study
   std::string model_reference;
   nlohmann::json model_overrides = nlohmann::json::object();
   ParameterSet fixed_parameters;
 };
 
 enum class SamplingStrategy {
-  srsm,             // SPEC 3 domain reduction: optimum + maximin points in the subregion
-  adaptive_infill,  // full region; optimum + infill points chosen from the objective model
+  srsm,                  // SPEC 3 domain reduction: optimum + maximin points in the subregion
+  adaptive_infill,       // full region; optimum + infill points chosen from the objective model
   expected_improvement,  // full region; optimum + batch expected improvement on the composite objective
 };
 
@@ -83,8 +83,8 @@ enum class SamplingStrategy {
 const char* strategy_name(SamplingStrategy strategy);
 
 enum class ResponseMode {
-  curve_points,         // one RBF output per resampled curve value (shared factorisation)
-  principal_components, // RBF outputs = PCA scores of the stacked curves
+  curve_points,          // one RBF output per resampled curve value (shared factorisation)
+  principal_components,  // RBF outputs = PCA scores of the stacked curves
 };
 
 struct StudySpec {
@@ -94,7 +94,7 @@ struct StudySpec {
   // "rotary_drum", "analytic" or a case JSON path) plus fixed case settings.
   std::string model_reference;
   nlohmann::json model_overrides = nlohmann::json::object();
-  ParameterSet fixed_parameters;          // parameters held at given values (not varied)
+  ParameterSet fixed_parameters;  // parameters held at given values (not varied)
   // Several experiments ("experiments" in the file): then model_reference is empty, the model
   // settings live in each experiment and every target names its experiment. Empty in the
   // single-model form ("model" + "targets"), which is one unnamed experiment.
@@ -102,22 +102,22 @@ struct StudySpec {
   std::vector<VariableSpec> variables;
   std::vector<TargetSpec> targets;
   // Sampling.
-  int points_per_iteration = 0;           // 0 before defaulting; parse fills ceil(1.5(n+1)+1)
+  int points_per_iteration = 0;  // 0 before defaulting; parse fills ceil(1.5(n+1)+1)
   SamplingStrategy strategy = SamplingStrategy::srsm;
   // Domain reduction (SPEC 3 / Stander & Craig 2002).
   double gamma_pan = 1.0;
   double gamma_osc = 0.6;
   double eta = 0.6;
   // Surrogate.
-  std::string basis = "multiquadric";     // "multiquadric" or "gaussian"
+  std::string basis = "multiquadric";  // "multiquadric" or "gaussian"
   ResponseMode responses = ResponseMode::curve_points;
-  double smoothing = 0.0;                 // ridge term of the RBF fit (noisy responses)
+  double smoothing = 0.0;  // ridge term of the RBF fit (noisy responses)
   // Stopping.
   int max_iterations = 20;
-  double design_tolerance = 0.01;         // change of the optimum, fraction of each range
-  double objective_tolerance = 0.01;      // relative change of the optimum's objective
+  double design_tolerance = 0.01;     // change of the optimum, fraction of each range
+  double objective_tolerance = 0.01;  // relative change of the optimum's objective
   std::uint64_t seed = 1;
-  std::filesystem::path base_dir;         // for relative paths (CSV files, case files)
+  std::filesystem::path base_dir;  // for relative paths (CSV files, case files)
 };
 
 // Parses a study JSON (strict). Relative paths resolve against base_dir. Throws

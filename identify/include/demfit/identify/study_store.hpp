@@ -27,12 +27,12 @@ inline constexpr int kStoreSchemaVersion = 1;
 
 struct EvaluationRecord {
   int iteration = 0;
-  int point = 0;                  // index within the iteration's batch
-  std::string kind;               // "initial", "design", "optimum", "verification"
-  std::vector<double> unit_x;     // varied variables in unit coordinates [0, 1]
-  ParameterSet parameters;        // everything passed to the model
-  CurveSet curves;                // empty when failed
-  double objective = 0.0;         // composite objective (NaN when failed)
+  int point = 0;               // index within the iteration's batch
+  std::string kind;            // "initial", "design", "optimum", "verification"
+  std::vector<double> unit_x;  // varied variables in unit coordinates [0, 1]
+  ParameterSet parameters;     // everything passed to the model
+  CurveSet curves;             // empty when failed
+  double objective = 0.0;      // composite objective (NaN when failed)
   double wall_seconds = 0.0;
   bool ok = false;
   std::string error;
@@ -40,15 +40,15 @@ struct EvaluationRecord {
 
 struct IterationRecord {
   int iteration = 0;
-  std::vector<double> region_center;     // unit coordinates
-  std::vector<double> region_range;      // unit coordinates (full box = 1)
-  std::vector<double> predicted_optimum; // unit coordinates
-  ParameterSet predicted_parameters;     // physical values of the varied variables
-  double predicted_objective = 0.0;      // surrogate's value at the predicted optimum
-  double best_objective = 0.0;           // best evaluated objective so far
+  std::vector<double> region_center;      // unit coordinates
+  std::vector<double> region_range;       // unit coordinates (full box = 1)
+  std::vector<double> predicted_optimum;  // unit coordinates
+  ParameterSet predicted_parameters;      // physical values of the varied variables
+  double predicted_objective = 0.0;       // surrogate's value at the predicted optimum
+  double best_objective = 0.0;            // best evaluated objective so far
   int runs_done = 0;
-  double design_change = 0.0;            // max |change| of the optimum, fraction of range
-  double objective_change = 0.0;         // relative change of the predicted objective
+  double design_change = 0.0;     // max |change| of the optimum, fraction of range
+  double objective_change = 0.0;  // relative change of the predicted objective
 };
 
 nlohmann::json to_json(const EvaluationRecord& record);
@@ -74,7 +74,7 @@ class StudyStore {
   const EvaluationRecord* find_evaluation(int iteration, int point) const;
   std::vector<EvaluationRecord> evaluations() const;  // ordered by (iteration, point)
   void put_iteration(const IterationRecord& record);
-  std::vector<IterationRecord> iterations() const;    // ordered by iteration
+  std::vector<IterationRecord> iterations() const;  // ordered by iteration
   void put_result(const nlohmann::json& result);
   std::optional<nlohmann::json> result() const;
   const std::filesystem::path& path() const { return path_; }

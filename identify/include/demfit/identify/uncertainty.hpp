@@ -38,18 +38,18 @@
 namespace demfit::identify {
 
 struct UncertaintyEstimate {
-  std::vector<double> standard_error;   // per variable, physical units
-  std::vector<double> ci_half_width;    // per variable, physical units
-  Eigen::MatrixXd correlation;          // n x n
+  std::vector<double> standard_error;  // per variable, physical units
+  std::vector<double> ci_half_width;   // per variable, physical units
+  Eigen::MatrixXd correlation;         // n x n
   std::vector<bool> unidentifiable;
-  double residual_variance = 0.0;       // s^2 (per residual component)
-  int degrees_of_freedom = 0;           // N - n
-  double condition_number = 0.0;        // of J^T J in range-scaled variables
+  double residual_variance = 0.0;  // s^2 (per residual component)
+  int degrees_of_freedom = 0;      // N - n
+  double condition_number = 0.0;   // of J^T J in range-scaled variables
   // Regression estimate only (estimate_uncertainty_from_runs); otherwise 0 / empty.
-  std::string jacobian_source = "given";     // "given" or "regression"
-  int runs_used = 0;                          // runs in the regression
-  double simulation_noise_variance = 0.0;     // sigma_fit^2 per residual component
-  std::vector<double> effect_significance;    // per variable (criterion (c)); empty when not computed
+  std::string jacobian_source = "given";    // "given" or "regression"
+  int runs_used = 0;                        // runs in the regression
+  double simulation_noise_variance = 0.0;   // sigma_fit^2 per residual component
+  std::vector<double> effect_significance;  // per variable (criterion (c)); empty when not computed
   // Regression only: the least-squares centre of the local linear model, physical units, per
   // variable (unidentifiable ones stay at the best run). x_best + dx, dx = -(J^T J)^-1 J^T r0 with
   // r0 the regression's residual vector at the best run: the runs' average, not one noisy run,
@@ -64,11 +64,11 @@ UncertaintyEstimate estimate_uncertainty(const Eigen::MatrixXd& jacobian, const 
 
 // Runs near the optimum, for the regression estimate.
 struct RunSample {
-  Eigen::MatrixXd unit_points;          // m x n, unit (optimiser) coordinates of the runs
-  Eigen::MatrixXd residuals;            // m x N, evaluated residual vectors of the same runs
-  Eigen::VectorXd best_unit;            // n, the optimum (the best run)
-  Eigen::VectorXd best_residuals;       // N, its evaluated residuals
-  Eigen::VectorXd unit_per_physical;    // n, d(unit)/d(physical) at the optimum
+  Eigen::MatrixXd unit_points;        // m x n, unit (optimiser) coordinates of the runs
+  Eigen::MatrixXd residuals;          // m x N, evaluated residual vectors of the same runs
+  Eigen::VectorXd best_unit;          // n, the optimum (the best run)
+  Eigen::VectorXd best_residuals;     // N, its evaluated residuals
+  Eigen::VectorXd unit_per_physical;  // n, d(unit)/d(physical) at the optimum
 };
 
 // Regression Jacobian and noise as described above. Needs m >= n + 2 distinct runs; with fewer,
@@ -103,12 +103,12 @@ struct PosteriorOptions {
 };
 
 struct PosteriorEstimate {
-  std::vector<double> median, lower, upper;   // physical units, per variable
-  Eigen::MatrixXd correlation;                // of the draws
-  Eigen::MatrixXd draws;                      // up to 2000 kept draws (physical units), for the pair plot
-  std::vector<bool> unidentifiable;           // interval wider than half the bounds
-  double simulation_noise_variance = 0.0;     // tr Σ_sim / N
-  double data_noise_variance = 0.0;           // σ_w²
+  std::vector<double> median, lower, upper;  // physical units, per variable
+  Eigen::MatrixXd correlation;               // of the draws
+  Eigen::MatrixXd draws;                     // up to 2000 kept draws (physical units), for the pair plot
+  std::vector<bool> unidentifiable;          // interval wider than half the bounds
+  double simulation_noise_variance = 0.0;    // tr Σ_sim / N
+  double data_noise_variance = 0.0;          // σ_w²
   int runs_used = 0;
 };
 

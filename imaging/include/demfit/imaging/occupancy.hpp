@@ -31,8 +31,8 @@ class OccupancyAccumulator {
   DrumFrame frame_;
   int pixels_ = 0;
   int snapshots_ = 0;
-  std::vector<int> covered_count_;     // per pixel: snapshots in which it was covered
-  std::vector<unsigned char> stamp_;   // per pixel: covered in the current snapshot
+  std::vector<int> covered_count_;    // per pixel: snapshots in which it was covered
+  std::vector<unsigned char> stamp_;  // per pixel: covered in the current snapshot
 };
 
 }  // namespace demfit::imaging

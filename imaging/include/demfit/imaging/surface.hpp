@@ -41,13 +41,13 @@ struct ProfileOptions {
 
 // Free surface in the drum frame (metres). x increasing, all values finite.
 struct SurfaceProfile {
-  std::vector<double> x;          // [m]
-  std::vector<double> z;          // [m] height of the bed's top surface
-  double threshold_used = 0.0;    // grey level actually used (Otsu's or the given one)
-  double compared_radius = 0.0;   // [m] (1 - margin) R
-  double pixel_size = 0.0;        // [m] h = D / (N - 1)
-  double material_level = 0.0;    // median grey level of the material pixels inside the compared circle
-  double empty_level = 0.0;       // median grey level of the empty pixels inside the compared circle
+  std::vector<double> x;         // [m]
+  std::vector<double> z;         // [m] height of the bed's top surface
+  double threshold_used = 0.0;   // grey level actually used (Otsu's or the given one)
+  double compared_radius = 0.0;  // [m] (1 - margin) R
+  double pixel_size = 0.0;       // [m] h = D / (N - 1)
+  double material_level = 0.0;   // median grey level of the material pixels inside the compared circle
+  double empty_level = 0.0;      // median grey level of the empty pixels inside the compared circle
 };
 
 // The occupancy (fraction of time covered) at which a time-averaged picture with these material and

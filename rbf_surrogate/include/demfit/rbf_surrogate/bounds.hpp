@@ -13,10 +13,10 @@ using Eigen::VectorXd;
 // One design variable in physical units. With log_scale the unit coordinate is linear in
 // log(value), which needs lower > 0 (stiffness-like parameters spanning decades).
 struct Variable {
-    std::string name;
-    double lower = 0.0;
-    double upper = 1.0;
-    bool log_scale = false;
+  std::string name;
+  double lower = 0.0;
+  double upper = 1.0;
+  bool log_scale = false;
 };
 
 // Throws std::invalid_argument (one line naming the variable) when lower >= upper, a bound is not
@@ -28,15 +28,15 @@ VectorXd from_unit(const std::vector<Variable>& variables, const VectorXd& unit)
 
 // Axis-aligned box, in unit coordinates everywhere in this library.
 struct Box {
-    VectorXd lower, upper;
-    static Box unit(int dims);                   // [0,1]^dims
-    int dims() const { return static_cast<int>(lower.size()); }
-    VectorXd width() const { return upper - lower; }
-    VectorXd center() const { return 0.5 * (lower + upper); }
-    bool contains(const VectorXd& x, double tolerance = 0.0) const;
-    VectorXd clamp(const VectorXd& x) const;     // nearest point of the box
-    VectorXd to_local(const VectorXd& x) const;   // box -> [0,1]^n
-    VectorXd from_local(const VectorXd& u) const; // [0,1]^n -> box
+  VectorXd lower, upper;
+  static Box unit(int dims);  // [0,1]^dims
+  int dims() const { return static_cast<int>(lower.size()); }
+  VectorXd width() const { return upper - lower; }
+  VectorXd center() const { return 0.5 * (lower + upper); }
+  bool contains(const VectorXd& x, double tolerance = 0.0) const;
+  VectorXd clamp(const VectorXd& x) const;       // nearest point of the box
+  VectorXd to_local(const VectorXd& x) const;    // box -> [0,1]^n
+  VectorXd from_local(const VectorXd& u) const;  // [0,1]^n -> box
 };
 
 // Throws std::invalid_argument when sizes differ, lower > upper or a bound is not finite.

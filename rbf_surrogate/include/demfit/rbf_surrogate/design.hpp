@@ -21,15 +21,14 @@ MatrixXd latin_hypercube_random(int points, int dims, std::uint64_t seed, const 
 // `points` new rows inside `region` maximising the minimum distance to every existing point and to
 // each other (greedy maximin over a seeded candidate pool, then exchange improvement). Distances are
 // measured in region-normalised coordinates so a narrow subregion is filled evenly in every direction.
-MatrixXd space_filling_augment(const MatrixXd& existing, int points, const Box& region,
-                               std::uint64_t seed);
+MatrixXd space_filling_augment(const MatrixXd& existing, int points, const Box& region, std::uint64_t seed);
 
 // Smallest pairwise Euclidean distance between rows (infinity for fewer than 2 rows).
 double minimum_distance(const MatrixXd& points);
 
 // Deterministic uniform numbers from std::mt19937_64 (the same on every platform).
-double uniform01(std::mt19937_64& rng);                  // [0, 1), 53 random bits
-double normal01(std::mt19937_64& rng);                   // standard normal (Box-Muller), reproducible
+double uniform01(std::mt19937_64& rng);                              // [0, 1), 53 random bits
+double normal01(std::mt19937_64& rng);                               // standard normal (Box-Muller), reproducible
 std::uint64_t uniform_index(std::mt19937_64& rng, std::uint64_t n);  // [0, n)
 
 }  // namespace demfit::rbf_surrogate

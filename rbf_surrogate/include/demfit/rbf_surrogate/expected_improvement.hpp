@@ -14,23 +14,23 @@ double expected_improvement(double mean, double standard_deviation, double best)
 double log_expected_improvement(double mean, double standard_deviation, double best);
 
 struct AcquisitionOptions {
-    int candidates = 0;          // 0: clamp(400·d, 2000, 4000)
-    double local_fraction = 0.5; // share of candidates perturbing the incumbent (rest uniform)
-    int local_starts = 3;        // BOBYQA polishing runs from the best distinct candidates (0: none)
-    int local_evaluations = 150; // per polishing run
-    // Points closer than excluded_radius to one of excluded_centres are never proposed.
-    std::vector<VectorXd> excluded_centres;
-    double excluded_radius = 0.0;
-    // Failed runs (no value, so invisible to the model): no point closer than failed_radius to one
-    // of them is proposed (the EI strategy sets them; a failure region is otherwise explored as
-    // "uncertain" again and again).
-    std::vector<VectorXd> failed_points;
-    double failed_radius = 0.0;
+  int candidates = 0;           // 0: clamp(400·d, 2000, 4000)
+  double local_fraction = 0.5;  // share of candidates perturbing the incumbent (rest uniform)
+  int local_starts = 3;         // BOBYQA polishing runs from the best distinct candidates (0: none)
+  int local_evaluations = 150;  // per polishing run
+  // Points closer than excluded_radius to one of excluded_centres are never proposed.
+  std::vector<VectorXd> excluded_centres;
+  double excluded_radius = 0.0;
+  // Failed runs (no value, so invisible to the model): no point closer than failed_radius to one
+  // of them is proposed (the EI strategy sets them; a failure region is otherwise explored as
+  // "uncertain" again and again).
+  std::vector<VectorXd> failed_points;
+  double failed_radius = 0.0;
 };
 
 struct AcquisitionResult {
-    VectorXd x;                  // unit coordinates, inside the region
-    double log_ei = 0.0;
+  VectorXd x;  // unit coordinates, inside the region
+  double log_ei = 0.0;
 };
 
 // Maximises EI of `model` relative to `best` over `region`. Candidates: uniform points of the region

@@ -29,55 +29,55 @@ enum class InfillStrategy { srsm, adaptive, expected_improvement };
 enum class OutputWarp { none, log, automatic };
 
 struct ExpensiveOptions {
-    InfillStrategy strategy = InfillStrategy::srsm;
-    int max_evaluations = 100;
-    int initial_points = 0;          // 0: 2(n+1); expected_improvement n+1
-    int points_per_iteration = 0;    // batch size; 0: srsm 1.5(n+1)+1 rounded up (SPEC 3), others 1
-    std::uint64_t seed = 1;
-    RbfOptions rbf;
-    SrsmSettings srsm;
-    MinimizeOptions minimize{.global_evaluations = 600, .local_starts = 3};
-    std::optional<double> target;    // stop once a value <= target has been evaluated
-    // Fit the surrogate to min(y, median(y)) (Regis & Shoemaker 2007): large values far from the
-    // optimum (Rosenbrock-like ranges) otherwise dominate the fit and its width.
-    bool clip_above_median = false;
-    // SRSM strategy: centre the next subregion on the best point run so far (the predicted optimum
-    // when it is the best, which is the usual case); false = always the predicted optimum (LS-OPT).
-    bool recentre_on_best = true;
-    // expected_improvement strategy. The nugget is estimated when kriging.estimate_noise or
-    // rbf.smoothing is set (noisy values); the incumbent is then the lowest predicted mean at a run point.
-    KrigingOptions kriging;
-    AcquisitionOptions acquisition;
-    // Every exploit_every-th point is the minimiser of the kriging mean instead of the EI maximiser
-    // (pure exploitation); 0: EI only (k = 2, 3, 4 measured no better on Hartmann-6).
-    int exploit_every = 0;
-    OutputWarp output_warp = OutputWarp::automatic;
-    // Fit both kriging kernels (Matérn-5/2 and Gaussian) and use the more likely one at each fit.
-    bool select_kernel = true;
-    // After stall_evaluations points without a 0.1 % improvement the incumbent's basin (a ball of
-    // radius stall_exclusion_radius·√n, unit coordinates) is excluded and EI continues on the rest of
-    // the domain against the best value found there; a basin there that stalls is excluded too.
-    // The exclusions are dropped after 7 stall lengths without improvement. 0: never.
-    int stall_evaluations = 12;
-    double stall_exclusion_radius = 0.35;
-    // Batches of q > 1 expected-improvement points (kriging believer): the last point of each batch
-    // is the minimiser of the believer-updated kriging mean when batch_exploit is set (bench, q = 4,
-    // 5 seeds: Hartmann-6 median 53 instead of 67 evaluations, Branin 31 instead of 32; the constant
-    // liar instead of the believer: Hartmann-6 67, one run failing).
-    bool batch_exploit = true;
-    // Value assumed at a chosen batch point: the kriging mean (believer) or the lowest value so far
-    // (constant liar "min", Ginsbourger et al. 2010).
-    bool constant_liar = false;
+  InfillStrategy strategy = InfillStrategy::srsm;
+  int max_evaluations = 100;
+  int initial_points = 0;        // 0: 2(n+1); expected_improvement n+1
+  int points_per_iteration = 0;  // batch size; 0: srsm 1.5(n+1)+1 rounded up (SPEC 3), others 1
+  std::uint64_t seed = 1;
+  RbfOptions rbf;
+  SrsmSettings srsm;
+  MinimizeOptions minimize{.global_evaluations = 600, .local_starts = 3};
+  std::optional<double> target;  // stop once a value <= target has been evaluated
+  // Fit the surrogate to min(y, median(y)) (Regis & Shoemaker 2007): large values far from the
+  // optimum (Rosenbrock-like ranges) otherwise dominate the fit and its width.
+  bool clip_above_median = false;
+  // SRSM strategy: centre the next subregion on the best point run so far (the predicted optimum
+  // when it is the best, which is the usual case); false = always the predicted optimum (LS-OPT).
+  bool recentre_on_best = true;
+  // expected_improvement strategy. The nugget is estimated when kriging.estimate_noise or
+  // rbf.smoothing is set (noisy values); the incumbent is then the lowest predicted mean at a run point.
+  KrigingOptions kriging;
+  AcquisitionOptions acquisition;
+  // Every exploit_every-th point is the minimiser of the kriging mean instead of the EI maximiser
+  // (pure exploitation); 0: EI only (k = 2, 3, 4 measured no better on Hartmann-6).
+  int exploit_every = 0;
+  OutputWarp output_warp = OutputWarp::automatic;
+  // Fit both kriging kernels (Matérn-5/2 and Gaussian) and use the more likely one at each fit.
+  bool select_kernel = true;
+  // After stall_evaluations points without a 0.1 % improvement the incumbent's basin (a ball of
+  // radius stall_exclusion_radius·√n, unit coordinates) is excluded and EI continues on the rest of
+  // the domain against the best value found there; a basin there that stalls is excluded too.
+  // The exclusions are dropped after 7 stall lengths without improvement. 0: never.
+  int stall_evaluations = 12;
+  double stall_exclusion_radius = 0.35;
+  // Batches of q > 1 expected-improvement points (kriging believer): the last point of each batch
+  // is the minimiser of the believer-updated kriging mean when batch_exploit is set (bench, q = 4,
+  // 5 seeds: Hartmann-6 median 53 instead of 67 evaluations, Branin 31 instead of 32; the constant
+  // liar instead of the believer: Hartmann-6 67, one run failing).
+  bool batch_exploit = true;
+  // Value assumed at a chosen batch point: the kriging mean (believer) or the lowest value so far
+  // (constant liar "min", Ginsbourger et al. 2010).
+  bool constant_liar = false;
 };
 
 struct ExpensiveResult {
-    VectorXd x;                       // best evaluated point, physical units
-    double value = 0.0;               // best evaluated value
-    int evaluations = 0;
-    MatrixXd points;                  // all evaluated points, physical units (rows)
-    VectorXd values;                  // all evaluated values, in evaluation order
-    std::vector<double> best_so_far;  // best value after each evaluation
-    std::string stop_reason;          // "target reached" or "evaluation budget reached"
+  VectorXd x;          // best evaluated point, physical units
+  double value = 0.0;  // best evaluated value
+  int evaluations = 0;
+  MatrixXd points;                  // all evaluated points, physical units (rows)
+  VectorXd values;                  // all evaluated values, in evaluation order
+  std::vector<double> best_so_far;  // best value after each evaluation
+  std::string stop_reason;          // "target reached" or "evaluation budget reached"
 };
 
 // f receives physical coordinates (see Variable). Deterministic for a given seed.

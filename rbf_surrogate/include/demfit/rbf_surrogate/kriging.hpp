@@ -20,57 +20,57 @@ namespace demfit::rbf_surrogate {
 enum class KrigingKernel { matern52, gaussian };
 
 struct KrigingOptions {
-    KrigingKernel kernel = KrigingKernel::matern52;
-    // Estimate a nugget g (noise variance / process variance) by maximum likelihood, for noisy
-    // values; otherwise g = min_nugget (a jitter that keeps R + gI positive definite).
-    bool estimate_noise = false;
-    double min_nugget = 1e-10;
-    double max_nugget = 0.3;
-    double min_length = 0.01;   // length-scale bounds in the (unit-cube) coordinates of the points
-    double max_length = 20.0;
-    // Warm start for the likelihood search (e.g. the previous fit's length scales and nugget):
-    // the search then starts there as well as from the default start (all ℓ = 0.3). Empty / 0: none.
-    VectorXd length_hint;
-    double nugget_hint = 0.0;
-    int likelihood_evaluations = 0;   // BOBYQA budget per start; 0: 40·(parameters + 1)
-    // Skip the likelihood search and use exactly these hyperparameters (length_hint required).
-    bool fixed_hyperparameters = false;
+  KrigingKernel kernel = KrigingKernel::matern52;
+  // Estimate a nugget g (noise variance / process variance) by maximum likelihood, for noisy
+  // values; otherwise g = min_nugget (a jitter that keeps R + gI positive definite).
+  bool estimate_noise = false;
+  double min_nugget = 1e-10;
+  double max_nugget = 0.3;
+  double min_length = 0.01;  // length-scale bounds in the (unit-cube) coordinates of the points
+  double max_length = 20.0;
+  // Warm start for the likelihood search (e.g. the previous fit's length scales and nugget):
+  // the search then starts there as well as from the default start (all ℓ = 0.3). Empty / 0: none.
+  VectorXd length_hint;
+  double nugget_hint = 0.0;
+  int likelihood_evaluations = 0;  // BOBYQA budget per start; 0: 40·(parameters + 1)
+  // Skip the likelihood search and use exactly these hyperparameters (length_hint required).
+  bool fixed_hyperparameters = false;
 };
 
 class KrigingModel {
-public:
-    // points n×d (rows), values n. Throws std::invalid_argument (one line) on NaN/inf, size mismatch
-    // or fewer than 2 points.
-    static KrigingModel fit(const MatrixXd& points, const VectorXd& values, const KrigingOptions& options = {});
+ public:
+  // points n×d (rows), values n. Throws std::invalid_argument (one line) on NaN/inf, size mismatch
+  // or fewer than 2 points.
+  static KrigingModel fit(const MatrixXd& points, const VectorXd& values, const KrigingOptions& options = {});
 
-    double mean(const VectorXd& x, VectorXd* gradient = nullptr) const;  // predicted value (and ∇)
-    double standard_deviation(const VectorXd& x) const;                  // of the latent function
-    void predict(const VectorXd& x, double& mean, double& standard_deviation) const;
+  double mean(const VectorXd& x, VectorXd* gradient = nullptr) const;  // predicted value (and ∇)
+  double standard_deviation(const VectorXd& x) const;                  // of the latent function
+  void predict(const VectorXd& x, double& mean, double& standard_deviation) const;
 
-    const VectorXd& length_scales() const { return length_; }
-    KrigingKernel kernel() const { return kernel_; }
-    double nugget() const { return nugget_; }                 // relative to the process variance
-    double process_variance() const { return sigma2_ * y_scale_ * y_scale_; }
-    // Concentrated −log L of the values as given (normalisation Jacobian n·log(scale) included,
-    // constant n/2·(1 + log 2π) left out): comparable between fits of transformed values once the
-    // transform's own Jacobian is added.
-    double data_negative_log_likelihood() const { return nll_ + static_cast<double>(size()) * std::log(y_scale_); }
-    int size() const { return static_cast<int>(x_.rows()); }
-    int dims() const { return static_cast<int>(x_.cols()); }
+  const VectorXd& length_scales() const { return length_; }
+  KrigingKernel kernel() const { return kernel_; }
+  double nugget() const { return nugget_; }  // relative to the process variance
+  double process_variance() const { return sigma2_ * y_scale_ * y_scale_; }
+  // Concentrated −log L of the values as given (normalisation Jacobian n·log(scale) included,
+  // constant n/2·(1 + log 2π) left out): comparable between fits of transformed values once the
+  // transform's own Jacobian is added.
+  double data_negative_log_likelihood() const { return nll_ + static_cast<double>(size()) * std::log(y_scale_); }
+  int size() const { return static_cast<int>(x_.rows()); }
+  int dims() const { return static_cast<int>(x_.cols()); }
 
-private:
-    VectorXd correlations(const VectorXd& x) const;  // r_i = m(|x − x_i|_ℓ)
+ private:
+  VectorXd correlations(const VectorXd& x) const;  // r_i = m(|x − x_i|_ℓ)
 
-    MatrixXd x_;
-    KrigingKernel kernel_ = KrigingKernel::matern52;
-    VectorXd length_;
-    double nugget_ = 0.0;
-    double mu_ = 0.0, sigma2_ = 1.0, nll_ = 0.0;   // in normalised units
-    double y_shift_ = 0.0, y_scale_ = 1.0;         // y_normalised = (y − shift) / scale
-    Eigen::MatrixXd lower_;                        // Cholesky factor L of R + gI
-    VectorXd weights_;                             // (R+gI)⁻¹(y − μ̂)
-    VectorXd inverse_ones_;                        // (R+gI)⁻¹1
-    double ones_inverse_ones_ = 1.0;               // 1ᵀ(R+gI)⁻¹1
+  MatrixXd x_;
+  KrigingKernel kernel_ = KrigingKernel::matern52;
+  VectorXd length_;
+  double nugget_ = 0.0;
+  double mu_ = 0.0, sigma2_ = 1.0, nll_ = 0.0;  // in normalised units
+  double y_shift_ = 0.0, y_scale_ = 1.0;        // y_normalised = (y − shift) / scale
+  Eigen::MatrixXd lower_;                       // Cholesky factor L of R + gI
+  VectorXd weights_;                            // (R+gI)⁻¹(y − μ̂)
+  VectorXd inverse_ones_;                       // (R+gI)⁻¹1
+  double ones_inverse_ones_ = 1.0;              // 1ᵀ(R+gI)⁻¹1
 };
 
 // Matérn-5/2 correlation m(r) and m'(r)/r (finite at r = 0), exposed for tests.

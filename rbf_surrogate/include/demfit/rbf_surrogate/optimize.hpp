@@ -13,17 +13,17 @@ namespace demfit::rbf_surrogate {
 using Objective = std::function<double(const VectorXd& x, VectorXd* gradient /*may be null*/)>;
 
 struct MinimizeOptions {
-    int global_evaluations = 2000;  // DIRECT-L budget
-    int local_starts = 5;           // polishing runs from the best distinct global points
-    std::uint64_t seed = 1;
-    bool use_gradient = true;       // false: LN_BOBYQA polishing, gradient never requested
-    int local_evaluations = 200;    // per polishing run
+  int global_evaluations = 2000;  // DIRECT-L budget
+  int local_starts = 5;           // polishing runs from the best distinct global points
+  std::uint64_t seed = 1;
+  bool use_gradient = true;     // false: LN_BOBYQA polishing, gradient never requested
+  int local_evaluations = 200;  // per polishing run
 };
 
 struct MinimizeResult {
-    VectorXd x;
-    double value = 0.0;
-    int evaluations = 0;
+  VectorXd x;
+  double value = 0.0;
+  int evaluations = 0;
 };
 
 MinimizeResult minimize(const Objective& objective, const Box& box, const MinimizeOptions& options = {});

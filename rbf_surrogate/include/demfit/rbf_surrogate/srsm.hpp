@@ -7,20 +7,20 @@
 namespace demfit::rbf_surrogate {
 
 struct SrsmSettings {
-    double gamma_pan = 1.0;
-    double gamma_osc = 0.6;
-    double eta = 0.6;
+  double gamma_pan = 1.0;
+  double gamma_osc = 0.6;
+  double eta = 0.6;
 };
 
 struct Subregion {
-    VectorXd center, range;   // unit coordinates; range = full side lengths
-    Box box() const;
-    static Subregion from_box(const Box& box);
+  VectorXd center, range;  // unit coordinates; range = full side lengths
+  Box box() const;
+  static Subregion from_box(const Box& box);
 };
 
 struct SrsmState {
-    Subregion region;
-    VectorXd previous_move;   // d_{k-1}; empty at start (first update uses ĉ = 0, see srsm.cpp)
+  Subregion region;
+  VectorXd previous_move;  // d_{k-1}; empty at start (first update uses ĉ = 0, see srsm.cpp)
 };
 
 // Starting state covering `region` (e.g. Box::unit(n) or a user's initial range).
