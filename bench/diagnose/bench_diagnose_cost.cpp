@@ -23,7 +23,7 @@ namespace {
 class CountingModel final : public identify::Model {
  public:
   explicit CountingModel(const identify::Model& inner) : inner_(inner) {}
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<identify::ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   identify::ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext& c) const override {
     ++count;

@@ -29,7 +29,7 @@ void burn(long iterations) {
 class CostlyModel final : public identify::Model {
  public:
   explicit CostlyModel(long iterations) : iterations_(iterations) {}
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<identify::ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   identify::ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext& c) const override {
     burn(iterations_);

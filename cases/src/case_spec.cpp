@@ -2,6 +2,7 @@
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/identify/json_document.hpp"
 
+#include <array>
 #include <fstream>
 #include <numbers>
 #include <stdexcept>
@@ -9,19 +10,27 @@
 #include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/json_fields.hpp"
 #include "demfit/cases/parameter_table.hpp"
+#include "demfit/cases/section_fields.hpp"
+#include "drum_case.hpp"
+#include "pellet_case.hpp"
 
 namespace demfit::cases {
 namespace {
 
 using nlohmann::json;
 
+// The particle's material (its radius_spread is a parameter-table row, read with its range).
+const std::array<SectionField<MaterialSpec>, 4> kParticleFields{{
+    {"radius", &MaterialSpec::radius, Sign::positive},
+    {"density", &MaterialSpec::density, Sign::positive},
+    {"youngs_modulus", &MaterialSpec::youngs_modulus, Sign::positive},
+    {"poisson_ratio", &MaterialSpec::poisson_ratio, Sign::any, -0.99, 0.499},
+}};
+
 MaterialSpec parse_material(const json& j, MaterialSpec m) {
   const char* p = "particle";
-  require_known_keys(j, p, {"radius", "density", "youngs_modulus", "poisson_ratio", "radius_spread"});
-  m.radius = read_number(j, p, "radius", m.radius, Sign::positive);
-  m.density = read_number(j, p, "density", m.density, Sign::positive);
-  m.youngs_modulus = read_number(j, p, "youngs_modulus", m.youngs_modulus, Sign::positive);
-  m.poisson_ratio = read_bounded(j, p, "poisson_ratio", m.poisson_ratio, -0.99, 0.499);
+  require_known_keys(j, p, section_keys<MaterialSpec>(kParticleFields, {"radius_spread"}));
+  read_section_fields<MaterialSpec>(j, p, kParticleFields, m);
   m.radius_spread = read_parameter(j, p, "radius_spread", m.radius_spread);  // range: parameter table
   return m;
 }
@@ -102,102 +111,6 @@ OutputSpec parse_output(const json& j, OutputSpec o) {
   return o;
 }
 
-PelletSpec parse_pellet(const json& j, PelletSpec s) {
-  const char* p = "pellet";
-  require_known_keys(j, p,
-                     {"container_diameter", "container_height", "particle_count", "fill_seed", "fill_normk",
-                      "settle_time", "piston_speed", "max_pressure", "max_travel", "unload", "curve_points"});
-  s.container_diameter = read_number(j, p, "container_diameter", s.container_diameter, Sign::positive);
-  s.container_height = read_number(j, p, "container_height", s.container_height, Sign::positive);
-  s.particle_count = read_integer(j, p, "particle_count", s.particle_count, 1);
-  s.fill_seed = read_integer(j, p, "fill_seed", s.fill_seed, 0);
-  s.fill_normk = read_number(j, p, "fill_normk", s.fill_normk, Sign::positive);
-  s.settle_time = read_number(j, p, "settle_time", s.settle_time, Sign::positive);
-  s.piston_speed = read_number(j, p, "piston_speed", s.piston_speed, Sign::positive);
-  s.max_pressure = read_number(j, p, "max_pressure", s.max_pressure, Sign::positive);
-  s.max_travel = read_number(j, p, "max_travel", s.max_travel, Sign::positive);
-  s.unload = read_bool(j, p, "unload", s.unload);
-  s.curve_points = read_integer(j, p, "curve_points", s.curve_points, 2);
-  return s;
-}
-
-DrumImageSpec parse_drum_image(const json& j) {
-  const char* p = "drum.image";
-  require_known_keys(j, p, {"pixels", "margin", "points"});
-  DrumImageSpec image;
-  image.enabled = true;
-  image.pixels = read_integer(j, p, "pixels", image.pixels, 32);
-  image.margin = read_bounded(j, p, "margin", image.margin, 0.0, 0.95);
-  image.points = read_integer(j, p, "points", image.points, 2);
-  return image;
-}
-
-// Exactly one fill amount (fill_fraction when none is given; see FillBy).
-void parse_fill_amount(const json& j, DrumSpec& s) {
-  const char* p = "drum";
-  int given = 0;
-  for (const char* k : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"})
-    given += j.contains(k) ? 1 : 0;
-  if (given > 1)
-    throw std::runtime_error("'drum': give exactly one of fill_fraction, fill_volume_ml, particle_count or fill_mass");
-  s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
-  if (j.contains("fill_volume_ml")) {
-    s.fill_by = FillBy::fill_volume;
-    s.fill_volume_ml = read_parameter(j, p, "fill_volume_ml", 0.0);
-  } else if (j.contains("particle_count")) {
-    s.fill_by = FillBy::particle_count;
-    s.particle_count =
-        read_integer(j, p, "particle_count", 0, static_cast<long long>(find_parameter("particle_count")->valid.lower));
-  } else if (j.contains("fill_mass")) {
-    s.fill_by = FillBy::fill_mass;
-    s.fill_mass = read_number(j, p, "fill_mass", 0.0, Sign::positive);
-  } else if (j.contains("fill_fraction")) {
-    s.fill_by = FillBy::fill_fraction;
-  }
-}
-
-DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base_dir) {
-  const char* p = "drum";
-  require_known_keys(
-      j, p,
-      {"diameter", "length", "rpm", "duration", "fill_fraction", "volume_fraction", "coarse_graining", "scale_factor",
-       "fill_seed", "densify_time", "torque_interval", "surface_window", "surface_snapshots", "surface_points",
-       "fill_volume_ml", "particle_count", "fill_mass", "size_distribution", "image"});
-  s.diameter = read_number(j, p, "diameter", s.diameter, Sign::positive);
-  s.length = read_number(j, p, "length", s.length, Sign::positive);
-  s.rpm = read_number(j, p, "rpm", s.rpm);
-  s.duration = read_number(j, p, "duration", s.duration, Sign::positive);
-  parse_fill_amount(j, s);
-  s.volume_fraction = read_bounded(j, p, "volume_fraction", s.volume_fraction, 0.05, 1.0);
-  const std::string cg = read_string(j, p, "coarse_graining", to_string(s.coarse_graining));
-  try {
-    s.coarse_graining = parse_coarse_graining(cg);
-  } catch (const std::exception&) {
-    throw std::runtime_error("'drum.coarse_graining' must be \"scg\" or \"cvf\" (got \"" + cg + "\")");
-  }
-  s.scale_factor = read_bounded(j, p, "scale_factor", s.scale_factor, 1.0, 16.0);
-  s.fill_seed = read_integer(j, p, "fill_seed", s.fill_seed, 0);
-  s.densify_time = read_number(j, p, "densify_time", s.densify_time, Sign::positive);
-  s.torque_interval = read_number(j, p, "torque_interval", s.torque_interval, Sign::positive);
-  s.surface_window = read_number(j, p, "surface_window", s.surface_window, Sign::non_negative);
-  s.surface_snapshots = read_integer(j, p, "surface_snapshots", s.surface_snapshots, 1);
-  s.surface_points = read_integer(j, p, "surface_points", s.surface_points, 2);
-  if (s.surface_window > s.duration) {
-    throw std::runtime_error("'drum.surface_window' must not exceed 'drum.duration'");
-  }
-  if (j.contains("size_distribution"))
-    s.size_distribution =
-        parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);
-  if (j.contains("image")) s.image = parse_drum_image(child_object(j, p, "image"));
-  if (s.fill_by == FillBy::fill_volume) {
-    const double drum_ml = std::numbers::pi * 0.25 * s.diameter * s.diameter * s.length * 1e6;
-    if (s.fill_volume_ml > 0.9 * drum_ml)
-      throw std::runtime_error("'drum.fill_volume_ml' = " + std::to_string(s.fill_volume_ml) +
-                               " exceeds 90 % of the drum volume (" + std::to_string(drum_ml) + " mL): lower it");
-  }
-  return s;
-}
-
 }  // namespace
 
 double MaterialSpec::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
@@ -207,46 +120,6 @@ std::string to_string(dem_core::ContactLawKind law) {
 }
 
 namespace {
-
-json pellet_json(const PelletSpec& p) {
-  return {{"container_diameter", p.container_diameter},
-          {"container_height", p.container_height},
-          {"particle_count", p.particle_count},
-          {"fill_seed", p.fill_seed},
-          {"fill_normk", p.fill_normk},
-          {"settle_time", p.settle_time},
-          {"piston_speed", p.piston_speed},
-          {"max_pressure", p.max_pressure},
-          {"max_travel", p.max_travel},
-          {"unload", p.unload},
-          {"curve_points", p.curve_points}};
-}
-
-json drum_json(const DrumSpec& d) {
-  json j = {{"diameter", d.diameter},
-            {"length", d.length},
-            {"rpm", d.rpm},
-            {"duration", d.duration},
-            {"fill_fraction", d.fill_fraction},
-            {"volume_fraction", d.volume_fraction},
-            {"coarse_graining", to_string(d.coarse_graining)},
-            {"scale_factor", d.scale_factor},
-            {"fill_seed", d.fill_seed},
-            {"densify_time", d.densify_time},
-            {"torque_interval", d.torque_interval},
-            {"surface_window", d.surface_window},
-            {"surface_snapshots", d.surface_snapshots},
-            {"surface_points", d.surface_points}};
-  // General-drum options appear only when used, so a paper drum keeps its old text.
-  if (d.fill_by != FillBy::fill_fraction) j.erase("fill_fraction");
-  if (d.fill_by == FillBy::fill_volume) j["fill_volume_ml"] = d.fill_volume_ml;
-  if (d.fill_by == FillBy::particle_count) j["particle_count"] = d.particle_count;
-  if (d.fill_by == FillBy::fill_mass) j["fill_mass"] = d.fill_mass;
-  if (d.size_distribution.enabled()) j["size_distribution"] = to_json(d.size_distribution);
-  if (d.image.enabled)
-    j["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
-  return j;
-}
 
 // Kinds whose case files may select the Hertz-Mindlin law (its fill and stiffness set-up exist
 // for the drum only).
@@ -302,20 +175,12 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   }
   spec.time_step = parse_time_step(child_object(document, "", "time_step"), spec.time_step);
   spec.output = parse_output(child_object(document, "", "output"), spec.output);
-  switch (spec.kind) {
+  switch (spec.kind) {  // the kind's own section (cases/<kind>/<kind>_section.cpp)
     case CaseKind::pellet_compression:
-      spec.pellet = parse_pellet(child_object(document, "", "pellet"), spec.pellet);
+      spec.pellet = detail::parse_pellet_section(child_object(document, "", "pellet"), spec.pellet);
       break;
     case CaseKind::rotary_drum:
-      spec.drum = parse_drum(child_object(document, "", "drum"), spec.drum, base_dir);
-      if (spec.drum.size_distribution.enabled()) {
-        if (child_object(document, "", "particle").contains("radius"))
-          throw std::runtime_error(
-              "'particle.radius' cannot be given with 'drum.size_distribution': the distribution sets the sizes");
-        if (spec.material.radius_spread != 0.0)
-          throw std::runtime_error("'particle.radius_spread' cannot be combined with 'drum.size_distribution'");
-        spec.material.radius = 0.5 * spec.drum.size_distribution.min_diameter();  // smallest size (time-step checks)
-      }
+      detail::parse_drum_section(document, spec, base_dir);
       break;
   }
   return spec;
@@ -325,11 +190,9 @@ json to_json(const CaseSpec& s) {
   json j;
   j["case"] = case_kind_row(s.kind).name;
   j["description"] = s.description;
-  j["particle"] = {{"radius", s.material.radius},
-                   {"density", s.material.density},
-                   {"youngs_modulus", s.material.youngs_modulus},
-                   {"poisson_ratio", s.material.poisson_ratio},
-                   {"radius_spread", s.material.radius_spread}};
+  j["particle"] = json::object();
+  write_section_fields<MaterialSpec>(j["particle"], kParticleFields, s.material);
+  j["particle"]["radius_spread"] = s.material.radius_spread;
   const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
   if (distribution) j["particle"].erase("radius");
   // The identified parameters' fields come from the parameter table (write_parameter_fields).
@@ -353,10 +216,10 @@ json to_json(const CaseSpec& s) {
   j["output"] = {{"snapshot_times", s.output.snapshot_times}, {"progress_interval", s.output.progress_interval}};
   switch (s.kind) {
     case CaseKind::pellet_compression:
-      j["pellet"] = pellet_json(s.pellet);
+      j["pellet"] = detail::pellet_section_json(s.pellet);
       break;
     case CaseKind::rotary_drum:
-      j["drum"] = drum_json(s.drum);
+      j["drum"] = detail::drum_section_json(s.drum);
       break;
   }
   return j;

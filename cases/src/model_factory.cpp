@@ -22,7 +22,6 @@ namespace {
 class DemCaseModel final : public identify::Model {
  public:
   explicit DemCaseModel(CaseSpec spec) : spec_(std::move(spec)) {}
-  std::vector<std::string> parameter_names() const override { return cases::parameter_names(); }
   std::vector<identify::ParameterDescriptor> parameters() const override { return parameter_descriptors(); }
   identify::ParameterSet default_parameters() const override { return detail::parameters_of(spec_); }
   std::vector<identify::CurveDescriptor> curves() const override { return produced_curves(spec_); }

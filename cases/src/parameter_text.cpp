@@ -122,7 +122,8 @@ std::string parameters_markdown() {
       "   and its getter/setter. A field under `contact` or `wall_contact` is then read (with the range),\n"
       "   refused outside it and written to `case_resolved.json`; `with_parameters`/`parameters_of`,\n"
       "   `--set`, its help, the descriptors studies are checked against and this page follow from the row.\n"
-      "   A field elsewhere (`particle`, `drum`) is read in cases/src/case_spec.cpp with `read_parameter`.\n"
+      "   A field elsewhere is read with `read_parameter` where its section is parsed (`particle`: "
+      "cases/src/case_spec.cpp; `drum`: cases/drum/drum_section.cpp).\n"
       "3. If it is an effect, add it to the effect catalogue (cases/src/effect_catalogue.cpp) with a\n"
       "   fitting range inside the valid range.\n"
       "4. Regenerate this page: `demfit parameters > docs/parameters.md`.\n";

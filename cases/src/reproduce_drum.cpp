@@ -14,7 +14,9 @@
 #include "demfit/identify/objective.hpp"
 #include "demfit/identify/run_program.hpp"
 #include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/json_document.hpp"
 #include "demfit/identify/study.hpp"
+#include "demfit/identify/study_spec.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -28,24 +30,21 @@ std::string fmt(const char* pattern, double value) {
   return buffer;
 }
 
-// Drum settings of a reproduction: full = SPEC 2.2 (25 mm long, 0.4 s densification, 3 s of
-// rotation). Quick = a cheaper drum of the same cross-section and fill fraction: half the axial
-// length (12.5 mm, end walls as before: periodic ends are not available), 0.25 s densification,
-// 1 s of rotation, so the s = 1 runs (the cost of a cold quick run) hold half the particles for
-// a third of the time. Every quick run, the Table 3 target included, uses the same drum.
-json drum_overrides(CoarseGraining model, double s, bool quick) {
-  json drum = {{"coarse_graining", to_string(model)}, {"scale_factor", s}};
-  if (quick) {
-    drum["duration"] = 1.0;
-    drum["length"] = 0.0125;
-    drum["densify_time"] = 0.25;
-  }
-  return {{"drum", drum}};
+// The drum of a reproduction is the model of the shipped Table 3 study (cases/table3_study.json;
+// the quick one is a cheaper drum of the same cross-section and fill fraction, docs/reproduce.md):
+// Figs. 4-5 and the Table 3 target run it at other coarse-graining models and factors, so every
+// run of one reproduction uses the same drum.
+json table3_study_document(const ReproduceOptions& o) {
+  return identify::read_json_file(o.cases_dir / (o.quick ? "table3_study_quick.json" : "table3_study.json"),
+                                  "Table 3 study");
 }
 
-CaseSpec drum_spec(CoarseGraining model, double s, bool quick) {
+CaseSpec drum_spec(const json& study, CoarseGraining model, double s) {
   json document = json::parse(detail::kBuiltinRotaryDrum);
-  document.merge_patch(drum_overrides(model, s, quick));
+  json overrides = study.at("model").value("overrides", json::object());
+  overrides["drum"]["coarse_graining"] = to_string(model);
+  overrides["drum"]["scale_factor"] = s;
+  document.merge_patch(overrides);
   return parse_case(document);
 }
 
@@ -83,6 +82,17 @@ void write_fig5_script(const fs::path& dir, const std::vector<std::string>& runs
   identify::write_file_atomically(dir / "fig5_torque.gp", gp.str());
 }
 
+// The paper's optimal values (Table 3), shown beside demfit's: a published fact, not a study input.
+std::string paper_value(const std::string& variable) {
+  static const std::pair<const char*, double> kPaperOptimal[] = {
+      {"ndamp", 0.558648808},      {"tdamp", 0.547304765},      {"frics", 0.437766112},
+      {"fricr", 0.088137162},      {"normk", 0.095010325},      {"sheark", 0.004870718},
+      {"wall_frics", 0.398444369}, {"wall_fricd", 0.186624382}, {"wall_damp", 0.101806949}};
+  for (const auto& [name, value] : kPaperOptimal)
+    if (variable == name) return fmt("%.9g", value);
+  return "-";
+}
+
 double rms_surface_error(const identify::Curve& target, const identify::Curve& computed) {
   const std::vector<double> f = identify::resample_monotone(computed, target.x);
   double sum = 0.0;
@@ -101,9 +111,10 @@ std::string reproduce_figures(const ReproduceOptions& o) {
                      " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque "
                      "[N m] | cached |\n|---|---|---|---|---|---|\n";
   double duration = 0.0;
+  const json study = table3_study_document(o);
   for (CoarseGraining model : {CoarseGraining::scg, CoarseGraining::cvf}) {
     for (double s : {1.0, 2.0, 4.0}) {
-      const CaseSpec spec = drum_spec(model, s, o.quick);
+      const CaseSpec spec = drum_spec(study, model, s);
       duration = spec.drum.duration;
       CaseRunOptions run;
       run.threads = std::max(1, o.jobs * o.threads_per_job);  // one run at a time: use all cores
@@ -143,48 +154,12 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   target_run.threads = std::max(1, o.jobs * o.threads_per_job);
   target_run.progress = o.progress;
   bool computed = false;
-  const CaseResult original = cached_case_result(drum_spec(CoarseGraining::scg, 1.0, o.quick), target_run, &computed);
+  const json study = table3_study_document(o);
+  const CaseResult original = cached_case_result(drum_spec(study, CoarseGraining::scg, 1.0), target_run, &computed);
   const identify::Curve target = original.curves.at("free_surface");
   write_curve_table(dir / "target_free_surface.csv",
                     curve_table(target, {"free surface of the original (s = 1) drum at the end time: Table 3 target"}));
-  struct Var {
-    const char* name;
-    double lower, upper, initial, paper;
-    bool log;
-  };
-  // Bounds: the earlier runs ended with ndamp, frics and sheark on their lower and wall_fricd on
-  // its upper bound (the s = 4 bed stands ~7 deg steeper than the s = 1 bed, so the fit wants
-  // less friction), so those bounds are wider than the paper's values alone would suggest.
-  const Var vars[] = {
-      {"ndamp", 0.01, 0.95, 0.5, 0.558648808, false},     {"tdamp", 0.05, 0.95, 0.5, 0.547304765, false},
-      {"frics", 0.01, 1.0, 0.3, 0.437766112, false},      {"fricr", 0.0, 0.3, 0.1, 0.088137162, false},
-      {"normk", 0.003, 0.3, 0.01, 0.095010325, true},     {"sheark", 0.0003, 0.3, 0.0029, 0.004870718, true},
-      {"wall_frics", 0.05, 1.0, 0.3, 0.398444369, false}, {"wall_fricd", 0.0, 1.0, 0.3, 0.186624382, false},
-      {"wall_damp", 0.05, 0.95, 0.5, 0.101806949, false}};
-  json variables = json::array();
-  for (const Var& v : vars) {
-    variables.push_back(
-        {{"name", v.name}, {"lower", v.lower}, {"upper", v.upper}, {"initial", v.initial}, {"log_scale", v.log}});
-  }
-  const json study = {
-      {"demfit_study_version", 1},
-      {"name", "table3_drum"},
-      {"model", {{"case", "rotary_drum"}, {"overrides", drum_overrides(CoarseGraining::scg, 4.0, o.quick)}}},
-      {"variables", variables},
-      {"targets", json::array({{{"name", "free_surface"},
-                                {"curve", "free_surface"},
-                                {"x_column", "x_mm"},
-                                {"y_column", "height_mm"},
-                                {"x", target.x},
-                                {"y", target.y},
-                                {"metric", "mse"}}})},
-      // Adaptive infill over the whole box, not SRSM: the surface error is so noisy that SRSM
-      // shrinks onto one basin (measured ratio 0.57 in 193 runs) while the global infill keeps
-      // finding better regions (ratio 0.37 in 193 runs; docs/reproduce.md).
-      {"sampling", {{"points_per_iteration", 16}, {"strategy", "adaptive_infill"}}},
-      // 16 points per iteration (as the paper): 12 iterations + verification = 193 runs <= 200.
-      {"stopping", {{"max_iterations", o.quick ? 2 : 12}}},
-      {"seed", 1}};
+  // The study reads the target just written (its relative paths resolve against this folder).
   const identify::StudySpec spec = identify::parse_study(study, dir);
   const auto model = make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
   identify::EvaluationContext context;
@@ -201,8 +176,8 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   std::string t =
       "Table 3: parameters identified on the SCG s = 4 drum against the s = 1 free surface\n\n"
       "| Keyword | Variable | Initial value | Paper optimal | demfit optimal (± 95 % CI) |\n|---|---|---|---|---|\n";
-  for (const Var& v : vars) {
-    const std::string name = v.name;
+  for (const identify::VariableSpec& v : spec.variables) {
+    const std::string& name = v.name;
     const bool wall = name.rfind("wall_", 0) == 0;
     std::string ours = fmt("%.6g", r.best.at(name));
     if (auto ci = r.ci_half_width.find(name); ci != r.ci_half_width.end() && std::isfinite(ci->second))
@@ -210,7 +185,7 @@ std::string reproduce_table3(const ReproduceOptions& o) {
     for (const std::string& u : r.unidentifiable)
       if (u == name) ours += " (not identifiable)";
     t += std::string("| ") + (wall ? "*DEFINE_DE_TO_SURFACE_COUPLING" : "*CONTROL_DISCRETE_ELEMENT") + " | " +
-         (wall ? name.substr(5) : name) + " | " + fmt("%g", v.initial) + " | " + fmt("%.9g", v.paper) + " | " + ours +
+         (wall ? name.substr(5) : name) + " | " + fmt("%g", v.initial) + " | " + paper_value(name) + " | " + ours +
          " |\n";
   }
   t += "\nSurface RMS error against the s = 1 target: " + fmt("%.3f", error_before) + " mm at the initial values, " +

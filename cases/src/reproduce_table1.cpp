@@ -2,7 +2,6 @@
 // identified from the shipped synthetic pressure-volume curve, starting from the LS-DYNA defaults.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <stdexcept>
 
 #include "demfit/cases/case_spec.hpp"
@@ -23,34 +22,6 @@ std::string fmt(const char* pattern, double value) {
   char buffer[96];
   std::snprintf(buffer, sizeof buffer, pattern, value);
   return buffer;
-}
-
-nlohmann::json table1_study(const std::filesystem::path& data_csv, bool quick) {
-  using nlohmann::json;
-  return json{
-      {"demfit_study_version", 1},
-      {"name", "table1_pellet"},
-      // The piston stroke is capped at 4.5 mm: the target needs ~2 mm (67.16 -> 65.22 cm^3 over
-      // a 10.18 cm^2 piston), and soft candidates (NORMK near 0.01) would otherwise run the full
-      // 30 mm (cost ~ stroke); a capped curve is held flat beyond its end (docs/study_format.md).
-      {"model", {{"case", "pellet_compression"}, {"overrides", {{"pellet", {{"max_travel", 0.0045}}}}}}},
-      // NORMK log-scaled from the default 0.01 up to 2 (twice the paper's value; stiffer
-      // candidates cost more: time step ~ 1/sqrt(NORMK)).
-      {"variables",
-       json::array({{{"name", "normk"}, {"lower", 0.01}, {"upper", 2.0}, {"initial", 0.01}, {"log_scale", true}},
-                    {{"name", "sheark"}, {"lower", 0.1}, {"upper", 0.6}, {"initial", 2.0 / 7.0}}})},
-      {"targets", json::array({{{"name", "pressure_volume"},
-                                {"curve", "pressure_volume"},
-                                {"csv", data_csv.string()},
-                                {"x_column", "volume_cm3"},
-                                {"y_column", "pressure_MPa"},
-                                {"metric", "mse"}}})},
-      {"sampling", {{"points_per_iteration", 6}}},
-      // 6 points per iteration: 9 iterations + the verification run = 55 runs <= 60. The
-      // tolerances are tight on purpose: run-to-run trajectory noise makes a 1 % stopping rule
-      // fire while the optimum is still several % off (measured: stopped at 25 runs, -3.5 %).
-      {"stopping", {{"max_iterations", quick ? 3 : 9}, {"design_tolerance", 0.001}, {"objective_tolerance", 0.001}}},
-      {"seed", 1}};
 }
 
 std::string percent(double value, double truth) { return fmt("%+.2f", 100.0 * (value - truth) / truth) + " %"; }
@@ -88,13 +59,10 @@ std::string identified_cell(const identify::StudyResult& r, const identify::Vari
 }  // namespace
 
 std::string reproduce_table1(const ReproduceOptions& o) {
-  const std::filesystem::path data_csv = std::filesystem::absolute(o.data_dir / "pellet_pressure_volume_synthetic.csv");
-  if (!std::filesystem::exists(data_csv)) {
-    throw std::runtime_error("synthetic curve '" + data_csv.string() +
-                             "' is missing: run from the source tree or pass --data");
-  }
-  const nlohmann::json study = table1_study(data_csv, o.quick);
-  const identify::StudySpec spec = identify::parse_study(study, o.out_dir);
+  // The study is the shipped file (cases/table1_study[_quick].json): NORMK log-scaled from the
+  // LS-DYNA default 0.01, the piston stroke capped at 4.5 mm (docs/reproduce.md says why).
+  const identify::StudySpec spec =
+      identify::load_study_file(o.cases_dir / (o.quick ? "table1_study_quick.json" : "table1_study.json"));
   const auto model = make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
   identify::RunOptions run;
   run.jobs = o.jobs;

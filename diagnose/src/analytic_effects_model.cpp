@@ -12,8 +12,9 @@ AnalyticEffectsModel::AnalyticEffectsModel(int points) : points_(points) {
   if (points_ < 3) throw std::runtime_error("analytic effects model: points must be >= 3");
 }
 
-std::vector<std::string> AnalyticEffectsModel::parameter_names() const {
-  return {"amplitude", "rate", "slope", "toe_shift", "stiffening_coefficient", "yield_drop", "ripple_amplitude"};
+std::vector<identify::ParameterDescriptor> AnalyticEffectsModel::parameters() const {
+  return identify::unbounded_descriptors(
+      {"amplitude", "rate", "slope", "toe_shift", "stiffening_coefficient", "yield_drop", "ripple_amplitude"});
 }
 
 identify::ParameterSet AnalyticEffectsModel::default_parameters() const {

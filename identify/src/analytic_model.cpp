@@ -9,7 +9,9 @@ AnalyticCurveModel::AnalyticCurveModel(int points) : points_(points) {
   if (points_ < 2) throw std::runtime_error("analytic model: points must be >= 2");
 }
 
-std::vector<std::string> AnalyticCurveModel::parameter_names() const { return {"amplitude", "rate", "slope"}; }
+std::vector<ParameterDescriptor> AnalyticCurveModel::parameters() const {
+  return unbounded_descriptors({"amplitude", "rate", "slope"});
+}
 
 std::vector<CurveDescriptor> AnalyticCurveModel::curves() const {
   return {{"response", "x_1", "y_1"}, {"loop", "x_1", "y_1"}};

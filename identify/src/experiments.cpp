@@ -21,12 +21,6 @@ ExperimentSetModel::ExperimentSetModel(const StudySpec& spec, std::vector<std::u
   }
 }
 
-std::vector<std::string> ExperimentSetModel::parameter_names() const {
-  std::set<std::string> names;
-  for (const auto& e : experiments_) names.insert(e.accepted.begin(), e.accepted.end());
-  return {names.begin(), names.end()};
-}
-
 std::vector<ParameterDescriptor> ExperimentSetModel::parameters() const {
   std::vector<ParameterDescriptor> out;
   for (const auto& e : experiments_)

@@ -131,7 +131,9 @@ namespace {
 // The small pellet bed as an identify::Model (test cache, one settled bed for all runs).
 class SmallPelletModel final : public demfit::identify::Model {
  public:
-  std::vector<std::string> parameter_names() const override { return parameter_names_list(); }
+  std::vector<demfit::identify::ParameterDescriptor> parameters() const override {
+    return demfit::identify::unbounded_descriptors(parameter_names_list());
+  }
   demfit::identify::ParameterSet default_parameters() const override {
     return {{"normk", 0.01}, {"sheark", 2.0 / 7.0}};
   }

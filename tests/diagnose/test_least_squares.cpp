@@ -15,7 +15,9 @@ namespace {
 // y = s x - 0.5 back from x = 1 to 0.5 (unloading, offset by the parameter-free 0.5).
 class CycleModel final : public identify::Model {
  public:
-  std::vector<std::string> parameter_names() const override { return {"s"}; }
+  std::vector<identify::ParameterDescriptor> parameters() const override {
+    return identify::unbounded_descriptors({"s"});
+  }
   identify::ParameterSet default_parameters() const override { return {{"s", 1.0}}; }
   identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext&) const override {
     identify::Curve c{"x", "y", {}, {}};

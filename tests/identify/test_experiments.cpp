@@ -23,9 +23,9 @@ class CombinationModel final : public Model {
  public:
   CombinationModel(bool product, std::atomic<int>* calls, bool accepts_gain = false)
       : product_(product), calls_(calls), accepts_gain_(accepts_gain) {}
-  std::vector<std::string> parameter_names() const override {
-    if (accepts_gain_) return {"a", "b", "gain"};
-    return {"a", "b"};
+  std::vector<ParameterDescriptor> parameters() const override {
+    if (accepts_gain_) return unbounded_descriptors({"a", "b", "gain"});
+    return unbounded_descriptors({"a", "b"});
   }
   ParameterSet default_parameters() const override {
     if (accepts_gain_) return {{"a", 1.0}, {"b", 1.0}, {"gain", 1.0}};

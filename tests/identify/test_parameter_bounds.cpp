@@ -18,7 +18,6 @@ namespace {
 class BoundedAnalyticModel final : public Model {
  public:
   explicit BoundedAnalyticModel(double amplitude_max = 2.0) : amplitude_max_(amplitude_max) {}
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
   std::vector<ParameterDescriptor> parameters() const override {
     return {{"amplitude", "-", {0.0, amplitude_max_, true, false}, 1.0, std::nullopt, ""},
             {"rate", "1/s", {1.0, 10.0}, 3.0, std::nullopt, ""},
@@ -154,7 +153,7 @@ namespace {
 // The analytic model counting its evaluations (to show a check ran before any of them).
 class CountingAnalyticModel final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   std::vector<CurveDescriptor> curves() const override { return inner_.curves(); }
   ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
@@ -185,7 +184,7 @@ TEST_CASE("A target naming a curve the model does not declare is refused when th
 // "x_1", which convert from anything).
 class AnalyticModelWithUnits final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   std::vector<CurveDescriptor> curves() const override {
     return {{"response", "volume_cm3", "pressure_MPa"}, {"loop", "x_1", "y_1"}};
   }

@@ -20,7 +20,7 @@ namespace {
 // The analytic model taking 40 ms per run, so that the kill lands while runs are in flight.
 class SlowModel final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
     std::this_thread::sleep_for(std::chrono::milliseconds(40));

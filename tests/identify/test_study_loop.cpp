@@ -31,7 +31,7 @@ RunOptions quiet_options(const std::filesystem::path& dir, int jobs = 1) {
 // The analytic model, failing (like an unstable simulation) when amplitude > 1.8.
 class FailingModel final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override { return inner_.parameter_names(); }
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
   ParameterSet default_parameters() const override { return inner_.default_parameters(); }
   CurveSet evaluate(const ParameterSet& p, const EvaluationContext& c) const override {
     if (p.at("amplitude") > fail_above) throw std::runtime_error("unstable: time step too large");
@@ -46,7 +46,9 @@ class FailingModel final : public Model {
 // The analytic model plus a parameter "ignored" that no curve depends on.
 class ExtraParameterModel final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override { return {"amplitude", "rate", "slope", "ignored"}; }
+  std::vector<ParameterDescriptor> parameters() const override {
+    return unbounded_descriptors({"amplitude", "rate", "slope", "ignored"});
+  }
   ParameterSet default_parameters() const override {
     auto p = inner_.default_parameters();
     p["ignored"] = 0.5;
@@ -68,8 +70,8 @@ class ExtraParameterModel final : public Model {
 // and "ignored", which does nothing.
 class NoisySimulationModel final : public Model {
  public:
-  std::vector<std::string> parameter_names() const override {
-    return {"amplitude", "rate", "slope", "weak", "ignored"};
+  std::vector<ParameterDescriptor> parameters() const override {
+    return unbounded_descriptors({"amplitude", "rate", "slope", "weak", "ignored"});
   }
   ParameterSet default_parameters() const override {
     auto p = inner_.default_parameters();

@@ -16,7 +16,9 @@ namespace dc = demfit::dem_core;
 // Pressure [MPa] = k * volume change [cm3] on volumes 10..20 cm3 (a stand-in for the pellet case).
 class LinearPelletModel final : public id::Model {
  public:
-  std::vector<std::string> parameter_names() const override { return {"k"}; }
+  std::vector<id::ParameterDescriptor> parameters() const override {
+    return id::unbounded_descriptors({"k"});
+  }
   id::ParameterSet default_parameters() const override { return {{"k", 1.0}}; }
   id::CurveSet evaluate(const id::ParameterSet& p, const id::EvaluationContext&) const override {
     id::Curve c{"volume_cm3", "pressure_MPa", {}, {}};

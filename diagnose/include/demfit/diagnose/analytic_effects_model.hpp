@@ -14,7 +14,7 @@ namespace demfit::diagnose {
 class AnalyticEffectsModel final : public identify::Model {
  public:
   explicit AnalyticEffectsModel(int points = 41);
-  std::vector<std::string> parameter_names() const override;
+  std::vector<identify::ParameterDescriptor> parameters() const override;
   identify::ParameterSet default_parameters() const override;
   identify::CurveSet evaluate(const identify::ParameterSet& parameters,
                               const identify::EvaluationContext& context) const override;

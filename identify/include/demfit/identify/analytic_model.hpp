@@ -14,7 +14,7 @@ namespace demfit::identify {
 class AnalyticCurveModel final : public Model {
  public:
   explicit AnalyticCurveModel(int points = 41);
-  std::vector<std::string> parameter_names() const override;
+  std::vector<ParameterDescriptor> parameters() const override;
   ParameterSet default_parameters() const override;
   std::vector<CurveDescriptor> curves() const override;
   CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override;

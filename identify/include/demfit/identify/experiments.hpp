@@ -29,7 +29,6 @@ class ExperimentSetModel final : public Model {
   ExperimentSetModel(const StudySpec& spec, std::vector<std::unique_ptr<Model>> models);
 
   // Union of the experiments' parameter names (sorted).
-  std::vector<std::string> parameter_names() const override;
   // Their descriptors; a name several experiments accept gets the intersection of their ranges.
   std::vector<ParameterDescriptor> parameters() const override;
   // "<experiment>/<curve>" for every experiment's declared curve; empty when one declares none.

@@ -40,11 +40,16 @@ struct EvaluationContext {
 class Model {
  public:
   virtual ~Model() = default;
-  // Names of the parameters evaluate() accepts (anything else is an error).
-  virtual std::vector<std::string> parameter_names() const = 0;
-  // The same parameters with unit and valid range (study bounds are checked against them before
-  // a study starts). Models that declare no ranges keep this default: any value, unit unknown.
-  virtual std::vector<ParameterDescriptor> parameters() const { return unbounded_descriptors(parameter_names()); }
+  // Every parameter evaluate() accepts (anything else is an error), with its unit and valid range:
+  // study bounds are checked against them before a study starts. A model that declares no ranges
+  // returns unbounded_descriptors({names...}): any value, unit unknown.
+  virtual std::vector<ParameterDescriptor> parameters() const = 0;
+  // The names of parameters(), in its order (derived: one declaration per model).
+  std::vector<std::string> parameter_names() const {
+    std::vector<std::string> names;
+    for (const ParameterDescriptor& d : parameters()) names.push_back(d.name);
+    return names;
+  }
   // Every curve evaluate() can return, with its labels. Empty = not declared (the study's targets
   // are then checked only at the initial point).
   virtual std::vector<CurveDescriptor> curves() const { return {}; }

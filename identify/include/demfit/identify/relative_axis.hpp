@@ -24,7 +24,6 @@ Curve relative_axis_curve(const Curve& curve, const std::string& axis, const std
 class RelativeAxisModel final : public Model {
  public:
   RelativeAxisModel(std::unique_ptr<Model> base, std::set<std::string> requested);
-  std::vector<std::string> parameter_names() const override { return base_->parameter_names(); }
   std::vector<ParameterDescriptor> parameters() const override { return base_->parameters(); }
   ParameterSet default_parameters() const override { return base_->default_parameters(); }
   CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override;

@@ -1,0 +1,245 @@
+// Rotary drum (SPEC 2.2, paper section 3): the cached fill (drum_powder.cpp), then rotation at
+// the given speed; outputs the drive torque history and the free surface at the end time.
+// Frame: drum axis = z (end walls at z = 0 and z = length), gravity -y.
+#include "drum_case.hpp"
+#include "drum_powder.hpp"
+
+#include "demfit/cases/case_registry.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <stdexcept>
+
+#include "dem_setup.hpp"
+#include "demfit/cases/coarse_graining.hpp"
+#include "demfit/cases/fill_cache.hpp"
+#include "demfit/cases/free_surface.hpp"
+#include "demfit/dem_core/packing.hpp"
+#include "demfit/dem_core/simulation.hpp"
+#include "demfit/imaging/occupancy.hpp"
+#include "demfit/imaging/profile_metrics.hpp"
+#include "demfit/imaging/surface.hpp"
+
+namespace demfit::cases::detail {
+namespace {
+
+using dem_core::Vec3;
+using Clock = std::chrono::steady_clock;
+
+std::string fmt(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+SurfaceProfile surface_now(const dem_core::Simulation& sim, const CaseSpec& spec) {
+  std::vector<std::array<double, 3>> positions;
+  for (const Vec3& p : sim.positions()) positions.push_back({p.x, p.y, p.z});
+  const auto radii = sim.radii();
+  const double rd = 0.5 * spec.drum.diameter;
+  SurfaceOptions options{-rd, rd, static_cast<int>(spec.drum.surface_points), 0.1};
+  return extract_free_surface(positions, std::vector<double>(radii.begin(), radii.end()), options);
+}
+
+// Image frame of the GranuDrum photos (imaging/surface.hpp: x right, z up, origin on the axis),
+// as seen by a camera at the FRONT end wall (z = 0) looking along +z: x_image = -x, z_image = y.
+// The drum turns counter-clockwise about +z (rpm > 0), which this camera sees as clockwise, with
+// the bed lifted on the left (x_image < 0), as in the photos.
+void add_image_snapshot(imaging::OccupancyAccumulator& image, const dem_core::Simulation& sim) {
+  std::vector<double> x, z, r;
+  x.reserve(sim.particle_count());
+  z.reserve(sim.particle_count());
+  for (std::size_t i = 0; i < sim.particle_count(); ++i) {
+    x.push_back(-sim.positions()[i].x);
+    z.push_back(sim.positions()[i].y);
+    r.push_back(sim.radii()[i]);
+  }
+  image.add_snapshot(x, z, r);
+}
+
+struct RotationRun {
+  std::vector<double> times, torques;
+  SurfaceProfile surface;
+  std::optional<imaging::SurfaceProfile> image_surface;
+  CurveTable particles;
+  double time_step = 0.0;
+  std::uint64_t steps = 0;
+};
+
+RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill, const CaseRunOptions& options) {
+  dem_core::SimulationSettings settings = simulation_settings(spec);
+  settings.gravity = {0.0, -9.81, 0.0};
+  settings.threads = options.threads;
+  settings.time_step = spec.time_step.value;
+  settings.time_step_factor = spec.time_step.factor;
+  dem_core::Simulation sim(settings);
+  sim.add_material(powder_material(spec, powder));
+  for (std::size_t i = 0; i < fill.radii.size(); ++i) {
+    sim.add_particle({fill.positions[i][0], fill.positions[i][1], fill.positions[i][2]}, fill.radii[i]);
+  }
+  const double omega = spec.drum.rpm * 2.0 * std::numbers::pi / 60.0;
+  const std::size_t shell = add_drum(sim, spec, omega);
+  check_user_time_step(spec, sim);
+  RotationRun run;
+  run.time_step = sim.time_step();
+  const DrumSpec& d = spec.drum;
+  const auto steps_per_sample =
+      static_cast<std::uint64_t>(std::max(1.0, std::round(d.torque_interval / run.time_step)));
+  std::vector<double> surface_times;
+  for (long long k = 0; k < d.surface_snapshots; ++k) {
+    const double f =
+        d.surface_snapshots == 1 ? 1.0 : static_cast<double>(k) / static_cast<double>(d.surface_snapshots - 1);
+    surface_times.push_back(d.duration - d.surface_window * (1.0 - f));
+  }
+  std::vector<SurfaceProfile> profiles;
+  std::optional<imaging::OccupancyAccumulator> image;
+  if (d.image.enabled) image.emplace(imaging::DrumFrame{d.diameter}, static_cast<int>(d.image.pixels));
+  auto take_surface = [&](const dem_core::Simulation& s) {
+    profiles.push_back(surface_now(s, spec));
+    if (image) add_image_snapshot(*image, s);
+  };
+  SnapshotSchedule snapshots(spec.output.snapshot_times, options.snapshot_dir.string(), "drum");
+  double torque_sum = 0.0;
+  std::uint64_t in_sample = 0;
+  // Drive torque: minus the moment the particles exert on the drum about its axis, signed with
+  // the rotation direction, so a bed resisting the rotation gives a positive torque (Fig. 5).
+  const double sense = omega >= 0.0 ? 1.0 : -1.0;
+  auto callback = [&](dem_core::Simulation& s) {
+    torque_sum -= sense * (s.wall_torque(shell) + s.wall_torque(shell + 1) + s.wall_torque(shell + 2));
+    snapshots.maybe_write(s, s.time());
+    while (profiles.size() < surface_times.size() && s.time() >= surface_times[profiles.size()] - 1e-12)
+      take_surface(s);
+    if (++in_sample >= steps_per_sample) {
+      run.times.push_back(s.time());
+      run.torques.push_back(torque_sum / static_cast<double>(in_sample));
+      if (!std::isfinite(run.torques.back()))
+        throw std::runtime_error("drum run diverged (non-finite torque): lower time_step.factor");
+      torque_sum = 0.0;
+      in_sample = 0;
+      if (options.progress) options.progress("rotate", s.time(), d.duration);
+    }
+    return true;
+  };
+  sim.run_until(d.duration, callback, 1);
+  while (profiles.size() < surface_times.size()) take_surface(sim);
+  run.surface = average_profiles(profiles);
+  if (image) {
+    // The photo's own extraction on the averaged occupancy (material = covered > half the time).
+    imaging::ProfileOptions photo;
+    photo.margin = d.image.margin;
+    photo.points = static_cast<int>(d.image.points);
+    run.image_surface = imaging::extract_surface(image->occupancy(), imaging::DrumFrame{d.diameter},
+                                                 imaging::occupancy_profile_options(photo));
+  }
+  run.steps = sim.step_count();
+  run.particles = CurveTable{{"particle centres at the end time; drum axis z, gravity -y"},
+                             {"x_mm", "y_mm", "z_mm", "radius_mm"},
+                             std::vector<std::vector<double>>(4)};
+  for (std::size_t i = 0; i < sim.particle_count(); ++i) {
+    const Vec3 p = sim.positions()[i];
+    const double v[4] = {p.x * 1e3, p.y * 1e3, p.z * 1e3, sim.radii()[i] * 1e3};
+    for (int c = 0; c < 4; ++c) run.particles.values[c].push_back(v[c]);
+  }
+  return run;
+}
+
+// Dynamic repose angle [deg] of an image-frame profile: least-squares line through the points with
+// |x| < half_width, angle -atan(slope), so a bed lifted on the left (the photos) is positive.
+double image_surface_angle(const imaging::SurfaceProfile& profile, double half_width) {
+  imaging::SurfaceProfile central;
+  for (std::size_t k = 0; k < profile.x.size(); ++k) {
+    if (std::fabs(profile.x[k]) >= half_width) continue;
+    central.x.push_back(profile.x[k]);
+    central.z.push_back(profile.z[k]);
+  }
+  if (central.x.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  return -imaging::fit_surface_line(central).angle_deg;
+}
+
+}  // namespace
+
+CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options) {
+  const auto start = Clock::now();
+  bool generated = false;
+  const Powder powder = powder_of(spec);
+  precheck_user_time_step(spec, powder.particle.radius, powder.particle.density);
+  const Fill fill = cached_fill(
+      options.cache_dir, "drum", fill_key(fill_spec), [&] { return pack_and_densify(fill_spec, options); }, &generated);
+  const double fill_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const auto rotate_start = Clock::now();
+  const RotationRun run = rotate(spec, powder, fill, options);
+  const double rotate_seconds = std::chrono::duration<double>(Clock::now() - rotate_start).count();
+  CaseResult result;
+  constexpr CaseKind kind = CaseKind::rotary_drum;  // curve names and labels: case_registry.cpp
+  identify::Curve torque = empty_curve(kind, "torque");
+  torque.x = run.times;
+  torque.y = run.torques;
+  result.curves["torque"] = torque;
+  identify::Curve surface = empty_curve(kind, "free_surface");
+  for (std::size_t k = 0; k < run.surface.x.size(); ++k) {
+    if (!std::isfinite(run.surface.height[k])) continue;
+    surface.x.push_back(run.surface.x[k] * 1e3);
+    surface.y.push_back(run.surface.height[k] * 1e3);
+  }
+  if (surface.x.size() < 2) throw std::runtime_error("drum: free surface not found (fewer than 2 points)");
+  result.curves["free_surface"] = surface;
+  if (run.image_surface) {
+    identify::Curve image = empty_curve(kind, "free_surface_image");
+    for (std::size_t k = 0; k < run.image_surface->x.size(); ++k) {
+      image.x.push_back(run.image_surface->x[k] * 1e3);
+      image.y.push_back(run.image_surface->z[k] * 1e3);
+    }
+    if (image.x.size() < 2) throw std::runtime_error("drum: image free surface not found (fewer than 2 points)");
+    result.curves["free_surface_image"] = image;
+  }
+  result.tables["particles_end"] = run.particles;
+  const double rd = 0.5 * spec.drum.diameter;
+  double mean_torque = 0.0;
+  int counted = 0;
+  for (std::size_t i = 0; i < run.times.size(); ++i) {
+    if (run.times[i] >= 0.5 * spec.drum.duration) {
+      mean_torque += run.torques[i];
+      ++counted;
+    }
+  }
+  auto& sum = result.summary;
+  sum.emplace_back("model", to_string(spec.drum.coarse_graining) + " s = " + fmt("%g", spec.drum.scale_factor));
+  if (spec.law != dem_core::ContactLawKind::lsdyna_linear) sum.emplace_back("contact law", to_string(spec.law));
+  sum.emplace_back("particles", std::to_string(fill.radii.size()));
+  if (powder.radii.empty()) {
+    sum.emplace_back("particle radius [mm]", fmt("%.4f", powder.particle.radius * 1e3));
+  } else {
+    double mean = 0.0;
+    for (double r : fill.radii) mean += r;
+    sum.emplace_back("original particles N0 (fill rule)", fmt("%.1f", powder.original_count));
+    sum.emplace_back("mean particle radius [mm] (size distribution x coarse-graining factor)",
+                     fmt("%.4f", mean / static_cast<double>(fill.radii.size()) * 1e3));
+  }
+  sum.emplace_back("particle density [kg/m3]", fmt("%.1f", powder.particle.density));
+  double total_mass = 0.0;  // summed per particle: radii differ with a radius spread
+  for (double r : fill.radii) total_mass += powder.particle.density * sphere_volume(r);
+  sum.emplace_back("total particle mass [g]", fmt("%.3f", total_mass * 1e3));
+  sum.emplace_back("fill", generated ? "generated and cached" : "read from cache");
+  sum.emplace_back("fill wall time [s]", fmt("%.1f", fill_seconds));
+  sum.emplace_back("dynamic angle of repose [deg] (surface fit over |x| < R/2)",
+                   fmt("%.2f", repose_angle_degrees(run.surface, -0.5 * rd, 0.5 * rd)));
+  sum.emplace_back("mean drive torque, second half [N m]", fmt("%.5f", counted ? mean_torque / counted : 0.0));
+  if (run.image_surface) {
+    sum.emplace_back(
+        "surface_angle_deg (dynamic repose angle of free_surface_image, line fit over |x| < R/2; positive = lifted at "
+        "x < 0)",
+        fmt("%.2f", image_surface_angle(*run.image_surface, 0.5 * rd)));
+  }
+  sum.emplace_back("time step [s]", fmt("%.3e", run.time_step));
+  sum.emplace_back("rotation steps", std::to_string(run.steps));
+  sum.emplace_back("rotation wall time [s] (one evaluation)", fmt("%.1f", rotate_seconds));
+  return result;
+}
+
+}  // namespace demfit::cases::detail
