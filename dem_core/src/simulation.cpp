@@ -33,6 +33,10 @@ Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settin
   require_non_negative("time_step [s]", settings_.time_step);
   require_positive("time_step_factor", settings_.time_step_factor);
   require_finite("skin [m]", settings_.skin);
+  // Histories of the law the simulation starts with (no conversion at the first step).
+  with_contact_law(settings_.law, settings_.contact, [&]<class Law>(std::type_identity<Law>) {
+    contact_state_.emplace<ContactLawState<Law>>().evaluated_with = settings_.contact;
+  });
 }
 
 std::size_t Simulation::add_material(const Material& material) {
