@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 #include "demfit/dem_core/time_step.hpp"
 #include "validation.hpp"
@@ -32,6 +33,10 @@ Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settin
   require_non_negative("time_step [s]", settings_.time_step);
   require_positive("time_step_factor", settings_.time_step_factor);
   require_finite("skin [m]", settings_.skin);
+  // Histories of the law the simulation starts with (no conversion at the first step).
+  with_contact_law(settings_.law, settings_.contact, [&]<class Law>(std::type_identity<Law>) {
+    contact_state_.emplace<ContactLawState<Law>>().evaluated_with = settings_.contact;
+  });
 }
 
 std::size_t Simulation::add_material(const Material& material) {
@@ -68,7 +73,7 @@ std::size_t Simulation::add_particle(const Vec3& position, double radius, std::s
   p.id.push_back(next_id_++);
   p.normal_compliance.push_back(0.0);
   p.shear_compliance.push_back(0.0);
-  update_compliance(p.size() - 1);
+  update_compliances(p.size() - 1);
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -89,9 +94,8 @@ void Simulation::remove_particles(const std::vector<bool>& flags) {
   });
   // Contact histories are dropped (documented in the header).
   neighbors_ = NeighborList{};
-  pair_history_.clear();
-  wall_slots_.clear();
-  pair_max_overlap_.clear();
+  std::visit([](auto& state) { state.pair_history.clear(); }, contact_state_);
+  drop_wall_slots();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
@@ -101,31 +105,28 @@ std::size_t Simulation::add_wall(const WallSpec& spec) {
   walls_.push_back(make_wall(spec));
   rebuild_requested_ = true;  // wall candidate lists must be rebuilt
   // The (particle, wall) layout changes: wall histories restart.
-  wall_slots_.clear();
+  drop_wall_slots();
   invalidate_forces();
   step_cache_valid_ = false;
   wall_laws_valid_ = false;
   return walls_.size() - 1;
 }
 
-void Simulation::update_compliances() {
-  for (std::size_t i = 0; i < particles_.size(); ++i) update_compliance(i);
+void Simulation::drop_wall_slots() {
+  wall_slots_.clear();
+  std::visit([](auto& state) { state.wall_history.clear(); }, contact_state_);
 }
 
-void Simulation::update_compliance(std::size_t i) {
+void Simulation::update_compliances(std::size_t first) {
   ParticleState& p = particles_;
-  const Material& m = materials_[p.material[i]];
-  if (settings_.law == ContactLawKind::lsdyna_linear) {
-    // k_i = NORMK K_i R_i (SPEC 1); compliance is its inverse.
-    p.normal_compliance[i] = 1.0 / (settings_.contact.normk * m.bulk_modulus * p.radius[i]);
-    p.shear_compliance[i] = 0.0;
-  } else {
-    const double e = youngs_modulus(m);
-    const double nu = m.poisson_ratio;
-    const double g = e / (2.0 * (1.0 + nu));
-    p.normal_compliance[i] = (1.0 - nu * nu) / e;
-    p.shear_compliance[i] = (2.0 - nu) / g;
-  }
+  const ContactParameters& c = settings_.contact;
+  with_contact_law(settings_.law, c, [&]<class Law>(std::type_identity<Law>) {
+    for (std::size_t i = first; i < p.size(); ++i) {
+      const ParticleCompliance compliance = Law::particle_compliance(materials_[p.material[i]], p.radius[i], c);
+      p.normal_compliance[i] = compliance.normal;
+      p.shear_compliance[i] = compliance.shear;
+    }
+  });
 }
 
 void Simulation::set_gravity(const Vec3& gravity) {

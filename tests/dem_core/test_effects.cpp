@@ -341,8 +341,8 @@ TEST_CASE("Effects at their off values give the plain LS-DYNA law's loads", "[de
   p.fricr = 0.1;
   p.sheark = 0.3;
   CHECK_FALSE(p.effects_enabled());
-  const LsDynaLinearLaw plain = make_linear_pair_law(p);
-  const LsDynaEffectsLaw effects = make_effects_pair_law(p);
+  const LsDynaLinearLaw plain = LsDynaLinearLaw::for_pairs(p);
+  const LsDynaEffectsLaw effects = LsDynaEffectsLaw::for_pairs(p);
   ContactGeometry g;
   g.normal = normalized(Vec3{1, 2, 2});
   g.overlap = 3e-6;
@@ -352,11 +352,11 @@ TEST_CASE("Effects at their off values give the plain LS-DYNA law's loads", "[de
   g.effective_radius = 0.5e-3;
   g.normal_compliance = 2e-4;
   g.inverse_inertia_sum = 1e9;
-  ContactHistory h1, h2;
-  double max_overlap = 0.0;
+  LsDynaLinearLaw::History h1;
+  LsDynaEffectsLaw::History h2;
   for (int step = 0; step < 5; ++step) {
     const ContactForce a = plain.force(g, h1, 1e-6);
-    const ContactForce b = effects.force(g, h2, 1e-6, &max_overlap);
+    const ContactForce b = effects.force(g, h2, 1e-6);
     CHECK(norm(a.force - b.force) <= 1e-13 * norm(a.force));
     CHECK(norm(a.rolling_torque - b.rolling_torque) <= 1e-13 * norm(a.rolling_torque));
     CHECK(b.elastic_energy == Approx(a.elastic_energy).epsilon(1e-13));

@@ -55,16 +55,38 @@ inline double normal_stiffness_scale(const ContactParameters& p) {
   return scale;
 }
 
+/// History of a contact under the effects law: the tangential spring and, for plasticity, the
+/// largest overlap so far. Reset with the rest of the history when the contact ends, carried
+/// with it across neighbour-list rebuilds (32 bytes per contact, only while an effect is on).
+struct EffectsHistory {
+  Vec3 tangential_displacement{};  ///< incremental tangential spring elongation xi_t [m]
+  double max_overlap = 0.0;        ///< largest overlap delta_max [m]; 0 for a new contact
+};
+
 /// Normal part with the effects; same interface as LinearNormal (contact_law_linear.hpp).
-/// `max_overlap` points to the contact's largest overlap so far [m] (0 for a new contact); it
-/// is read and updated only with plasticity on (unloading_ratio != 1); null = no memory (every
-/// step is virgin loading), which the simulation passes unless plasticity is on.
 struct EffectsNormal {
-  static constexpr bool tracks_max_overlap = true;
+  using History = EffectsHistory;
   double damping_ratio = 0.0;        ///< NDAMP (pairs) or wall DAMP [-]
   double unloading_ratio = 1.0;      ///< k2/k1 >= 1
   double cohesion_per_radius = 0.0;  ///< 1.5 pi gamma [N/m]
   double exponent = 1.0;             ///< n in [1, 2]
+
+  /// The effects of `p` with the given damping ratio (NDAMP for pairs, DAMP for walls).
+  static EffectsNormal from(const ContactParameters& p, double damping) {
+    EffectsNormal normal;
+    normal.damping_ratio = damping;
+    normal.unloading_ratio = p.unloading_stiffness_ratio;
+    normal.cohesion_per_radius = cohesion_force_per_radius(p.surface_energy);
+    normal.exponent = p.stiffness_exponent;
+    return normal;
+  }
+  /// Stiffening of the normal mode for the time step (normal_stiffness_scale).
+  static double stiffness_scale(const ContactParameters& p) { return normal_stiffness_scale(p); }
+  /// The largest overlaps are remembered only while plasticity is on: switching it on (between
+  /// two force evaluations) starts every contact's memory from zero.
+  static bool restarts_history(const ContactParameters& before, const ContactParameters& after) {
+    return before.unloading_stiffness_ratio == 1.0 && after.unloading_stiffness_ratio != 1.0;
+  }
 
   struct Result {
     double force;           ///< net magnitude along -normal on i (repulsive > 0), cohesion included [N]
@@ -74,6 +96,12 @@ struct EffectsNormal {
     double critical_scale;  ///< sqrt(m* k_n) [kg/s]
   };
 
+  /// Normal load of a contact whose history is `history` (its largest overlap is updated).
+  Result evaluate(const ContactGeometry& g, History& history) const { return evaluate(g, &history.max_overlap); }
+
+  /// `max_overlap` points to the contact's largest overlap so far [m] (0 for a new contact); it
+  /// is read and updated only with plasticity on (unloading_ratio != 1); null = no memory (every
+  /// step is virgin loading).
   Result evaluate(const ContactGeometry& g, double* max_overlap) const {
     const double k = 1.0 / g.normal_compliance;
     const double root = std::sqrt(g.effective_mass * k);

@@ -19,12 +19,20 @@ struct ContactGeometry {
   double inverse_inertia_sum = 0.0;  ///< 1/I_i + 1/I_j (wall: 1/I_i), for the rolling limiter
 };
 
-/// Per-contact memory carried across steps and across neighbour-list rebuilds; reset (set to
-/// default) when the contact ends.
+/// Per-contact memory of the plain laws (LS-DYNA linear, Hertz–Mindlin), carried across steps
+/// and across neighbour-list rebuilds; reset (set to default) when the contact ends. A law with
+/// more memory declares its own history type that starts with this field (contact_laws.hpp);
+/// this one stays 24 bytes per contact (issue 16: memory per particle).
 struct ContactHistory {
   Vec3 tangential_displacement{};  ///< incremental tangential spring elongation xi_t [m]
-  // The plasticity effect's largest overlap lives in a separate per-contact array of the
-  // simulation (allocated only while an effect is on), so the plain law's history stays small.
+};
+static_assert(sizeof(ContactHistory) == 24, "the plain laws' history is 24 bytes per contact");
+
+/// A particle's own "half" of a contact's springs, from the physical inputs (each law's
+/// `particle_compliance`); a contact sums both bodies' halves (springs in series).
+struct ParticleCompliance {
+  double normal = 0.0;  ///< linear law: 1/(NORMK K R) [m/N]; Hertz: (1-nu^2)/E [1/Pa]
+  double shear = 0.0;   ///< Hertz: (2-nu)/G [1/Pa]; 0 for the linear law
 };
 
 /// Loads a law returns for body i (body j receives the opposite force; the loop turns the

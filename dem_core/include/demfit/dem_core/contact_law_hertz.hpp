@@ -4,12 +4,14 @@
 //   a = sqrt(R* delta), S_n = 2 E* a, F_n = 4/3 E* a delta + c_n v_n,
 //   S_t = 8 G* a,       F_t = -S_t xi - c_t v_t (Coulomb-limited),
 //   c = -2 sqrt(5/6) beta sqrt(S m*), beta = ln e / sqrt(ln^2 e + pi^2).
-// E* = 1/sum((1-nu^2)/E), G* = 1/sum((2-nu)/G) come in through ContactGeometry's compliances.
+// E* = 1/sum((1-nu^2)/E), G* = 1/sum((2-nu)/G) come in through ContactGeometry's compliances,
+// summed from each particle's `particle_compliance` (E, nu of its material).
 #include <cmath>
 #include <numbers>
 
 #include "demfit/dem_core/contact_law_parts.hpp"
 #include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/time_step.hpp"
 
 namespace demfit::dem_core {
 
@@ -39,7 +41,7 @@ struct HertzNormal {
 };
 
 struct HertzMindlinLaw {
-  static constexpr bool tracks_max_overlap = false;
+  using History = ContactHistory;  ///< no memory beyond the tangential spring
   HertzNormal normal{};
   CoulombTangentialSpring tangential{};
   ConstantTorqueRolling rolling{};
@@ -49,7 +51,42 @@ struct HertzMindlinLaw {
   double body_normal_compliance = 0.0;  ///< [1/Pa]
   double body_shear_compliance = 0.0;   ///< [1/Pa]
 
-  ContactForce force(const ContactGeometry& contact, ContactHistory& history, double dt) const {
+  static HertzMindlinLaw for_pairs(const ContactParameters& p) {
+    HertzMindlinLaw law;
+    law.normal.beta = hertz_damping_beta(p.restitution);
+    law.tangential = {p.frics, p.dynamic_friction(), p.dc};
+    law.rolling.coefficient = p.rotation_enabled() ? p.fricr : 0.0;
+    return law;
+  }
+  /// Wall: rigid body unless the wall has a Young's modulus (then its compliances are added, a
+  /// second elastic body); same restitution as the pairs, wall FRICS sliding, wall FRICD rolling.
+  /// SFP scales the particle's normal compliance (in the loop) as it scales the linear wall spring.
+  static HertzMindlinLaw for_wall(const ContactParameters& p, const WallContactParameters& w) {
+    HertzMindlinLaw law;
+    law.normal.beta = hertz_damping_beta(p.restitution);
+    law.tangential = {w.frics, w.frics, 0.0};
+    law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
+    law.body_normal_compliance = w.hertz_normal_compliance();
+    law.body_shear_compliance = w.hertz_shear_compliance();
+    return law;
+  }
+  /// The particle's halves of 1/E* and 1/G*: (1 - nu^2)/E and (2 - nu)/G, E = 3K(1 - 2 nu),
+  /// G = E/(2(1 + nu)) [1/Pa] (the radius enters through a = sqrt(R* delta)).
+  static ParticleCompliance particle_compliance(const Material& m, double /*radius*/, const ContactParameters& /*p*/) {
+    const double e = youngs_modulus(m);
+    const double nu = m.poisson_ratio;
+    const double g = e / (2.0 * (1.0 + nu));
+    return {(1.0 - nu * nu) / e, (2.0 - nu) / g};
+  }
+  /// Rayleigh time T_R = pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest particle;
+  /// automatic step = 0.2 T_R (common LIGGGHTS practice), stability limit = T_R
+  /// (src/contact_law_hertz.cpp).
+  static TimeStepEstimate time_step(const TimeStepInputs& inputs);
+  static bool restarts_history(const ContactParameters& /*before*/, const ContactParameters& /*after*/) {
+    return false;
+  }
+
+  ContactForce force(const ContactGeometry& contact, History& history, double dt) const {
     ContactGeometry g = contact;
     g.normal_compliance += body_normal_compliance;
     g.shear_compliance += body_shear_compliance;
@@ -58,32 +95,12 @@ struct HertzMindlinLaw {
     out.elastic_energy = n.energy;
     const double s_t = 8.0 * n.contact_radius / g.shear_compliance;
     const double c_t = -2.0 * std::sqrt(5.0 / 6.0) * normal.beta * std::sqrt(s_t * g.effective_mass);
-    out.tangential_force = tangential.evaluate(g, s_t, c_t, n.force, history, dt, out.elastic_energy);
+    out.tangential_force =
+        tangential.evaluate(g, s_t, c_t, n.force, history.tangential_displacement, dt, out.elastic_energy);
     out.force = out.tangential_force - n.force * g.normal;
     out.rolling_torque = rolling.evaluate(g, n.force, dt);
     return out;
   }
 };
-
-inline HertzMindlinLaw make_hertz_pair_law(const ContactParameters& p) {
-  HertzMindlinLaw law;
-  law.normal.beta = hertz_damping_beta(p.restitution);
-  law.tangential = {p.frics, p.dynamic_friction(), p.dc};
-  law.rolling.coefficient = p.rotation_enabled() ? p.fricr : 0.0;
-  return law;
-}
-
-/// Wall: rigid body unless the wall has a Young's modulus (then its compliances are added, a
-/// second elastic body); same restitution as the pairs, wall FRICS sliding, wall FRICD rolling.
-/// SFP scales the particle's normal compliance as it scales the linear wall spring.
-inline HertzMindlinLaw make_hertz_wall_law(const ContactParameters& p, const WallContactParameters& w) {
-  HertzMindlinLaw law;
-  law.normal.beta = hertz_damping_beta(p.restitution);
-  law.tangential = {w.frics, w.frics, 0.0};
-  law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
-  law.body_normal_compliance = w.hertz_normal_compliance();
-  law.body_shear_compliance = w.hertz_shear_compliance();
-  return law;
-}
 
 }  // namespace demfit::dem_core

@@ -1,5 +1,5 @@
 #pragma once
-// Tangential and rolling parts shared by both contact laws (SPEC 1). Each part is a small value
+// Tangential and rolling parts shared by the contact laws (SPEC 1). Each part is a small value
 // type; a law composes a normal part with these. Header-only so the templated loops inline them.
 #include <cmath>
 
@@ -16,17 +16,18 @@ struct CoulombTangentialSpring {
   double dynamic_friction = 0.0;  ///< FRICD [-]
   double decay = 0.0;             ///< DC [s/m]
 
-  /// stiffness k_t [N/m], damping c_t [N s/m], normal_force |F_n| [N]. Returns the force on i.
-  Vec3 evaluate(const ContactGeometry& g, double stiffness, double damping, double normal_force,
-                ContactHistory& history, double dt, double& elastic_energy) const {
+  /// stiffness k_t [N/m], damping c_t [N s/m], normal_force |F_n| [N]; `displacement` is the
+  /// contact history's xi_t [m], updated. Returns the force on i.
+  Vec3 evaluate(const ContactGeometry& g, double stiffness, double damping, double normal_force, Vec3& displacement,
+                double dt, double& elastic_energy) const {
     if (static_friction <= 0.0 && dynamic_friction <= 0.0) {
-      history.tangential_displacement = {};
+      displacement = {};
       return {};
     }
     const Vec3& n = g.normal;
     const Vec3 v_t = g.contact_velocity - dot(g.contact_velocity, n) * n;
     // Rotate the stored elongation into the current tangent plane, keeping its length.
-    Vec3 xi = history.tangential_displacement;
+    Vec3 xi = displacement;
     const double old_length2 = norm2(xi);
     if (old_length2 > 0.0) {
       xi -= dot(xi, n) * n;
@@ -46,7 +47,7 @@ struct CoulombTangentialSpring {
       // Sliding: the spring holds exactly what the limited force leaves after damping.
       xi = stiffness > 0.0 ? (-1.0 / stiffness) * (f_t + damping * v_t) : Vec3{};
     }
-    history.tangential_displacement = xi;
+    displacement = xi;
     elastic_energy += 0.5 * stiffness * norm2(xi);
     return f_t;
   }

@@ -4,6 +4,7 @@
 #include "demfit/dem_core/contact_geometry.hpp"
 #include "demfit/dem_core/contact_law_hertz.hpp"
 #include "demfit/dem_core/contact_law_linear.hpp"
+#include "demfit/dem_core/contact_laws.hpp"
 #include "demfit/dem_core/neighbor_list.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/parameters.hpp"

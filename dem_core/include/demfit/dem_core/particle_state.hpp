@@ -26,9 +26,9 @@ struct ParticleState {
   /// Identity: the n-th particle ever added has id n. Equal to the index unless particles were
   /// removed or SimulationSettings::reorder_particles moved them.
   std::vector<std::uint32_t> id{};
-  /// Normal compliance of the particle's own "half" of a contact; a pair's stiffness is the
-  /// inverse of the sum of both compliances (springs in series). Linear law: 1/(NORMK K R) [m/N];
-  /// Hertz: (1-nu^2)/E [1/Pa].
+  /// Normal compliance of the particle's own "half" of a contact, set by the law's
+  /// `particle_compliance` (contact_laws.hpp); a pair's stiffness is the inverse of the sum of
+  /// both compliances (springs in series). Linear law: 1/(NORMK K R) [m/N]; Hertz: (1-nu^2)/E [1/Pa].
   std::vector<double> normal_compliance{};
   /// Hertz–Mindlin only: (2-nu)/G [1/Pa] (series sum gives 1/G*). Unused by the linear law.
   std::vector<double> shear_compliance{};

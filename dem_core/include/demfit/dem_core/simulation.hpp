@@ -17,8 +17,7 @@
 #include <vector>
 
 #include "demfit/dem_core/contact_geometry.hpp"
-#include "demfit/dem_core/contact_law_hertz.hpp"
-#include "demfit/dem_core/contact_law_linear.hpp"
+#include "demfit/dem_core/contact_laws.hpp"
 #include "demfit/dem_core/neighbor_list.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/particle_state.hpp"
@@ -136,22 +135,29 @@ class Simulation {
 
  private:
   void invalidate_forces() { forces_valid_ = false; }
-  void update_compliances();
-  void update_compliance(std::size_t particle);
+  /// Particles' compliances from the active law (contact_laws.hpp), from particle `first` on.
+  void update_compliances(std::size_t first = 0);
+  /// Drops the wall slots and their contact histories (walls added, particles removed).
+  void drop_wall_slots();
   /// Rebuild the particle–wall slots, carrying contact state over from the old slots (particle
   /// new index s was old index order[s] when `order` is not empty).
   void find_wall_candidates(const std::vector<std::uint32_t>& order);
   /// Loads at the current state; `closing_kick` [s] > 0 applies the second Verlet half kick in the
   /// same pass; `moved` = largest displacement since the list build if known (< 0: compute it).
   void compute_forces(double dt, double closing_kick, double moved);
+  /// compute_forces with the law type `Law` (chosen by with_contact_law).
+  template <class Law>
+  void evaluate_loads(double dt, double closing_kick);
+  /// The state of law `Law`, converted from the current law's if the law changed (the
+  /// tangential springs are kept) and restarted if the law asks (Law::restarts_history).
+  template <class Law>
+  ContactLawState<Law>& law_state();
   void ensure_neighbors(double moved);
   /// With settings_.reorder_particles: permute every per-particle array into Morton order and
   /// return order[new] = old (empty when nothing moved). Pair arrays are rebuilt by the caller.
   std::vector<std::uint32_t> apply_spatial_order();
   /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`).
-  void carry_pair_histories(const NeighborList& old, const std::vector<std::uint32_t>& order,
-                            std::vector<ContactHistory>& old_history, std::vector<std::uint8_t>& old_touching,
-                            std::vector<double>& old_max_overlap);
+  void rebuild_pair_arrays(const NeighborList& old, const std::vector<std::uint32_t>& order);
   double kick_and_drift(double dt);
   void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
   [[nodiscard]] double resolved_step() const;
@@ -164,16 +170,13 @@ class Simulation {
   std::vector<Vec3> wall_displacement_at_build_{};   // wall translation when the list was built
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
   NeighborList neighbors_;
-  // Pair arrays aligned with neighbors_ pair indices.
-  std::vector<ContactHistory> pair_history_{};
+  // Pair arrays aligned with neighbors_ pair indices (their histories: contact_state_).
   std::vector<Vec3> pair_force_, pair_torque_second_;  // the first member sums its share directly
   std::vector<double> pair_energy_{};
   std::vector<std::uint8_t> pair_touching_{};
-  WallSlots wall_slots_{};  // particle–wall candidates and their contact state
-  // Largest overlap per pair / per (particle, wall) contact, for the plasticity effect only:
-  // empty unless plasticity is on (other effects and the plain law pay no memory for it), zero
-  // for new contacts.
-  std::vector<double> pair_max_overlap_{};  // (the walls' is WallSlots::max_overlap)
+  WallSlots wall_slots_{};  // particle–wall candidates and their last loads
+  // The active law's contact histories (pairs and wall slots, of its history type) and wall laws.
+  ContactLawStates contact_state_{};
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
   std::uint32_t next_id_ = 0;  // id of the next particle added
@@ -184,10 +187,8 @@ class Simulation {
   bool forces_valid_ = false;
   mutable double cached_step_ = 0.0;
   mutable bool step_cache_valid_ = false;
-  // Particle-wall laws, rebuilt only when contact parameters or walls change (not every step).
-  std::vector<LsDynaLinearLaw> linear_wall_laws_;
-  std::vector<LsDynaEffectsLaw> effects_wall_laws_;  // linear law with the effects library on
-  std::vector<HertzMindlinLaw> hertz_wall_laws_;
+  // The particle–wall laws in contact_state_ are rebuilt only when contact parameters or walls
+  // change (not every step).
   bool wall_laws_valid_ = false;
 };
 

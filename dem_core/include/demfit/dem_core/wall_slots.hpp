@@ -1,14 +1,14 @@
 #pragma once
 // Particle–wall contact slots (internal state of Simulation): for each particle, only the walls it
 // may touch before the next neighbour-list rebuild (within R + skin at the build, or every wall
-// whose motion changes distances), in CSR form with walls ascending, and the per-contact state of
-// each slot. Issue 16: a dense (particle x wall) layout cost ~106 bytes per particle per wall
+// whose motion changes distances), in CSR form with walls ascending, and the last loads of each
+// slot (the slots' contact histories, of the law's history type, are kept with the law's state:
+// contact_laws.hpp). Issue 16: a dense (particle x wall) layout cost ~106 bytes per particle per wall
 // although most particles touch no wall.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "demfit/dem_core/contact_geometry.hpp"
 #include "demfit/dem_core/vec3.hpp"
 
 namespace demfit::dem_core {
@@ -16,15 +16,13 @@ namespace demfit::dem_core {
 struct WallSlots {
   std::vector<std::uint32_t> rows{};  ///< slots of particle i: [rows[i], rows[i+1]); empty = not built
   std::vector<std::uint32_t> wall{};  ///< wall index of each slot
-  std::vector<ContactHistory> history{};
   std::vector<Vec3> force_on_particle{}, contact_point{}, rolling_torque{};  ///< last evaluation
   std::vector<double> energy{};
   std::vector<std::uint8_t> touching{};
-  std::vector<double> max_overlap{};  ///< plasticity only (else empty)
 
   [[nodiscard]] std::size_t size() const { return wall.size(); }
   [[nodiscard]] bool built_for(std::size_t particles) const { return rows.size() == particles + 1; }
-  /// Drops every slot and its history (walls added, particles removed).
+  /// Drops every slot (walls added, particles removed).
   void clear() { *this = WallSlots{}; }
 };
 

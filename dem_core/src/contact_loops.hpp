@@ -1,0 +1,192 @@
+#pragma once
+// The force loops, written once and templated on the contact law (no virtual call per contact):
+// pair loads row by row over the half list (parallel), the per-particle gather in the fixed CSR
+// order, the particle's candidate walls and the closing half kick. Internal to Simulation
+// (simulation_forces.cpp instantiates them once per law of contact_laws.hpp).
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "demfit/dem_core/contact_geometry.hpp"
+#include "demfit/dem_core/neighbor_list.hpp"
+#include "demfit/dem_core/particle_state.hpp"
+#include "demfit/dem_core/wall.hpp"
+
+namespace demfit::dem_core {
+
+/// The pair side: the law, the half list, the pairs' histories and what the loop stores per pair.
+template <class Law>
+struct PairSide {
+  const Law& law;
+  const NeighborList& list;
+  typename Law::History* history;
+  Vec3* force;          // on the first particle (the second particle gathers -force)
+  Vec3* torque_second;  // on the second particle (the first one sums its torque directly)
+  double* energy;
+  std::uint8_t* touching;
+};
+
+/// The wall side: a law per wall, the walls, the candidate slots, their histories and loads.
+template <class Law>
+struct WallSide {
+  const std::vector<Law>& laws;
+  const std::vector<Wall>& walls;
+  const std::uint32_t* rows;  // slots of particle i: [rows[i], rows[i+1])
+  const std::uint32_t* wall;  // wall of each slot
+  typename Law::History* history;
+  Vec3* force;  // on the particle, per slot
+  Vec3* contact_point;
+  Vec3* rolling_torque;  // on the particle
+  double* energy;
+  std::uint8_t* touching;
+};
+
+/// The step: gravity [m/s^2], dt [s] (0 = no history increment), closing half kick [s] (0 =
+/// none), whether particles rotate, OpenMP threads.
+struct StepInputs {
+  Vec3 gravity;
+  double dt;
+  double closing_kick;
+  bool rotation;
+  int threads;
+};
+
+/// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
+/// torque contributions (zero for a pair out of contact, added like the stored zeros were).
+template <class Law>
+void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
+                  const StepInputs& step, Vec3& force_i, Vec3& torque_i) {
+  const Vec3 d = p.position[j] - p.position[i];
+  const double r_sum = p.radius[i] + p.radius[j];
+  const double dist2 = norm2(d);
+  if (dist2 >= r_sum * r_sum) {
+    force_i = {};
+    torque_i = {};
+    if (!pairs.touching[k]) return;  // already cleared
+    pairs.history[k] = {};
+    pairs.force[k] = {};
+    pairs.torque_second[k] = {};
+    pairs.energy[k] = 0.0;
+    pairs.touching[k] = 0;
+    return;
+  }
+  const double dist = std::sqrt(dist2);
+  ContactGeometry g;
+  g.normal = (1.0 / dist) * d;
+  g.overlap = r_sum - dist;
+  const double branch_i = p.radius[i] - 0.5 * g.overlap;
+  const double branch_j = p.radius[j] - 0.5 * g.overlap;
+  g.contact_velocity = p.velocity[i] - p.velocity[j];
+  if (step.rotation) {
+    g.contact_velocity +=
+        cross(p.angular_velocity[i], branch_i * g.normal) + cross(p.angular_velocity[j], branch_j * g.normal);
+    g.relative_angular_velocity = p.angular_velocity[i] - p.angular_velocity[j];
+  }
+  g.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
+  g.effective_radius = p.radius[i] * p.radius[j] / r_sum;
+  g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
+  g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
+  g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
+  const ContactForce f = pairs.law.force(g, pairs.history[k], step.dt);
+  pairs.force[k] = f.force;
+  force_i = f.force;
+  torque_i = {};
+  if (step.rotation) {
+    torque_i = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
+    pairs.torque_second[k] = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
+  }
+  pairs.energy[k] = f.elastic_energy;
+  pairs.touching[k] = 1;
+}
+
+/// Pair loads row by row (rows of the half list are contiguous pair ranges): the first member's
+/// force and torque are summed as the row is computed (gravity first, then ascending j: the fixed
+/// order of the gather), so only the second member's share is stored per pair.
+template <class Law>
+void pair_rows(const PairSide<Law>& pairs, ParticleState& p, const StepInputs& step) {
+  const auto rows = pairs.list.row_offsets();
+  const auto second = pairs.list.second();
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static) num_threads(step.threads) if (step.threads > 1)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Vec3 f = p.mass[i] * step.gravity;
+    Vec3 t{};
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      Vec3 force_i, torque_i;
+      pair_contact(pairs, p, k, i, second[k], step, force_i, torque_i);
+      f += force_i;
+      t += torque_i;
+    }
+    p.force[i] = f;
+    p.torque[i] = t;
+  }
+}
+
+/// Loads of the candidate walls on particle i (the others cannot touch it before the next
+/// rebuild), accumulated into the particle's force/torque in wall order.
+template <class Law>
+void wall_contacts_of(std::size_t i, const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
+  for (std::uint32_t slot = walls.rows[i]; slot < walls.rows[i + 1]; ++slot) {
+    const Wall& wall = walls.walls[walls.wall[slot]];
+    const WallProximity prox = wall_proximity(wall.geometry, p.position[i], p.radius[i]);
+    if (!prox.touching) {
+      walls.history[slot] = {};
+      walls.touching[slot] = 0;
+      continue;
+    }
+    ContactGeometry g;
+    g.normal = prox.normal;
+    g.overlap = prox.overlap;
+    const double branch = p.radius[i] - prox.overlap;  // contact point on the wall surface
+    const Vec3 contact_point = p.position[i] + branch * prox.normal;
+    g.contact_velocity = p.velocity[i] - wall_velocity_at(wall, contact_point);
+    if (step.rotation) {
+      g.contact_velocity += cross(p.angular_velocity[i], branch * prox.normal);
+      g.relative_angular_velocity = p.angular_velocity[i] - wall_angular_velocity(wall);
+    }
+    g.effective_mass = p.mass[i];
+    g.effective_radius = p.radius[i];
+    g.normal_compliance = p.normal_compliance[i] / wall.contact.sfp;  // k_n,w = SFP k_i
+    g.shear_compliance = p.shear_compliance[i];
+    g.inverse_inertia_sum = p.inverse_inertia[i];
+    const ContactForce f = walls.laws[walls.wall[slot]].force(g, walls.history[slot], step.dt);
+    p.force[i] += f.force;
+    if (step.rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
+    walls.force[slot] = f.force;
+    walls.contact_point[slot] = contact_point;
+    walls.rolling_torque[slot] = step.rotation ? f.rolling_torque : Vec3{};
+    walls.energy[slot] = f.elastic_energy;
+    walls.touching[slot] = 1;
+  }
+}
+
+/// All loads and the closing half kick. Fixed order per particle: gravity and pairs where i is
+/// first (ascending j, summed by pair_rows), pairs where i is second (ascending first member),
+/// then walls in index order.
+template <class Law>
+void all_forces(const PairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
+  pair_rows(pairs, p, step);
+  const auto columns = pairs.list.column_offsets();
+  const auto column_pairs = pairs.list.column_pairs();
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static) num_threads(step.threads) if (step.threads > 1)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Vec3 f = p.force[i];
+    Vec3 t = p.torque[i];
+    for (std::uint32_t c = columns[i]; c < columns[i + 1]; ++c) {
+      const std::uint32_t k = column_pairs[c];
+      f -= pairs.force[k];
+      t += pairs.torque_second[k];
+    }
+    p.force[i] = f;
+    p.torque[i] = t;
+    wall_contacts_of(i, walls, p, step);
+    // Second velocity-Verlet half kick with the complete new loads (fused: one pass).
+    p.velocity[i] += (step.closing_kick * p.inverse_mass[i]) * p.force[i];
+    if (step.rotation) p.angular_velocity[i] += (step.closing_kick * p.inverse_inertia[i]) * p.torque[i];
+  }
+}
+
+}  // namespace demfit::dem_core
