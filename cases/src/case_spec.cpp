@@ -4,6 +4,7 @@
 
 #include <array>
 #include <fstream>
+#include <optional>
 #include <numbers>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@
 #include "demfit/cases/json_fields.hpp"
 #include "demfit/cases/parameter_table.hpp"
 #include "demfit/cases/section_fields.hpp"
+#include "demfit/dem_core/contact_laws.hpp"
 #include "drum_case.hpp"
 #include "pellet_case.hpp"
 
@@ -115,9 +117,7 @@ OutputSpec parse_output(const json& j, OutputSpec o) {
 
 double MaterialSpec::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
 
-std::string to_string(dem_core::ContactLawKind law) {
-  return law == dem_core::ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "lsdyna_linear";
-}
+std::string to_string(dem_core::ContactLawKind law) { return std::string(dem_core::contact_law_name(law)); }
 
 namespace {
 
@@ -131,6 +131,30 @@ bool hertz_supported(CaseKind kind) {
       return true;
   }
   return false;
+}
+
+// "lsdyna_linear" or "hertz_mindlin": every row of the law registry, for messages.
+std::string law_names() {
+  std::string names;
+  for (const dem_core::ContactLawRow& row : dem_core::kContactLaws)
+    names += (names.empty() ? "\"" : " or \"") + std::string(row.name) + "\"";
+  return names;
+}
+
+// Hertz–Mindlin contact and wall fields, and what the law excludes.
+void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec) {
+  if (!hertz_supported(spec.kind))
+    throw std::runtime_error(
+        "'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
+  parse_hertz_contact(contact, spec);
+  parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
+  if (spec.wall_friction_as_particles) {
+    spec.wall.frics = spec.contact.frics;
+    spec.wall.fricd = spec.contact.fricr;
+  }
+  if (spec.material.radius_spread != 0.0)
+    throw std::runtime_error(
+        "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
 }
 
 }  // namespace
@@ -152,26 +176,19 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   spec.material = parse_material(child_object(document, "", "particle"), spec.material);
   const json& contact = child_object(document, "", "contact");
   const std::string law = read_string(contact, "contact", "law", "lsdyna_linear");
-  if (law == "hertz_mindlin") {
-    if (!hertz_supported(spec.kind))
-      throw std::runtime_error(
-          "'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
-    spec.law = dem_core::ContactLawKind::hertz_mindlin;
-    parse_hertz_contact(contact, spec);
-    parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
-    if (spec.wall_friction_as_particles) {
-      spec.wall.frics = spec.contact.frics;
-      spec.wall.fricd = spec.contact.fricr;
+  const std::optional<dem_core::ContactLawKind> kind_of_law = dem_core::contact_law_kind(law);
+  if (!kind_of_law) throw std::runtime_error("'contact.law' must be " + law_names() + " (got \"" + law + "\")");
+  spec.law = *kind_of_law;
+  switch (spec.law) {  // the law's own contact fields (dem_core/contact_laws.hpp: the law registry)
+    case dem_core::ContactLawKind::hertz_mindlin:
+      parse_hertz_case(document, contact, spec);
+      break;
+    case dem_core::ContactLawKind::lsdyna_linear: {
+      json plain = contact;
+      plain.erase("law");
+      parse_lsdyna_contact(plain, child_object(document, "", "wall_contact"), spec);
+      break;
     }
-    if (spec.material.radius_spread != 0.0)
-      throw std::runtime_error(
-          "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
-  } else if (law == "lsdyna_linear") {
-    json plain = contact;
-    plain.erase("law");
-    parse_lsdyna_contact(plain, child_object(document, "", "wall_contact"), spec);
-  } else {
-    throw std::runtime_error("'contact.law' must be \"lsdyna_linear\" or \"hertz_mindlin\" (got \"" + law + "\")");
   }
   spec.time_step = parse_time_step(child_object(document, "", "time_step"), spec.time_step);
   spec.output = parse_output(child_object(document, "", "output"), spec.output);
@@ -196,21 +213,24 @@ json to_json(const CaseSpec& s) {
   const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
   if (distribution) j["particle"].erase("radius");
   // The identified parameters' fields come from the parameter table (write_parameter_fields).
-  if (s.law == dem_core::ContactLawKind::hertz_mindlin) {
-    j["particle"].erase("radius_spread");
-    j["contact"] = {{"law", to_string(s.law)}};
-    write_parameter_fields(j["contact"], "contact", s.law, s);
-    j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-    if (s.wall_friction_as_particles)
-      j["wall_contact"]["friction_as_particles"] = true;
-    else
+  switch (s.law) {
+    case dem_core::ContactLawKind::hertz_mindlin:
+      j["particle"].erase("radius_spread");
+      j["contact"] = {{"law", to_string(s.law)}};
+      write_parameter_fields(j["contact"], "contact", s.law, s);
+      j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
+      if (s.wall_friction_as_particles)
+        j["wall_contact"]["friction_as_particles"] = true;
+      else
+        write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
+      break;
+    case dem_core::ContactLawKind::lsdyna_linear:
+      // The text of a case file from before the law could be chosen (no "law" key).
+      j["contact"] = json::object();
+      write_parameter_fields(j["contact"], "contact", s.law, s);
+      j["wall_contact"] = json::object();
       write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
-  } else {
-    // lsdyna_linear: the text of a case file from before the law could be chosen.
-    j["contact"] = json::object();
-    write_parameter_fields(j["contact"], "contact", s.law, s);
-    j["wall_contact"] = json::object();
-    write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
+      break;
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times}, {"progress_interval", s.output.progress_interval}};
