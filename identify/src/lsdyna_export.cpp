@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -14,13 +15,38 @@ namespace {
 
 constexpr int kField = 10;
 
-ParameterSet with_defaults(const ParameterSet& given) {
-  ParameterSet p = {{"ndamp", 0.0},      {"tdamp", 0.0},        {"frics", 0.0},   {"fricr", 0.0},
-                    {"normk", 0.01},     {"sheark", 2.0 / 7.0}, {"dc", 0.0},      {"wall_frics", 0.0},
-                    {"wall_fricd", 0.0}, {"wall_damp", 0.0},    {"wall_sfp", 1.0}};
-  for (const auto& [name, value] : given) p[name] = value;
-  if (!given.count("fricd")) p["fricd"] = p["frics"];  // LS-DYNA: FRICD defaults to FRICS
-  return p;
+// The fields demfit writes, per card, as "KEYWORD FIELD" (the form of
+// ParameterDescriptor::lsdyna_field); nullptr = left blank (LS-DYNA's default). Which model
+// parameter fills a field is the model's fact (its descriptors), not this file's.
+constexpr const char* kControlCard1[] = {"*CONTROL_DISCRETE_ELEMENT NDAMP", "*CONTROL_DISCRETE_ELEMENT TDAMP",
+                                         "*CONTROL_DISCRETE_ELEMENT FRICS", "*CONTROL_DISCRETE_ELEMENT FRICR",
+                                         "*CONTROL_DISCRETE_ELEMENT NORMK", "*CONTROL_DISCRETE_ELEMENT SHEARK"};
+constexpr const char* kControlCard3[] = {nullptr, nullptr, nullptr, "*CONTROL_DISCRETE_ELEMENT FRICD",
+                                         "*CONTROL_DISCRETE_ELEMENT DC"};
+constexpr const char* kCouplingCard2[] = {"*DEFINE_DE_TO_SURFACE_COUPLING FRICS",
+                                          "*DEFINE_DE_TO_SURFACE_COUPLING FRICD",
+                                          "*DEFINE_DE_TO_SURFACE_COUPLING DAMP"};
+constexpr const char* kWallSfp = "*DEFINE_DE_TO_SURFACE_COUPLING SFP";
+constexpr const char* kFrics = "*CONTROL_DISCRETE_ELEMENT FRICS";
+constexpr const char* kFricd = "*CONTROL_DISCRETE_ELEMENT FRICD";
+
+// The descriptor whose LS-DYNA field is `field` (its text may add a remark after a blank).
+const ParameterDescriptor* descriptor_of(const std::vector<ParameterDescriptor>& model, const std::string& field) {
+  for (const ParameterDescriptor& d : model)
+    if (d.lsdyna_field == field || d.lsdyna_field.rfind(field + " ", 0) == 0) return &d;
+  return nullptr;
+}
+
+// The value a field carries: the given value of its parameter, else the parameter's default;
+// NaN when the model has no parameter for the field. FRICD without a value is FRICS (LS-DYNA).
+double field_value_of(const char* field, const ParameterSet& given, const std::vector<ParameterDescriptor>& model) {
+  if (!field) return NAN;
+  const ParameterDescriptor* d = descriptor_of(model, field);
+  if (!d) return NAN;
+  const auto it = given.find(d->name);
+  const double value = it != given.end() ? it->second : d->default_value;
+  if (std::isnan(value) && std::string(field) == kFricd) return field_value_of(kFrics, given, model);
+  return value;
 }
 
 std::string shorten_exponent(std::string text) {
@@ -69,6 +95,19 @@ std::string card(const std::vector<std::string>& fields) {
   std::string line;
   for (const auto& f : fields) line += f;
   return line + "\n";
+}
+
+// One card of `fields` (blank where the model has no parameter), trailing blanks kept as LS-DYNA
+// reads them: as defaults.
+template <std::size_t N>
+std::string card_of(const char* const (&fields)[N], const ParameterSet& given,
+                    const std::vector<ParameterDescriptor>& model) {
+  std::vector<std::string> texts;
+  for (const char* field : fields) {
+    const double value = field_value_of(field, given, model);
+    texts.push_back(std::isnan(value) ? blank() : lsdyna_field(value));
+  }
+  return card(texts);
 }
 
 std::vector<std::string> data_lines_after(const std::string& text, const std::string& keyword) {
@@ -122,26 +161,24 @@ std::string lsdyna_field(double value) {
 // keyword_classes/auto: control_discrete_element, define_de_to_surface_coupling) on 2026-11-24.
 std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<ParameterDescriptor>& model_parameters,
                             const std::string& title, const std::vector<std::string>& comments) {
-  const ParameterSet p = with_defaults(parameters);
   std::ostringstream out;
   out << "*KEYWORD\n" << comment_line("demfit export: " + title);
   for (const auto& c : comments) out << comment_line(c);
   out << "$ DEM contact parameters identified by demfit; other fields blank = LS-DYNA defaults.\n"
       << effect_warnings(parameters, model_parameters) << "*CONTROL_DISCRETE_ELEMENT\n"
       << "$    NDAMP     TDAMP     FRICS     FRICR     NORMK    SHEARK       CAP     MXNSC\n"
-      << card({lsdyna_field(p.at("ndamp")), lsdyna_field(p.at("tdamp")), lsdyna_field(p.at("frics")),
-               lsdyna_field(p.at("fricr")), lsdyna_field(p.at("normk")), lsdyna_field(p.at("sheark"))})
+      << card_of(kControlCard1, parameters, model_parameters)
       << "$    GAMMA       VOL       ANG       GAP    unused    IGNORE      NBUF  PARALLEL\n"
       << card({blank()}) << "$    LNORM    LSHEAR    unused     FRICD        DC      NCRB        BT        DT\n"
-      << card({blank(), blank(), blank(), lsdyna_field(p.at("fricd")), lsdyna_field(p.at("dc"))})
-      << "*DEFINE_DE_TO_SURFACE_COUPLING\n"
+      << card_of(kControlCard3, parameters, model_parameters) << "*DEFINE_DE_TO_SURFACE_COUPLING\n"
       << "$ SLAVE/MASTER/STYPE/MTYPE are placeholders: set them to your DES and surface sets.\n"
       << "$    SLAVE    MASTER     STYPE     MTYPE\n"
       << card({lsdyna_field(1), lsdyna_field(2), lsdyna_field(0), lsdyna_field(0)})
       << "$    FRICS     FRICD      DAMP     BSORT\n"
-      << card({lsdyna_field(p.at("wall_frics")), lsdyna_field(p.at("wall_fricd")), lsdyna_field(p.at("wall_damp"))})
-      << "$ wall stiffness scale factor SFP used by demfit: " << lsdyna_field(p.at("wall_sfp")) << "\n"
-      << "*END\n";
+      << card_of(kCouplingCard2, parameters, model_parameters);
+  if (const double sfp = field_value_of(kWallSfp, parameters, model_parameters); !std::isnan(sfp))
+    out << "$ wall stiffness scale factor SFP used by demfit: " << lsdyna_field(sfp) << "\n";
+  out << "*END\n";
   return out.str();
 }
 
@@ -151,7 +188,7 @@ void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet
   write_file_atomically(path, lsdyna_keywords(parameters, model_parameters, title, comments));
 }
 
-ParameterSet parse_lsdyna_keywords(const std::string& text) {
+ParameterSet parse_lsdyna_keywords(const std::string& text, const std::vector<ParameterDescriptor>& model_parameters) {
   const auto control = data_lines_after(text, "*CONTROL_DISCRETE_ELEMENT");
   const auto coupling = data_lines_after(text, "*DEFINE_DE_TO_SURFACE_COUPLING");
   if (control.size() < 3 || coupling.size() < 2)
@@ -159,13 +196,19 @@ ParameterSet parse_lsdyna_keywords(const std::string& text) {
         "LS-DYNA keywords: *CONTROL_DISCRETE_ELEMENT needs 3 cards and "
         "*DEFINE_DE_TO_SURFACE_COUPLING 2 cards");
   ParameterSet p;
-  const char* card1[] = {"ndamp", "tdamp", "frics", "fricr", "normk", "sheark"};
-  for (int i = 0; i < 6; ++i) p[card1[i]] = field_value(control[0], i, NAN);
-  p["fricd"] = field_value(control[2], 3, p["frics"]);
-  p["dc"] = field_value(control[2], 4, 0.0);
-  p["wall_frics"] = field_value(coupling[1], 0, 0.0);
-  p["wall_fricd"] = field_value(coupling[1], 1, 0.0);
-  p["wall_damp"] = field_value(coupling[1], 2, 0.0);
+  auto read_card = [&](const auto& fields, const std::string& line) {
+    for (std::size_t i = 0; i < std::size(fields); ++i) {
+      const ParameterDescriptor* d = fields[i] ? descriptor_of(model_parameters, fields[i]) : nullptr;
+      if (d) p[d->name] = field_value(line, static_cast<int>(i), d->default_value);
+    }
+  };
+  read_card(kControlCard1, control[0]);
+  read_card(kControlCard3, control[2]);
+  read_card(kCouplingCard2, coupling[1]);
+  // A blank FRICD is FRICS (LS-DYNA).
+  const ParameterDescriptor* fricd = descriptor_of(model_parameters, kFricd);
+  const ParameterDescriptor* frics = descriptor_of(model_parameters, kFrics);
+  if (fricd && frics && std::isnan(p[fricd->name])) p[fricd->name] = p[frics->name];
   return p;
 }
 

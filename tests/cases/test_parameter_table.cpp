@@ -14,6 +14,7 @@
 #include "demfit/cases/model_factory.hpp"
 #include "demfit/cases/parameter_table.hpp"
 #include "demfit/dem_core/packing.hpp"
+#include "demfit/identify/lsdyna_export.hpp"
 #include "demfit/identify/study.hpp"
 
 using namespace demfit::cases;
@@ -186,8 +187,10 @@ TEST_CASE(
   CHECK(drum.size() == 17);
 }
 
-TEST_CASE("A DEM study whose damping bounds reach 1 is refused before the store exists, naming the valid range [0, 1)",
-          "[cases][parameters]") {
+TEST_CASE(
+    "A DEM study whose damping bounds reach 1 is refused before the store exists, naming the valid range 0 to 1 with 1 "
+    "excluded",
+    "[cases][parameters]") {
   const json study = {
       {"demfit_study_version", 1},
       {"model", {{"case", "pellet_compression"}}},
@@ -208,4 +211,29 @@ TEST_CASE("A DEM study whose damping bounds reach 1 is refused before the store 
   CHECK_THROWS_WITH(demfit::identify::run_study(spec, *model, options),
                     Catch::Contains("'ndamp'") && Catch::Contains("[0.1, 1]") && Catch::Contains("[0, 1) [-]"));
   CHECK_FALSE(std::filesystem::exists(options.output_dir / "study.db"));
+}
+
+TEST_CASE("Every parameter-table row with an LS-DYNA field is exported to that field and reads back",
+          "[cases][parameters][export]") {
+  const auto descriptors = parameter_descriptors();
+  // Distinct, exactly representable values, one per row with an LS-DYNA field.
+  demfit::identify::ParameterSet given;
+  double value = 0.125;
+  for (const auto& d : descriptors) {
+    if (d.lsdyna_field.empty()) continue;
+    given[d.name] = value;
+    value += 0.0625;
+  }
+  REQUIRE(given.size() >= 12);
+  const std::string text = demfit::identify::lsdyna_keywords(given, descriptors, "all fields");
+  const auto back = demfit::identify::parse_lsdyna_keywords(text, descriptors);
+  for (const auto& [name, v] : given) {
+    if (name == "wall_sfp") {  // written as a comment (its card position differs between versions)
+      CHECK(text.find("SFP used by demfit: " + demfit::identify::lsdyna_field(v)) != std::string::npos);
+      continue;
+    }
+    INFO(name);
+    REQUIRE(back.count(name) == 1);
+    CHECK(back.at(name) == v);
+  }
 }

@@ -1,10 +1,10 @@
 #pragma once
 // LS-DYNA keyword export of identified DEM parameters, fixed 10-character fields (SPEC 4).
-// Parameter names (lowercase LS-DYNA names, shared with cases/):
-//   particle: ndamp tdamp frics fricr normk sheark fricd dc
-//   wall:     wall_frics wall_fricd wall_damp wall_sfp
-// Missing names take the LS-DYNA defaults (ndamp 0, tdamp 0, frics 0, fricr 0, normk 0.01,
-// sheark 2/7, fricd = frics, dc 0, wall_frics 0, wall_fricd 0, wall_damp 0, wall_sfp 1).
+// Which parameter fills which field comes from the model's descriptors
+// (ParameterDescriptor::lsdyna_field, "*CONTROL_DISCRETE_ELEMENT NORMK"; for the DEM cases, the
+// parameter table's LS-DYNA column): this file knows the cards, never the parameter names. A field
+// whose parameter is not in `parameters` gets the descriptor's default (the DEM cases: LS-DYNA's;
+// FRICD without one = FRICS); a field no descriptor names is left blank.
 // Card layout written (LS-DYNA Keyword User's Manual, Vol. I; blank fields = LS-DYNA default):
 //   *CONTROL_DISCRETE_ELEMENT
 //     card 1: NDAMP TDAMP FRICS FRICR NORMK SHEARK CAP MXNSC   (CAP, MXNSC blank)
@@ -35,7 +35,7 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<Pa
 void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters,
                            const std::vector<ParameterDescriptor>& model_parameters, const std::string& title,
                            const std::vector<std::string>& comments = {});
-// Reads the cards written above back into parameter names (tests, round trips).
-ParameterSet parse_lsdyna_keywords(const std::string& text);
+// Reads the cards written above back into the names of `model_parameters` (tests, round trips).
+ParameterSet parse_lsdyna_keywords(const std::string& text, const std::vector<ParameterDescriptor>& model_parameters);
 
 }  // namespace demfit::identify
