@@ -49,13 +49,10 @@ bool is_change(const ParameterRow& row, const CaseSpec& base, double value) { re
 // particles' values).
 void check_applicable(const ParameterRow& row, const CaseSpec& base) {
   const std::string name = row.name;
-  if (!row.applies_to(base.law)) {
-    const dem_core::ContactLawKind other =
-        is_hertz(base) ? dem_core::ContactLawKind::lsdyna_linear : dem_core::ContactLawKind::hertz_mindlin;
-    throw std::runtime_error("parameter '" + name + "' belongs to contact law " + to_string(other) +
+  if (!row.applies_to(base.law))
+    throw std::runtime_error("parameter '" + name + "' belongs to contact law " + laws_text(row.laws) +
                              "; this case uses " + to_string(base.law) +
                              " (its parameters: " + law_parameters_text(base.law) + ")");
-  }
   if (row.drum_only && base.kind != CaseKind::rotary_drum)
     throw std::runtime_error("parameter '" + name +
                              "' is a drum fill amount: it does not apply to a pellet_compression case");

@@ -140,8 +140,7 @@ std::vector<ParameterRow> build_rows() {
 }  // namespace
 
 bool ParameterRow::applies_to(dem_core::ContactLawKind law) const {
-  if (laws == Law::both) return true;
-  return (laws == Law::hertz_mindlin) == (law == dem_core::ContactLawKind::hertz_mindlin);
+  return (static_cast<unsigned>(laws) & law_bit(law)) != 0;
 }
 
 const std::vector<ParameterRow>& parameter_table() {

@@ -8,6 +8,7 @@
 
 #include "demfit/cases/json_fields.hpp"
 #include "demfit/cases/parameter_table.hpp"
+#include "demfit/dem_core/contact_laws.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -33,18 +34,6 @@ const char* home_text(ParameterHome home) {
   return "";
 }
 
-const char* laws_text(ParameterLaws laws) {
-  switch (laws) {
-    case ParameterLaws::lsdyna_linear:
-      return "lsdyna_linear";
-    case ParameterLaws::hertz_mindlin:
-      return "hertz_mindlin";
-    case ParameterLaws::both:
-      return "lsdyna_linear, hertz_mindlin";
-  }
-  return "";
-}
-
 std::string default_text(const ParameterRow& row) {
   if (!std::isnan(row.default_value)) return number(row.default_value);
   return std::string(row.name) == "fricd" ? "= frics" : "given by the case";
@@ -63,6 +52,15 @@ std::string case_fields(const ParameterRow& row) {
 }
 
 }  // namespace
+
+// "lsdyna_linear, hertz_mindlin": the registry's names of the laws whose bit is set.
+std::string laws_text(ParameterLaws laws) {
+  std::string text;
+  for (const dem_core::ContactLawRow& law : dem_core::kContactLaws)
+    if ((static_cast<unsigned>(laws) & law_bit(law.kind)) != 0)
+      text += (text.empty() ? "" : ", ") + std::string(law.name);
+  return text;
+}
 
 void check_parameter_value(const ParameterRow& row, double value) {
   if (row.valid.contains(value)) return;

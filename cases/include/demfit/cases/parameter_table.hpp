@@ -22,8 +22,14 @@ namespace demfit::cases {
 // the effects library (off at its off value), or the case's fill.
 enum class ParameterHome { pair_contact, wall_contact, effect, fill };
 
-// The contact laws a parameter exists in.
-enum class ParameterLaws { lsdyna_linear, hertz_mindlin, both };
+// The contact laws a parameter belongs to: one bit per dem_core::ContactLawKind (law_bit), so a
+// third law is one more bit, never a silent "the other one".
+constexpr unsigned law_bit(dem_core::ContactLawKind law) { return 1u << static_cast<unsigned>(law); }
+enum class ParameterLaws : unsigned {
+  lsdyna_linear = law_bit(dem_core::ContactLawKind::lsdyna_linear),
+  hertz_mindlin = law_bit(dem_core::ContactLawKind::hertz_mindlin),
+  both = lsdyna_linear | hertz_mindlin,
+};
 
 struct ParameterRow {
   const char* name;                // identified-parameter name (study variables, --set, fixed overrides)
@@ -57,6 +63,9 @@ const ParameterRow* find_parameter_by_path(std::string_view path);
 
 // "normk sheark ... fill_volume_ml": the names, space-separated (error messages).
 std::string parameter_names_text();
+
+// The names of the laws in `laws`, comma-separated (law registry order).
+std::string laws_text(ParameterLaws laws);
 
 // identify's view of a row / of all rows.
 identify::ParameterDescriptor descriptor_of(const ParameterRow& row);
