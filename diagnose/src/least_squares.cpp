@@ -248,6 +248,7 @@ FitResult fit_least_squares(const identify::Model& model, const identify::Parame
   bool fresh = !reuse;  // J was computed by finite differences at the current u
   double lambda = 1e-3;
   int iteration = 0;
+  int accepted_steps = 0;  // numbers the on_step reports
   auto out_of_budget = [&] { return options.max_evaluations > 0 && problem.evaluations >= options.max_evaluations; };
   for (; iteration < options.max_iterations && n > 0 && !out_of_budget(); ++iteration) {
     bool accepted = false, step_from_fresh = false;
@@ -287,6 +288,7 @@ FitResult fit_least_squares(const identify::Model& model, const identify::Parame
     }
     const double decrease = cost - new_cost;
     cost = new_cost;
+    if (options.on_step) options.on_step(++accepted_steps, problem.evaluations, cost);
     const bool converged = decrease <= options.relative_tolerance * cost || decrease <= options.absolute_tolerance;
     if (converged && step_from_fresh) {
       ++iteration;

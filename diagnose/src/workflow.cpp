@@ -175,11 +175,36 @@ std::string summarise(const Diagnosis& d) {
 
 namespace {
 
+void progress(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started, const std::string& what) {
+  if (!options.progress) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::fprintf(stderr, "demfit diagnose: %s (%.0f s so far)\n", what.c_str(), seconds);
+}
+
+}  // namespace
+
+namespace {
+
+// The fit options of one stage (`what`: "base fit", "re-fit base + plasticity"), printing each
+// accepted step when progress is on: a base fit of DEM runs can take 20 minutes.
+FitOptions stage_fit_options(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started,
+                             const std::string& what) {
+  FitOptions fit = options.fit;
+  if (options.progress)
+    fit.on_step = [&options, started, what](int iteration, int evaluations, double chi_square) {
+      progress(
+          options, started,
+          format("%s: step %d, %d evaluations, chi-square %.4g", what.c_str(), iteration, evaluations, chi_square));
+    };
+  return fit;
+}
+
 // What every fit of one diagnosis shares.
 struct FitContext {
   const identify::Model& model;
   const identify::ParameterSet& fixed;  // defaults, study fixed values, effects off
   const DiagnoseOptions& options;
+  std::chrono::steady_clock::time_point started;  // of the diagnosis (progress lines)
   int points = 0;
   double dof_noise = 0.0;
 };
@@ -190,7 +215,8 @@ struct FitContext {
 // v_lo + (v_hi - v_lo) i / base_starts, and the best is kept.
 FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variables,
                    const std::vector<FitTarget>& targets, int& evaluations) {
-  FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, c.options.fit);
+  const FitOptions fit = stage_fit_options(c.options, c.started, "base fit");
+  FitResult best = fit_least_squares(c.model, c.fixed, variables, targets, fit);
   evaluations += best.evaluations;
   bool on_bound = false;
   for (std::size_t j = 0; j < variables.size(); ++j) on_bound = on_bound || at_bound(variables[j], best.values[j]);
@@ -198,7 +224,7 @@ FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variable
     std::vector<FitVariable> vars = variables;
     for (auto& v : vars) v.start = v.lower + (v.upper - v.lower) * start / c.options.base_starts;
     try {
-      FitResult trial = fit_least_squares(c.model, c.fixed, vars, targets, c.options.fit);
+      FitResult trial = fit_least_squares(c.model, c.fixed, vars, targets, fit);
       evaluations += trial.evaluations;
       if (trial.chi_square < best.chi_square) best = std::move(trial);
     } catch (const std::exception&) {
@@ -241,6 +267,7 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
           score.sensitivity.col(static_cast<Eigen::Index>(j)) *
           (effect.parameters[j].upper - effect.parameters[j].lower);
   }
+  const FitOptions fit = stage_fit_options(c.options, c.started, "re-fit base + " + effect.name);
   bool fitted = false;
   for (int start = 0; start < std::max(1, c.options.refit_starts); ++start) {
     std::vector<FitVariable> vars = d.base_variables;
@@ -255,8 +282,8 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
       fixed.erase(p.name);
     }
     try {
-      FitResult trial = fit_least_squares(c.model, fixed, vars, d.targets, c.options.fit,
-                                          start == 0 && seed.size() > 0 ? &seed : nullptr);
+      FitResult trial =
+          fit_least_squares(c.model, fixed, vars, d.targets, fit, start == 0 && seed.size() > 0 ? &seed : nullptr);
       d.refit_evaluations += trial.evaluations;
       if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
       fitted = true;
@@ -311,16 +338,6 @@ std::vector<int> refit_order(const std::vector<ScreeningScore>& screening, const
   return order;
 }
 
-namespace {
-
-void progress(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started, const std::string& what) {
-  if (!options.progress) return;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  std::fprintf(stderr, "demfit diagnose: %s (%.0f s so far)\n", what.c_str(), seconds);
-}
-
-}  // namespace
-
 Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model& model,
                         const std::vector<EffectCandidate>& candidates, const DiagnoseOptions& options) {
   const auto started = std::chrono::steady_clock::now();
@@ -340,7 +357,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
     d.base_variables.push_back({v.name, v.lower, v.upper, v.initial});
     fixed.erase(v.name);
   }
-  FitContext context{model, fixed, options};
+  FitContext context{model, fixed, options, started};
   for (const auto& t : d.targets) {
     context.points += static_cast<int>(t.data.x.size());
     if (options.noise_sigma <= 0.0) context.dof_noise += noise_estimate_dof(static_cast<int>(t.data.x.size()));

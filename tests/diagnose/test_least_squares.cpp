@@ -90,3 +90,31 @@ TEST_CASE(
   CHECK(evaluations[1] < evaluations[0]);  // measured 18 vs 29
   CHECK(evaluations[2] < evaluations[0]);  // measured 24 vs 29
 }
+
+TEST_CASE("A fit reports every accepted step: numbered from 1, evaluations rising, chi-square falling to the result") {
+  const AnalyticEffectsModel model(51);
+  identify::ParameterSet fixed = model.default_parameters();
+  fixed["amplitude"] = 1.1;
+  const identify::Curve data = model.evaluate(fixed, {}).at("response");
+  const std::vector<FitVariable> variables{{"amplitude", 0.5, 2.0, 1.6}};
+  const std::vector<FitTarget> targets{{"response", "response", data, 0.01}};
+  struct Step {
+    int iteration, evaluations;
+    double chi_square;
+  };
+  std::vector<Step> steps;
+  FitOptions options;
+  options.on_step = [&](int iteration, int evaluations, double chi_square) {
+    steps.push_back({iteration, evaluations, chi_square});
+  };
+  const FitResult f = fit_least_squares(model, fixed, variables, targets, options);
+  REQUIRE_FALSE(steps.empty());
+  CHECK(steps.front().iteration == 1);
+  for (std::size_t k = 1; k < steps.size(); ++k) {
+    CHECK(steps[k].iteration == steps[k - 1].iteration + 1);
+    CHECK(steps[k].evaluations > steps[k - 1].evaluations);
+    CHECK(steps[k].chi_square < steps[k - 1].chi_square);
+  }
+  CHECK(steps.back().chi_square == f.chi_square);
+  CHECK(steps.back().evaluations <= f.evaluations);
+}

@@ -5,6 +5,7 @@
 // diagnosis pays for). Used for the base and augmented fits of the diagnosis: the residual tests
 // need a precise local optimum (a residual at the noise level), which the surrogate loop does not
 // guarantee in few runs.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct FitOptions {
   double absolute_tolerance = 0.01;
   int max_evaluations = 0;  // stop after about this many model evaluations (0 = no limit)
   unsigned long seed = 0;   // passed to the model (EvaluationContext)
+  // Called after every accepted step (step number from 1, model evaluations so far, the
+  // chi-square reached), so that a fit of DEM runs lasting many minutes is not silent.
+  std::function<void(int iteration, int evaluations, double chi_square)> on_step;
 };
 
 struct FitResult {
