@@ -10,11 +10,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <random>
 #include <stdexcept>
 
 #include "dem_setup.hpp"

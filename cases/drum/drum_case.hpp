@@ -14,6 +14,9 @@ namespace demfit::cases::detail {
 void parse_drum_section(const nlohmann::json& document, CaseSpec& spec, const std::filesystem::path& base_dir);
 nlohmann::json drum_section_json(const DrumSpec& drum);
 
+// The four ways to give the fill amount, exactly one per case file (FillBy; drum_section.cpp).
+inline constexpr const char* kDrumFillKeys[] = {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"};
+
 // Fill (cached, drum_powder.cpp), then the measured stage: rotation (drum_case.cpp).
 CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options);
 

@@ -23,15 +23,13 @@ const std::array<Field, 12> kDrumFields{{
     {"duration", &DrumSpec::duration, Sign::positive},
     {"volume_fraction", &DrumSpec::volume_fraction, Sign::any, 0.05, 1.0},
     {"scale_factor", &DrumSpec::scale_factor, Sign::any, 1.0, 16.0},
-    {"fill_seed", &DrumSpec::fill_seed, Sign::any, -kInf, kInf, 0},
+    {"fill_seed", &DrumSpec::fill_seed, Sign::any, -kUnbounded, kUnbounded, 0},
     {"densify_time", &DrumSpec::densify_time, Sign::positive},
     {"torque_interval", &DrumSpec::torque_interval, Sign::positive},
     {"surface_window", &DrumSpec::surface_window, Sign::non_negative},
-    {"surface_snapshots", &DrumSpec::surface_snapshots, Sign::any, -kInf, kInf, 1},
-    {"surface_points", &DrumSpec::surface_points, Sign::any, -kInf, kInf, 2},
+    {"surface_snapshots", &DrumSpec::surface_snapshots, Sign::any, -kUnbounded, kUnbounded, 1},
+    {"surface_points", &DrumSpec::surface_points, Sign::any, -kUnbounded, kUnbounded, 2},
 }};
-
-constexpr const char* kFillKeys[] = {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"};
 
 DrumImageSpec parse_drum_image(const json& j) {
   const char* p = "drum.image";
@@ -48,7 +46,7 @@ DrumImageSpec parse_drum_image(const json& j) {
 void parse_fill_amount(const json& j, DrumSpec& s) {
   const char* p = "drum";
   int given = 0;
-  for (const char* k : kFillKeys) given += j.contains(k) ? 1 : 0;
+  for (const char* k : kDrumFillKeys) given += j.contains(k) ? 1 : 0;
   if (given > 1)
     throw std::runtime_error("'drum': give exactly one of fill_fraction, fill_volume_ml, particle_count or fill_mass");
   s.fill_fraction = read_bounded(j, p, "fill_fraction", s.fill_fraction, 0.01, 0.9);
@@ -69,7 +67,7 @@ void parse_fill_amount(const json& j, DrumSpec& s) {
 
 DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base_dir) {
   const char* p = "drum";
-  std::vector<std::string> special(std::begin(kFillKeys), std::end(kFillKeys));
+  std::vector<std::string> special(std::begin(kDrumFillKeys), std::end(kDrumFillKeys));
   special.insert(special.end(), {"coarse_graining", "size_distribution", "image"});
   require_known_keys(j, p, section_keys<DrumSpec>(kDrumFields, special));
   read_section_fields<DrumSpec>(j, p, kDrumFields, s);

@@ -14,15 +14,15 @@ using Field = SectionField<PelletSpec>;
 const std::array<Field, 11> kPelletFields{{
     {"container_diameter", &PelletSpec::container_diameter, Sign::positive},
     {"container_height", &PelletSpec::container_height, Sign::positive},
-    {"particle_count", &PelletSpec::particle_count, Sign::any, -kInf, kInf, 1},
-    {"fill_seed", &PelletSpec::fill_seed, Sign::any, -kInf, kInf, 0},
+    {"particle_count", &PelletSpec::particle_count, Sign::any, -kUnbounded, kUnbounded, 1},
+    {"fill_seed", &PelletSpec::fill_seed, Sign::any, -kUnbounded, kUnbounded, 0},
     {"fill_normk", &PelletSpec::fill_normk, Sign::positive},
     {"settle_time", &PelletSpec::settle_time, Sign::positive},
     {"piston_speed", &PelletSpec::piston_speed, Sign::positive},
     {"max_pressure", &PelletSpec::max_pressure, Sign::positive},
     {"max_travel", &PelletSpec::max_travel, Sign::positive},
     {"unload", &PelletSpec::unload},
-    {"curve_points", &PelletSpec::curve_points, Sign::any, -kInf, kInf, 2},
+    {"curve_points", &PelletSpec::curve_points, Sign::any, -kUnbounded, kUnbounded, 2},
 }};
 
 }  // namespace

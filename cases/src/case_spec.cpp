@@ -302,10 +302,9 @@ void apply_setting(json& document, const std::string& assignment) {
       document["contact"].value("law", "") == "hertz_mindlin")
     path = row->hertz_path;
   // A fill amount replaces the file's fill amount (exactly one may be given).
-  for (const char* fill : {"drum.fill_fraction", "drum.fill_volume_ml", "drum.particle_count", "drum.fill_mass"}) {
-    if (path != fill || !document.contains("drum") || !document["drum"].is_object()) continue;
-    for (const char* other : {"fill_fraction", "fill_volume_ml", "particle_count", "fill_mass"})
-      document["drum"].erase(other);
+  for (const char* fill : detail::kDrumFillKeys) {
+    if (path != std::string("drum.") + fill || !document.contains("drum") || !document["drum"].is_object()) continue;
+    for (const char* other : detail::kDrumFillKeys) document["drum"].erase(other);
   }
   json* node = &document;
   std::size_t start = 0;

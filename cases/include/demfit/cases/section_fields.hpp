@@ -15,15 +15,15 @@
 
 namespace demfit::cases {
 
-inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 template <class Section>
 struct SectionField {
   const char* key;  ///< JSON key in the section (its unit is in the struct's comment and docs)
   std::variant<double Section::*, long long Section::*, bool Section::*> member;
-  Sign sign = Sign::any;  ///< numbers: sign rule (when no bounds are given)
-  double low = -kInf;     ///< numbers: closed bounds [low, high], used when one is finite
-  double high = kInf;
+  Sign sign = Sign::any;     ///< numbers: sign rule (when no bounds are given)
+  double low = -kUnbounded;  ///< numbers: closed bounds [low, high], used when one is finite
+  double high = kUnbounded;
   long long minimum = 0;  ///< integers: smallest accepted value
 };
 
@@ -44,7 +44,7 @@ void read_section_fields(const nlohmann::json& object, std::string_view path,
   for (const SectionField<Section>& f : fields) {
     if (const auto* number = std::get_if<double Section::*>(&f.member)) {
       double& value = section.**number;
-      const bool bounded = f.low > -kInf || f.high < kInf;
+      const bool bounded = f.low > -kUnbounded || f.high < kUnbounded;
       value = bounded ? read_bounded(object, path, f.key, value, f.low, f.high)
                       : read_number(object, path, f.key, value, f.sign);
     } else if (const auto* integer = std::get_if<long long Section::*>(&f.member)) {
