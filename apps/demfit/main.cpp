@@ -5,11 +5,13 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "demfit/dem_core/openmp_waiting.hpp"
 
 int main(int argc, char** argv) {
-  // Idle OpenMP threads sleep instead of spinning: on a shared machine (or with --jobs N), spinning
-  // threads made 2 threads slower than 1 (measured, dem_core bench). The user's setting wins.
-  setenv("OMP_WAIT_POLICY", "passive", /*overwrite=*/0);
+  // Idle OpenMP threads spin briefly, then sleep (dem_core/openmp_waiting.hpp: measured between
+  // passive and active waiting). libgomp reads this before main, hence a re-execution; the user's
+  // OMP_WAIT_POLICY or GOMP_SPINCOUNT wins.
+  demfit::dem_core::use_bounded_spin_waiting(argv);
   CLI::App app{
       "demfit — identify Discrete Element Method contact parameters (NORMK, SHEARK, damping, "
       "friction) from measured curves.\nAll quantities are SI unless a name states its unit "

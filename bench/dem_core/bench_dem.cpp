@@ -13,6 +13,7 @@
 
 #include "bench_scenarios.hpp"
 #include "demfit/dem_core/dem_core.hpp"
+#include "demfit/dem_core/openmp_waiting.hpp"
 #include "drum_comparison.hpp"
 #include "roundoff.hpp"
 #include "scaling.hpp"
@@ -67,27 +68,18 @@ void cases(const dem_core::Simulation& bed) {
 
 }  // namespace
 
-/// libgomp reads OMP_WAIT_POLICY when it loads, so the benchmark re-executes itself once with
-/// passive waiting (as the demfit CLI runs) unless the caller chose a policy.
-void ensure_passive_waiting(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
-  setenv("OMP_WAIT_POLICY", "passive", 0);
-  execv("/proc/self/exe", argv);
-  std::perror("bench_dem: re-executing with OMP_WAIT_POLICY=passive failed");
-}
-
 int usage() {
   std::printf(
       "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
       "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
       "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
-      "                 [--lattice-order]\n");
+      "                 [--lattice-order] [--no-liggghts (drum: time demfit only)]\n");
   return EXIT_FAILURE;
 }
 
 int main(int argc, char** argv) {
-  ensure_passive_waiting(argv);
+  dem_core::use_bounded_spin_waiting(argv);  // as the demfit CLI waits
   if (argc == 6 && std::string(argv[1]) == "--scaling-child")
     return bench::run_scaling_child(std::stoul(argv[2]), std::stol(argv[3]), std::stoi(argv[4]),
                                     std::string(argv[5]) == "shuffled");
@@ -113,6 +105,8 @@ int main(int argc, char** argv) {
       drum.dir = argv[++a];
     else if (arg == "--scaling-work" && has_value)
       scaling.work = std::stod(argv[++a]);
+    else if (arg == "--no-liggghts")
+      drum.liggghts = false;
     else if (arg == "--lattice-order")
       scaling.shuffled = false;
     else if (arg == "--scaling-sizes" && has_value) {
@@ -128,7 +122,7 @@ int main(int argc, char** argv) {
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress visible when redirected
   auto wanted = [&](const char* section) { return only.empty() || only == section; };
-  std::printf("bench_dem (dem_core)%s, OMP_WAIT_POLICY=%s\n", quick ? " --quick" : "", std::getenv("OMP_WAIT_POLICY"));
+  std::printf("bench_dem (dem_core)%s, %s\n", quick ? " --quick" : "", dem_core::openmp_waiting_description().c_str());
   if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
   if (wanted("scaling")) bench::print_scaling_table(scaling);
   if (wanted("roundoff")) bench::print_reordering_roundoff(quick);

@@ -63,7 +63,8 @@ void print_differences(std::size_t triangles) {
       "    its first list build. Slightly against demfit.\n"
       "  - output: LIGGGHTS computes one thermo line at the first and last step (kinetic energy, centre of\n"
       "    mass); demfit none during the timed steps. Negligible.\n"
-      "  - parallelism: demfit OpenMP threads (OMP_WAIT_POLICY=passive) vs LIGGGHTS MPI ranks (unbound,\n"
+      "  - parallelism: demfit OpenMP threads (bounded spin, then sleep: the waiting line above) vs LIGGGHTS MPI\n"
+      "    ranks (unbound,\n"
       "    mpi_yield_when_idle 1, best of the splits 2 1 1 and 1 2 1, with ghost-atom exchange). Inherent\n"
       "    to the codes; on a loaded machine MPI ranks suffer more from a preempted partner.\n",
       triangles);
@@ -81,13 +82,14 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
       "mu_r=%.2g, dt=%.3g s, skin=%.3g m, %ld steps, t0=%.3f s\n",
       bed.particle_count(), spec.radius, 2 * spec.drum_radius, spec.depth, spec.youngs_modulus, spec.poisson_ratio,
       spec.restitution, spec.sliding_friction, spec.rolling_friction, spec.time_step, spec.skin, o.steps, bed.time());
-  const bool have_liggghts = !liggghts_executable().empty();
+  const bool have_liggghts = o.liggghts && !liggghts_executable().empty();
   std::size_t triangles = 0;
   if (have_liggghts) {
     triangles = write_liggghts_drum(o.dir, spec, bed, o.steps, o.mesh);
     std::printf("LIGGGHTS files (bed.data, drum.stl with %zu triangles, in.drum) in %s\n", triangles, o.dir.c_str());
   } else {
-    std::printf("LIGGGHTS not on PATH: timing demfit only (install: scripts/setup --bench)\n");
+    std::printf(o.liggghts ? "LIGGGHTS not on PATH: timing demfit only (install: scripts/setup --bench)\n"
+                           : "--no-liggghts: timing demfit only\n");
   }
   Series d1, d2, l1, l2, l1_bound, d1_reordered, d2_reordered;
   Simulation demfit_end;

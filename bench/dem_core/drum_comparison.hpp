@@ -15,6 +15,7 @@ struct DrumComparisonOptions {
   double spin_up_time = 1.0;  ///< [s] turning before the timed runs (steady flow)
   std::filesystem::path dir;  ///< where the LIGGGHTS files go
   DrumMeshShape mesh{};       ///< LIGGGHTS' drum mesh
+  bool liggghts = true;       ///< false: time demfit only (e.g. comparing OpenMP waiting policies)
 };
 
 void compare_drum_with_liggghts(const DrumComparisonOptions& options);

@@ -115,7 +115,7 @@ LiggghtsRun run_liggghts_drum(const std::filesystem::path& dir, int px, int py, 
     argv = {"mpirun"};
     if (geteuid() == 0) argv.push_back("--allow-run-as-root");
     // Unbound, like demfit's OpenMP threads, so both share the cores the same way; idle ranks
-    // yield the core, as demfit's threads do with OMP_WAIT_POLICY=passive (busy-polling ranks
+    // yield the core, as demfit's threads give it away after a short spin (busy-polling ranks
     // took 7x longer than 1 rank at load 6 on 2 cores, measured).
     for (const char* a : {"--bind-to", "none", "--mca", "mpi_yield_when_idle", "1", "-np"}) argv.push_back(a);
     argv.push_back(std::to_string(ranks));

@@ -107,3 +107,35 @@ TEST_CASE("simulate with an unknown --set parameter path fails naming it and wri
                  dir),
       "drum.rpmm", dir);
 }
+
+namespace {
+
+// stderr of `demfit --version` with OpenMP's start-up settings displayed (OMP_DISPLAY_ENV is
+// printed by libgomp when it loads, i.e. once per executable image).
+std::string displayed_openmp_environment(const std::string& environment, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose " + environment + " '" +
+                              DEMFIT_EXE + "' --version > /dev/null 2> '" + err.string() + "'";
+  REQUIRE(std::system(command.c_str()) == 0);
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+TEST_CASE("demfit starts OpenMP with a bounded spin before sleeping unless the user chose a waiting policy") {
+  // Issue 16: a setenv in main comes after libgomp has read its environment, so it was ignored.
+  const fs::path dir = scratch("openmp_waiting");
+  const std::string chosen = displayed_openmp_environment("", dir);
+  INFO(chosen);
+  // The image libgomp finally runs in (the last display) has the bounded spin.
+  const auto last = chosen.rfind("GOMP_SPINCOUNT");
+  REQUIRE(last != std::string::npos);
+  CHECK(chosen.find("'30000'", last) != std::string::npos);
+  const std::string user = displayed_openmp_environment("OMP_WAIT_POLICY=passive", dir);
+  INFO(user);
+  CHECK(user.find("'30000'") == std::string::npos);  // the user's policy wins: no re-execution
+  CHECK(user.find("GOMP_SPINCOUNT = '0'") != std::string::npos);
+}

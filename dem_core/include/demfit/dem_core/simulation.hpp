@@ -32,10 +32,10 @@ struct SimulationSettings {
   ContactParameters contact{};    ///< particle–particle parameters (SPEC 1); its effects
                                   ///< (plasticity, cohesion, stiffness exponent) need the linear law
   Vec3 gravity{0.0, 0.0, -9.81};  ///< [m/s^2], global frame
-  /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). On a shared,
-  /// loaded machine run with OMP_WAIT_POLICY=passive: spinning threads waiting at the 3 barriers
-  /// per step for a preempted partner made 2 threads 5-10x SLOWER than 1 (measured, load 6-8 on
-  /// 2 cores); passive waiting gave a 1.2x speed-up under the same load.
+  /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). How idle threads
+  /// wait at the 3 barriers per step matters: unbounded spinning for a preempted partner made 2
+  /// threads 5-10x SLOWER than 1 on a loaded machine, passive waiting costs ~10 % at every
+  /// wake-up; programs call use_bounded_spin_waiting (openmp_waiting.hpp) first thing in main.
   int threads = 1;
   /// User time step [s]; 0 = automatic. A user step above stable_time_step() is refused.
   double time_step = 0.0;
