@@ -34,6 +34,7 @@ struct DiagnoseCliOptions {
   double alpha = 0.01;
   double bic_threshold = 10.0;
   int refit_best = 2;
+  int scatter_replicas = -1;  // -1: the model's default (4 for DEM studies, 0 for the analytic model)
   bool no_plots = false;
 };
 
@@ -174,6 +175,8 @@ void run_diagnose(const DiagnoseCliOptions& o) {
     throw std::runtime_error("--noise: must be > 0 (y units of the targets), or omitted to estimate it");
   if (!(o.alpha > 0.0 && o.alpha < 1.0)) throw std::runtime_error("--alpha: must be in (0, 1), e.g. 0.01");
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
+  if (o.scatter_replicas < -1)
+    throw std::runtime_error("--scatter-replicas: must be >= 0 (0 = data noise alone; e.g. 4 replica runs)");
   const identify::StudySpec spec = with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
@@ -189,6 +192,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.alpha = o.alpha;
   options.bic_threshold = o.bic_threshold;
   options.refit_best = o.refit_best;
+  if (o.scatter_replicas >= 0) options.scatter_replicas = o.scatter_replicas;
   options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
@@ -243,6 +247,11 @@ void register_diagnose(CLI::App& app) {
   cmd->add_option("--refit-best", o->refit_best,
                   "Candidates re-identified after screening: at least this many (default 2), plus every one scoring at "
                   "least 1/4 of the best (DEM models) or all of them (analytic model)");
+  cmd->add_option("--scatter-replicas", o->scatter_replicas,
+                  "Runs of the base optimum moved by round-off-sized steps that measure the model's own trajectory "
+                  "scatter (y units, per target); where it exceeds 1/4 of the data noise it joins the noise model as "
+                  "correlated noise and residuals are whitened (default 4 for DEM studies, 0 for the analytic model; "
+                  "0 = data noise alone)");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

@@ -95,8 +95,18 @@ Eigen::VectorXd normalised_residual(const identify::CurveSet& curves, const std:
   for (const auto& r : raw) size += r.size();
   Eigen::VectorXd out(static_cast<Eigen::Index>(size));
   Eigen::Index k = 0;
-  for (std::size_t t = 0; t < raw.size(); ++t)
-    for (double v : raw[t]) out(k++) = v / targets[t].sigma;
+  for (std::size_t t = 0; t < raw.size(); ++t) {
+    const auto n = static_cast<Eigen::Index>(raw[t].size());
+    if (targets[t].noise_factor.size() > 0) {
+      if (targets[t].noise_factor.rows() != n || targets[t].noise_factor.cols() != n)
+        throw std::logic_error("target '" + targets[t].name + "': noise factor does not match its data points");
+      const Eigen::Map<const Eigen::VectorXd> r(raw[t].data(), n);
+      out.segment(k, n) = targets[t].noise_factor.triangularView<Eigen::Lower>().solve(r);
+      k += n;
+    } else {
+      for (double v : raw[t]) out(k++) = v / targets[t].sigma;
+    }
+  }
   return out;
 }
 

@@ -147,7 +147,15 @@ nlohmann::json to_json(const Diagnosis& d) {
                       {"evaluations", r.fit.evaluations},
                       {"residual", analysis_json(r.analysis)}});
   nlohmann::json targets = nlohmann::json::array();
-  for (const auto& t : d.targets) targets.push_back({{"name", t.name}, {"curve", t.curve}, {"sigma", t.sigma}});
+  for (std::size_t i = 0; i < d.targets.size(); ++i) {
+    const FitTarget& t = d.targets[i];
+    nlohmann::json entry{
+        {"name", t.name}, {"curve", t.curve}, {"sigma", t.sigma}, {"whitened", t.noise_factor.size() > 0}};
+    if (i < d.scatter.size())
+      entry["model_scatter"] = {
+          {"sigma", d.scatter[i].sigma}, {"lag1", d.scatter[i].lag1}, {"runs", d.scatter[i].replicas}};
+    targets.push_back(entry);
+  }
   return {{"verdict", verdict_text(d.verdict)},
           {"effect", d.chosen >= 0 ? nlohmann::json(d.refits[d.chosen].effect) : nlohmann::json()},
           {"summary", d.summary},
@@ -177,10 +185,19 @@ std::string markdown_report(const Diagnosis& d) {
   md << "# demfit diagnose\n\n**Verdict: " << verdict_text(d.verdict) << "**"
      << (d.chosen >= 0 ? " — `" + d.refits[d.chosen].effect + "`" : std::string()) << "\n\n"
      << d.summary << "\n\n";
-  md << "## Noise level\n\n| target | points | sigma (y units) | source |\n|---|---|---|---|\n";
-  for (const auto& t : d.targets)
-    md << format("| %s | %zu | %.4g | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
-                 d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)");
+  md << "## Noise level\n\n| target | points | sigma (y units) | source | model scatter (y units, lag-1, runs) |\n"
+        "|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < d.targets.size(); ++i) {
+    const FitTarget& t = d.targets[i];
+    std::string scatter = "not measured";
+    if (i < d.scatter.size())
+      scatter = format("%.4g, %.3f, %d%s", d.scatter[i].sigma, d.scatter[i].lag1, d.scatter[i].replicas,
+                       t.noise_factor.size() > 0 ? " (in the noise model: sigma is the total, residuals whitened)"
+                                                 : " (below the threshold)");
+    md << format("| %s | %zu | %.4g | %s | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
+                 d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)",
+                 scatter.c_str());
+  }
   md << "\n## Residual tests (family-wise level alpha per row, each test at alpha/4; a candidate must pass "
         "at its level to be named; RMS and max of r/sigma with each target divided by its own noise level)\n\n"
         "| fit | alpha | RMS/sigma | max/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "

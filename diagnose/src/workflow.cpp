@@ -40,6 +40,7 @@ DiagnoseOptions expensive_model_options() {
   // Re-fit every candidate scoring at least a quarter of the best: issue 15 measured an s = 4 drum
   // whose three screening scores were within 25 % of each other and whose true effect ranked third.
   o.refit_score_ratio = 0.25;
+  o.scatter_replicas = 4;
   return o;
 }
 
@@ -70,7 +71,7 @@ std::vector<FitTarget> make_targets(const identify::StudySpec& study, double giv
     if (t.metric != identify::CurveMetric::mse)
       throw std::runtime_error("diagnose: target '" + t.name +
                                "': metric curve_mapping is not supported by diagnose yet; use \"mse\" for this target");
-    FitTarget f{t.name, t.curve, t.data, 1.0};
+    FitTarget f{t.name, t.curve, t.data, 1.0, {}};
     if (given_sigma > 0.0) {
       f.sigma = given_sigma;
     } else {
@@ -297,6 +298,69 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
   return fitted;
 }
 
+// The model's own scatter (model_scatter.hpp): replicas of the base optimum moved by round-off-sized
+// steps; targets whose scatter matters are whitened and the base fit is refined under the new noise
+// model, its Jacobian carried over by the linear renormalisation (no finite differences).
+void account_for_scatter(const FitContext& c, Diagnosis& d) {
+  std::vector<identify::ParameterSet> sets;
+  for (int k = 1; k <= c.options.scatter_replicas; ++k) {
+    identify::ParameterSet p = d.base.parameters;
+    for (const FitVariable& v : d.base_variables) {
+      const double step = 1e-7 * k * (v.upper - v.lower);
+      double& value = p[v.name];
+      value = value + step <= v.upper ? value + step : value - step;
+    }
+    sets.push_back(p);
+  }
+  std::vector<Eigen::VectorXd> replicas{d.base.residual};
+  for (auto& r : residuals_at(c.model, sets, d.targets, c.options.fit))
+    if (r.size() == d.base.residual.size()) replicas.push_back(std::move(r));
+  d.base_evaluations += static_cast<int>(sets.size());
+  if (replicas.size() < 2) {
+    d.notes.push_back("model scatter not measured: every replica run failed; data noise alone is used");
+    return;
+  }
+  d.scatter = estimate_scatter(replicas, d.targets);
+  std::vector<FitTarget> whitened = d.targets;
+  bool any = false;
+  for (std::size_t t = 0; t < whitened.size(); ++t) {
+    const TargetScatter& s = d.scatter[t];
+    FitTarget& w = whitened[t];
+    const bool matters = s.sigma > c.options.scatter_threshold * w.sigma;
+    d.notes.push_back(
+        format("target '%s': model scatter %.4g (lag-1 correlation %.3f, %d runs) against data noise %.4g: %s",
+               w.name.c_str(), s.sigma, s.lag1, s.replicas, w.sigma,
+               matters ? "added to the noise model (AR(1) along the curve), residuals whitened"
+                       : "below the threshold, data noise alone"));
+    if (!matters) continue;
+    w.noise_factor = scatter_noise_factor(static_cast<int>(w.data.x.size()), w.sigma, s);
+    w.sigma = std::hypot(w.sigma, s.sigma);
+    any = true;
+  }
+  progress(c.options, c.started,
+           format("model scatter measured from %zu runs%s", replicas.size(),
+                  any ? ": residuals whitened, refining the base fit" : ": negligible"));
+  if (!any) return;
+  const Eigen::MatrixXd a = renormalisation(d.targets, whitened);
+  d.targets = std::move(whitened);
+  FitResult carried = d.base;
+  carried.residual = a * d.base.residual;
+  carried.jacobian = a * d.base.jacobian;
+  carried.chi_square = carried.residual.squaredNorm();
+  std::vector<FitVariable> vars = d.base_variables;
+  for (std::size_t j = 0; j < vars.size(); ++j) vars[j].start = d.base.values[j];
+  const FitOptions fit = stage_fit_options(c.options, c.started, "base fit under the scatter noise model");
+  try {
+    FitResult refined = fit_least_squares(c.model, c.fixed, vars, d.targets, fit, &carried.jacobian);
+    d.base_evaluations += refined.evaluations;
+    d.base = refined.chi_square < carried.chi_square ? std::move(refined) : std::move(carried);
+  } catch (const std::exception& e) {
+    d.notes.push_back(std::string("base fit under the scatter noise model failed (") + e.what() +
+                      "); the first base optimum is kept");
+    d.base = std::move(carried);
+  }
+}
+
 }  // namespace
 
 // 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
@@ -366,6 +430,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
 
   // 1-2. Base fit and its residual tests.
   d.base = fit_base(context, d.base_variables, d.targets, d.base_evaluations);
+  if (options.scatter_replicas > 0) account_for_scatter(context, d);
   d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
   d.base_bic = bic(d.base.chi_square, k_base, context.points);
   d.base_aicc = aicc(d.base.chi_square, k_base, context.points);

@@ -120,18 +120,32 @@ Scenario drum_scenario(const std::string& label, const identify::ParameterSet& h
 struct Outcome {
   Diagnosis diagnosis;
   std::vector<double> sigma;  // true noise level of each target [y units]
-  // RMS of the normalised residual r_i / sigma_true,i over all targets (1 = the noise level).
+  // RMS of the simulated-minus-data residual divided by the true data noise, r_i / sigma_true,i, over
+  // all targets (1 = the noise level). A whitened target's residual is mapped back to y units by its
+  // noise factor L (residual = L^-1 (simulated - data)).
   double rms_over_true_sigma(const FitResult& fit) const {
     double sum = 0.0;
     Eigen::Index k = 0;
-    for (std::size_t t = 0; t < diagnosis.targets.size(); ++t)
-      for (std::size_t i = 0; i < diagnosis.targets[t].data.x.size(); ++i, ++k) {
-        const double r = fit.residual(k) * diagnosis.targets[t].sigma / sigma[t];
-        sum += r * r;
-      }
+    for (std::size_t t = 0; t < diagnosis.targets.size(); ++t) {
+      const FitTarget& target = diagnosis.targets[t];
+      const auto n = static_cast<Eigen::Index>(target.data.x.size());
+      const Eigen::VectorXd normalised = fit.residual.segment(k, n);
+      const Eigen::VectorXd raw = target.noise_factor.size() > 0
+                                      ? Eigen::VectorXd(target.noise_factor.triangularView<Eigen::Lower>() * normalised)
+                                      : Eigen::VectorXd(normalised * target.sigma);
+      sum += raw.squaredNorm() / (sigma[t] * sigma[t]);
+      k += n;
+    }
     return std::sqrt(sum / static_cast<double>(k));
   }
 };
+
+std::string detail_scatter(const TargetScatter& s, bool whitened) {
+  char text[160];
+  std::snprintf(text, sizeof text, " (model scatter %.4g, lag-1 %.3f, %d runs%s)", s.sigma, s.lag1, s.replicas,
+                whitened ? ": whitened" : ": below the threshold");
+  return text;
+}
 
 Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
   use_test_cache();
@@ -165,8 +179,9 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
   std::printf("\n[%s] verdict: %s%s\n", s.label.c_str(), verdict_text(d.verdict),
               d.chosen >= 0 ? (" -> " + d.refits[d.chosen].effect).c_str() : "");
   for (std::size_t t = 0; t < d.targets.size(); ++t)
-    std::printf("  target %s: noise sigma true %.4g, used %.4g\n", d.targets[t].name.c_str(), out.sigma[t],
-                d.targets[t].sigma);
+    std::printf("  target %s: noise sigma true %.4g, used %.4g%s\n", d.targets[t].name.c_str(), out.sigma[t],
+                d.targets[t].sigma,
+                t < d.scatter.size() ? detail_scatter(d.scatter[t], d.targets[t].noise_factor.size() > 0).c_str() : "");
   std::printf(
       "  base RMS/sigma_true %.2f; worst region %s\n", out.rms_over_true_sigma(d.base),
       d.base_analysis.worst_region >= 0 ? d.base_analysis.regions[d.base_analysis.worst_region].label.c_str() : "-");

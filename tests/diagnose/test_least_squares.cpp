@@ -46,7 +46,7 @@ TEST_CASE("Residuals of a loading-unloading target compare each data branch with
   // Data on both branches at abscissae between the simulated samples: y_load = 2x, y_unload = 2x - 0.5.
   identify::Curve data{"x", "y", {0.05, 0.55, 1.0, 0.75, 0.55}, {}};
   for (std::size_t i = 0; i < data.x.size(); ++i) data.y.push_back(2.0 * data.x[i] - (i >= 3 ? 0.5 : 0.0));
-  const std::vector<FitTarget> targets{{"cycle", "cycle", data, 0.1}};
+  const std::vector<FitTarget> targets{{"cycle", "cycle", data, 0.1, {}}};
   const auto r = raw_residuals(model.evaluate({{"s", 2.0}}, {}), targets);
   for (double v : r.front()) CHECK(v == Approx(0.0).margin(1e-12));
   // With s = 1 the residual is (1 - 2) x on both branches (the turning point belongs to loading).
@@ -66,7 +66,7 @@ TEST_CASE(
   const identify::Curve data = model.evaluate(fixed, {}).at("response");
   const std::vector<FitVariable> variables{
       {"amplitude", 0.5, 2.0, 1.6}, {"rate", 1.0, 8.0, 5.0}, {"slope", 0.0, 1.5, 0.9}};
-  const std::vector<FitTarget> targets{{"response", "response", data, 0.01}};
+  const std::vector<FitTarget> targets{{"response", "response", data, 0.01, {}}};
   FitOptions plain;
   plain.broyden = false;
   plain.absolute_tolerance = 1e-8;
@@ -97,7 +97,7 @@ TEST_CASE("A fit reports every accepted step: numbered from 1, evaluations risin
   fixed["amplitude"] = 1.1;
   const identify::Curve data = model.evaluate(fixed, {}).at("response");
   const std::vector<FitVariable> variables{{"amplitude", 0.5, 2.0, 1.6}};
-  const std::vector<FitTarget> targets{{"response", "response", data, 0.01}};
+  const std::vector<FitTarget> targets{{"response", "response", data, 0.01, {}}};
   struct Step {
     int iteration, evaluations;
     double chi_square;

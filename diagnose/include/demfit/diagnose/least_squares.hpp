@@ -34,7 +34,11 @@ struct FitTarget {
   std::string name;
   std::string curve;
   identify::Curve data;
-  double sigma = 1.0;
+  double sigma = 1.0;  // [y units] the noise level per point (with noise_factor: its marginal level)
+  // Empty: white noise, residual = (simulated - data) / sigma. Otherwise the lower Cholesky factor
+  // L of the target's noise covariance [y^2] (model_scatter.hpp), residual = L^-1 (simulated - data):
+  // correlated noise whitened, so the chi-square, BIC and residual tests stay valid.
+  Eigen::MatrixXd noise_factor;
 };
 
 struct FitOptions {
