@@ -168,7 +168,8 @@ nlohmann::json to_json(const Diagnosis& d) {
             {"bic", d.base_bic},
             {"aicc", d.base_aicc},
             {"evaluations", d.base.evaluations},
-            {"residual", analysis_json(d.base_analysis)}}},
+            {"residual", analysis_json(d.base_analysis)},
+            {"residual_against_data_noise", analysis_json(d.base_analysis_data_noise)}}},
           {"screening", screening},
           {"refits", refits},
           {"notes", d.notes},
@@ -203,6 +204,7 @@ std::string markdown_report(const Diagnosis& d) {
         "| fit | alpha | RMS/sigma | max/sigma | runs | runs p | lag-1 | lag-1 p | variance ratio "
         "| variance p | smooth-structure stat (dof) | smooth p | verdict "
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  if (d.scatter_in_noise_model) md << tests_row("base, against the data noise alone", d.base_analysis_data_noise);
   md << tests_row("base", d.base_analysis);
   for (const auto& r : d.refits) md << tests_row("base + " + r.effect, r.analysis);
   md << "\n## Gap per region (RMS and max of the residual / the noise level of the region's target)\n\n"

@@ -182,6 +182,8 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
     std::printf("  target %s: noise sigma true %.4g, used %.4g%s\n", d.targets[t].name.c_str(), out.sigma[t],
                 d.targets[t].sigma,
                 t < d.scatter.size() ? detail_scatter(d.scatter[t], d.targets[t].noise_factor.size() > 0).c_str() : "");
+  std::printf("  BIC threshold used %.4g (chi-square spread of the scatter replicas %.4g)\n", d.bic_threshold,
+              d.scatter_chi_square_sd);
   std::printf(
       "  base RMS/sigma_true %.2f; worst region %s\n", out.rms_over_true_sigma(d.base),
       d.base_analysis.worst_region >= 0 ? d.base_analysis.regions[d.base_analysis.worst_region].label.c_str() : "-");

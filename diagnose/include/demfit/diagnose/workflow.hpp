@@ -82,11 +82,17 @@ struct CandidateFit {
 };
 
 struct Diagnosis {
-  std::vector<FitTarget> targets;      // with the noise level used (and the scatter's whitening)
-  std::vector<TargetScatter> scatter;  // measured model scatter per target (empty: not measured)
+  std::vector<FitTarget> targets;       // with the noise level used (and the scatter's whitening)
+  std::vector<TargetScatter> scatter;   // measured model scatter per target (empty: not measured)
+  bool scatter_in_noise_model = false;  // some target whitened by it
   std::vector<FitVariable> base_variables;
   FitResult base;
-  ResidualAnalysis base_analysis;
+  ResidualAnalysis base_analysis;  // under the noise model used (with the model's scatter if measured)
+  // The base residual's tests against the data noise alone. Candidates are compared whenever this
+  // is structural; with the model's scatter in the noise model, an effect is named only if it wins
+  // under that model, and a base residual consistent with data noise + scatter is reported as
+  // no missing effect beyond the model's own scatter.
+  ResidualAnalysis base_analysis_data_noise;
   double base_bic = 0.0, base_aicc = 0.0;
   std::vector<ScreeningScore> screening;  // candidate order
   std::vector<CandidateFit> refits;       // the best few, in screening rank order
@@ -94,9 +100,12 @@ struct Diagnosis {
   int chosen = -1;        // index into refits when an effect is identified
   std::vector<int> tied;  // ambiguous: the refits that explain it equally well
   std::vector<EffectCandidate> candidates;
-  double bic_threshold = 10.0;     // as used (DiagnoseOptions)
-  bool noise_given = false;        // sigma given (--noise) rather than estimated
-  std::vector<std::string> notes;  // plain-language statements for the report
+  // As used: DiagnoseOptions::bic_threshold, raised by 2 x sqrt(2) x scatter_chi_square_sd when the
+  // model's scatter is in the noise model (the chi-square of one evaluation is itself that noisy).
+  double bic_threshold = 10.0;
+  double scatter_chi_square_sd = 0.0;  // spread of the replicas' chi-squares (0: not measured)
+  bool noise_given = false;            // sigma given (--noise) rather than estimated
+  std::vector<std::string> notes;      // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
   double wall_seconds = 0.0;
