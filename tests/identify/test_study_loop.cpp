@@ -257,6 +257,23 @@ TEST_CASE("The reported interval falls back to the linearised one only without a
   CHECK(interval_text(reported_interval(nullptr, "k", 2.0)) == "-");
 }
 
+TEST_CASE("A best run outside the posterior interval widens the reported interval to it, and says so",
+          "[identify][report]") {
+  const nlohmann::json uncertainty = {
+      {"posterior",
+       {{"variables", {{"fricr", {{"lower_95", 0.0578}, {"upper_95", 0.567}, {"unidentifiable", true}}}}}}}};
+  const ReportedInterval below = reported_interval(uncertainty, "fricr", 0.0570);
+  CHECK(below.lower == 0.0570);
+  CHECK(below.upper == 0.567);
+  CHECK(below.method == "posterior, widened to the best run");
+  const ReportedInterval above = reported_interval(uncertainty, "fricr", 0.6);
+  CHECK(above.lower == 0.0578);
+  CHECK(above.upper == 0.6);
+  const ReportedInterval inside = reported_interval(uncertainty, "fricr", 0.2);
+  CHECK(inside.method == "posterior");
+  CHECK(inside.lower == 0.0578);
+}
+
 TEST_CASE("Adaptive infill and principal-component responses also identify the analytic parameters",
           "[identify][loop]") {
   auto study = test::analytic_study(0.0, 10);

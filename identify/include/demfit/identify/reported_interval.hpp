@@ -22,7 +22,9 @@ struct ReportedInterval {
   double lower = std::numeric_limits<double>::quiet_NaN();  // 95 % interval, model units
   double upper = std::numeric_limits<double>::quiet_NaN();
   bool identifiable = true;  // false: the data cannot pin the variable down
-  std::string method;        // "posterior" or "linearised"
+  // "posterior", "posterior, widened to the best run" (the best run lay outside the posterior's
+  // 95 % interval, which is then stretched to it) or "linearised"
+  std::string method;
 };
 
 // `uncertainty` is the "uncertainty" object of a study result (null when absent); `value` the
