@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace demfit::diagnose {
@@ -51,6 +52,45 @@ Eigen::MatrixXd scatter_noise_factor(int points, double sigma_data, const Target
   if (llt.info() != Eigen::Success)
     throw std::runtime_error("model scatter: noise covariance is not positive definite");
   return llt.matrixL();
+}
+
+std::vector<identify::ParameterSet> replica_parameter_sets(const identify::ParameterSet& base,
+                                                           const std::vector<FitVariable>& variables, int replicas) {
+  std::vector<identify::ParameterSet> sets;
+  for (int k = 1; k <= replicas; ++k) {
+    identify::ParameterSet p = base;
+    for (const FitVariable& v : variables) {
+      const double step = 1e-7 * k * (v.upper - v.lower);
+      double& value = p[v.name];
+      value = value + step <= v.upper ? value + step : value - step;
+    }
+    sets.push_back(p);
+  }
+  return sets;
+}
+
+std::vector<FitTarget> with_scatter(const std::vector<FitTarget>& targets, const std::vector<TargetScatter>& scatter,
+                                    double threshold, std::vector<bool>& whitened) {
+  std::vector<FitTarget> out = targets;
+  whitened.assign(targets.size(), false);
+  for (std::size_t t = 0; t < out.size() && t < scatter.size(); ++t) {
+    if (!(scatter[t].sigma > threshold * out[t].sigma)) continue;
+    out[t].noise_factor = scatter_noise_factor(static_cast<int>(out[t].data.x.size()), out[t].sigma, scatter[t]);
+    out[t].sigma = std::hypot(out[t].sigma, scatter[t].sigma);
+    whitened[t] = true;
+  }
+  return out;
+}
+
+double chi_square_spread(const std::vector<Eigen::VectorXd>& replica_residuals,
+                         const Eigen::MatrixXd& renormalisation) {
+  if (replica_residuals.size() < 2) return 0.0;
+  std::vector<double> chi_squares;
+  for (const auto& r : replica_residuals) chi_squares.push_back((renormalisation * r).squaredNorm());
+  const double mean = std::accumulate(chi_squares.begin(), chi_squares.end(), 0.0) / chi_squares.size();
+  double sum = 0.0;
+  for (double x : chi_squares) sum += (x - mean) * (x - mean);
+  return std::sqrt(sum / static_cast<double>(chi_squares.size() - 1));
 }
 
 Eigen::MatrixXd renormalisation(const std::vector<FitTarget>& old_targets, const std::vector<FitTarget>& whitened) {

@@ -1,6 +1,7 @@
 // The diagnosis workflow; see workflow.hpp and docs/diagnose.md.
 #include "demfit/diagnose/workflow.hpp"
 #include "text_format.hpp"
+#include "verdict_summary.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -56,14 +57,6 @@ namespace {
 
 using detail::format;
 
-std::string tests_text(const ResidualAnalysis& a) {
-  return format(
-      "runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
-      "smooth structure p = %.3g",
-      a.runs.p_value, a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value,
-      a.smooth.p_value);
-}
-
 std::vector<FitTarget> make_targets(const identify::StudySpec& study, double given_sigma,
                                     std::vector<std::string>& notes) {
   std::vector<FitTarget> targets;
@@ -116,67 +109,6 @@ void check_model_accepts(const identify::Model& model, const std::vector<EffectC
                                  format("%g, %g", p.lower, p.upper) + "] lies outside the model's valid range " +
                                  d->valid.to_string() + "; narrow it");
     }
-}
-
-std::string summarise(const Diagnosis& d) {
-  const ResidualAnalysis& a = d.base_analysis;
-  std::string where;
-  if (a.worst_region >= 0)
-    where = "; largest misfit in " + a.regions[a.worst_region].label +
-            format(" (RMS/sigma %.3g)", a.regions[a.worst_region].rms_over_sigma);
-  // Each target normalised by its own noise level before pooling (targets may differ in units).
-  const std::string base_numbers =
-      format("base fit RMS/sigma %.3g, max/sigma %.3g", a.rms_over_sigma, a.max_over_sigma);
-  switch (d.verdict) {
-    case Verdict::no_missing_effect:
-      if (d.scatter_in_noise_model)
-        return "No missing effect beyond the model's own scatter: the base residual is structural against the data "
-               "noise alone (" +
-               tests_text(d.base_analysis_data_noise) +
-               ") but consistent with data noise + the run-to-run scatter of the model (" + tests_text(a) + "); " +
-               base_numbers + (d.refits.empty() ? "." : "; no candidate is favoured under that noise.") +
-               " A finer model (less scatter) or more data is needed to detect a smaller effect.";
-      return "No missing effect: the base residual is consistent with noise (" + tests_text(a) + "); " + base_numbers +
-             ".";
-    case Verdict::effect_identified: {
-      const CandidateFit& c = d.refits[d.chosen];
-      return "Missing effect: '" + c.effect + "'" +
-             format(" (delta BIC %.4g > %.3g, delta AICc %.4g). ", c.delta_bic, d.bic_threshold, c.delta_aicc) +
-             "Residual before: " + tests_text(a) + where + ". After: " + tests_text(c.analysis) +
-             format(". RMS/sigma %.3g -> %.3g, max/sigma %.3g -> %.3g (each target by its own noise level).",
-                    a.rms_over_sigma, c.analysis.rms_over_sigma, a.max_over_sigma, c.analysis.max_over_sigma);
-    }
-    case Verdict::ambiguous: {
-      std::string names;
-      for (int i : d.tied)
-        names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" +
-                 format(" (delta BIC %.4g)", d.refits[i].delta_bic);
-      return "Ambiguous: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers +
-             ". Each of " + names +
-             format(
-                 " is favoured over the base by more than %.3g in BIC, and their BICs are within %.3g of each "
-                 "other",
-                 d.bic_threshold, d.bic_threshold) +
-             ": these data cannot tell them apart; no effect is named (add a curve or case that separates them).";
-    }
-    case Verdict::unexplained_structural: {
-      std::string best;
-      if (!d.refits.empty()) {
-        const auto it = std::max_element(d.refits.begin(), d.refits.end(),
-                                         [](const auto& x, const auto& y) { return x.delta_bic < y.delta_bic; });
-        best = " Best candidate '" + it->effect + "'" +
-               format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
-               (it->analysis.structural ? ", residual still structural (" + tests_text(it->analysis) + ")"
-                                        : std::string(", below the criterion")) +
-               ".";
-      } else {
-        best = " No candidate effects were given.";
-      }
-      return "Unexplained structural residual: the base residual is not noise (" + tests_text(a) + where + "); " +
-             base_numbers + "." + best + " No candidate explains it; no effect is named.";
-    }
-  }
-  return "";
 }
 
 }  // namespace
@@ -305,68 +237,9 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
   return fitted;
 }
 
-// The model's own scatter (model_scatter.hpp): replicas of the base optimum moved by round-off-sized
-// steps; targets whose scatter matters are whitened and the base fit is refined under the new noise
-// model, its Jacobian carried over by the linear renormalisation (no finite differences).
-void account_for_scatter(const FitContext& c, Diagnosis& d) {
-  std::vector<identify::ParameterSet> sets;
-  for (int k = 1; k <= c.options.scatter_replicas; ++k) {
-    identify::ParameterSet p = d.base.parameters;
-    for (const FitVariable& v : d.base_variables) {
-      const double step = 1e-7 * k * (v.upper - v.lower);
-      double& value = p[v.name];
-      value = value + step <= v.upper ? value + step : value - step;
-    }
-    sets.push_back(p);
-  }
-  std::vector<Eigen::VectorXd> replicas{d.base.residual};
-  for (auto& r : residuals_at(c.model, sets, d.targets, c.options.fit))
-    if (r.size() == d.base.residual.size()) replicas.push_back(std::move(r));
-  d.base_evaluations += static_cast<int>(sets.size());
-  if (replicas.size() < 2) {
-    d.notes.push_back("model scatter not measured: every replica run failed; data noise alone is used");
-    return;
-  }
-  d.scatter = estimate_scatter(replicas, d.targets);
-  std::vector<FitTarget> whitened = d.targets;
-  bool any = false;
-  for (std::size_t t = 0; t < whitened.size(); ++t) {
-    const TargetScatter& s = d.scatter[t];
-    FitTarget& w = whitened[t];
-    const bool matters = s.sigma > c.options.scatter_threshold * w.sigma;
-    d.notes.push_back(
-        format("target '%s': model scatter %.4g (lag-1 correlation %.3f, %d runs) against data noise %.4g: %s",
-               w.name.c_str(), s.sigma, s.lag1, s.replicas, w.sigma,
-               matters ? "added to the noise model (AR(1) along the curve), residuals whitened"
-                       : "below the threshold, data noise alone"));
-    if (!matters) continue;
-    w.noise_factor = scatter_noise_factor(static_cast<int>(w.data.x.size()), w.sigma, s);
-    w.sigma = std::hypot(w.sigma, s.sigma);
-    any = true;
-  }
-  progress(c.options, c.started,
-           format("model scatter measured from %zu runs%s", replicas.size(),
-                  any ? ": residuals whitened, refining the base fit" : ": negligible"));
-  if (!any) return;
-  d.scatter_in_noise_model = true;
-  const Eigen::MatrixXd a = renormalisation(d.targets, whitened);
-  // Every evaluation draws its own trajectory, so a fit's chi-square carries the spread of the
-  // replicas' chi-squares, and a fit over dozens of evaluations keeps a lucky one: the difference of
-  // two fitted chi-squares is noisy by about sqrt(2) x that spread. An effect must beat the threshold
-  // by two such standard deviations (issue 15: on the s = 4 drum a wall friction of 0.014, physically
-  // nothing, gained delta BIC 17 by trajectory luck and was named).
-  std::vector<double> chi_squares;
-  for (const auto& r : replicas) chi_squares.push_back((a * r).squaredNorm());
-  const double mean = std::accumulate(chi_squares.begin(), chi_squares.end(), 0.0) / chi_squares.size();
-  double spread = 0.0;
-  for (double x : chi_squares) spread += (x - mean) * (x - mean);
-  d.scatter_chi_square_sd = std::sqrt(spread / static_cast<double>(chi_squares.size() - 1));
-  d.bic_threshold = c.options.bic_threshold + 2.0 * std::sqrt(2.0) * d.scatter_chi_square_sd;
-  d.notes.push_back(format(
-      "the chi-square of %zu runs differing only in round-off spreads by %.3g (standard deviation): "
-      "an effect must improve BIC by %.3g + 2 x sqrt(2) x %.3g = %.3g",
-      chi_squares.size(), d.scatter_chi_square_sd, c.options.bic_threshold, d.scatter_chi_square_sd, d.bic_threshold));
-  d.targets = std::move(whitened);
+// The base fit refined under the whitened targets from its optimum; the first optimum, mapped by
+// `a`, is kept if the refinement fails or does not improve on it.
+void refine_base(const FitContext& c, Diagnosis& d, const Eigen::MatrixXd& a) {
   FitResult carried = d.base;
   carried.residual = a * d.base.residual;
   carried.jacobian = a * d.base.jacobian;
@@ -383,6 +256,49 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
                       "); the first base optimum is kept");
     d.base = std::move(carried);
   }
+}
+
+// The model's own scatter (model_scatter.hpp): replicas of the base optimum; targets whose scatter
+// matters are whitened, the BIC threshold is raised by the replicas' chi-square spread, and the
+// base fit is refined under the new noise model (its Jacobian carried over linearly).
+void account_for_scatter(const FitContext& c, Diagnosis& d) {
+  const auto sets = replica_parameter_sets(d.base.parameters, d.base_variables, c.options.scatter_replicas);
+  std::vector<Eigen::VectorXd> replicas{d.base.residual};
+  for (auto& r : residuals_at(c.model, sets, d.targets, c.options.fit))
+    if (r.size() == d.base.residual.size()) replicas.push_back(std::move(r));
+  d.base_evaluations += static_cast<int>(sets.size());
+  if (replicas.size() < 2) {
+    d.notes.push_back("model scatter not measured: every replica run failed; data noise alone is used");
+    return;
+  }
+  d.scatter = estimate_scatter(replicas, d.targets);
+  std::vector<bool> whitened;
+  std::vector<FitTarget> targets = with_scatter(d.targets, d.scatter, c.options.scatter_threshold, whitened);
+  for (std::size_t t = 0; t < targets.size(); ++t)
+    d.notes.push_back(format(
+        "target '%s': model scatter %.4g (lag-1 correlation %.3f, %d runs) against data noise %.4g: %s",
+        d.targets[t].name.c_str(), d.scatter[t].sigma, d.scatter[t].lag1, d.scatter[t].replicas, d.targets[t].sigma,
+        whitened[t] ? "added to the noise model (AR(1) along the curve), residuals whitened"
+                    : "below the threshold, data noise alone"));
+  d.scatter_in_noise_model = std::find(whitened.begin(), whitened.end(), true) != whitened.end();
+  progress(c.options, c.started,
+           format("model scatter measured from %zu runs%s", replicas.size(),
+                  d.scatter_in_noise_model ? ": residuals whitened, refining the base fit" : ": negligible"));
+  if (!d.scatter_in_noise_model) return;
+  const Eigen::MatrixXd a = renormalisation(d.targets, targets);
+  // Every evaluation draws its own trajectory, so a fit's chi-square carries the spread of the
+  // replicas' chi-squares, and a fit over dozens of evaluations keeps a lucky one: the difference of
+  // two fitted chi-squares is noisy by about sqrt(2) x that spread. An effect must beat the threshold
+  // by two such standard deviations (issue 15: on the s = 4 drum a wall friction of 0.014, physically
+  // nothing, gained delta BIC 17 by trajectory luck and was named).
+  d.scatter_chi_square_sd = chi_square_spread(replicas, a);
+  d.bic_threshold = c.options.bic_threshold + 2.0 * std::sqrt(2.0) * d.scatter_chi_square_sd;
+  d.notes.push_back(format(
+      "the chi-square of %zu runs differing only in round-off spreads by %.3g (standard deviation): "
+      "an effect must improve BIC by %.3g + 2 x sqrt(2) x %.3g = %.3g",
+      replicas.size(), d.scatter_chi_square_sd, c.options.bic_threshold, d.scatter_chi_square_sd, d.bic_threshold));
+  d.targets = std::move(targets);
+  refine_base(c, d, a);
 }
 
 }  // namespace
@@ -475,7 +391,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   progress(options, started,
            format("screening of %zu candidates done: %d evaluations", candidates.size(), d.screening_evaluations));
   auto finish = [&] {
-    d.summary = summarise(d);
+    d.summary = detail::summarise(d);
     d.evaluations = d.base_evaluations + d.screening_evaluations + d.refit_evaluations;
     d.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   };

@@ -33,6 +33,21 @@ std::vector<TargetScatter> estimate_scatter(const std::vector<Eigen::VectorXd>& 
 // Lower Cholesky factor of sigma_data^2 I + scatter.sigma^2 R(scatter.lag1) for n points.
 Eigen::MatrixXd scatter_noise_factor(int points, double sigma_data, const TargetScatter& scatter);
 
+// Parameter sets of the replicas: `base` with every variable moved by k x 1e-7 of its range
+// (k = 1..replicas; downwards where upwards would leave the range): round-off-sized changes, so
+// only the trajectory changes.
+std::vector<identify::ParameterSet> replica_parameter_sets(const identify::ParameterSet& base,
+                                                           const std::vector<FitVariable>& variables, int replicas);
+
+// The targets with the scatter in their noise model where it exceeds `threshold` x the data noise
+// (noise_factor set, sigma the total); the others unchanged. `whitened[t]` tells which.
+std::vector<FitTarget> with_scatter(const std::vector<FitTarget>& targets, const std::vector<TargetScatter>& scatter,
+                                    double threshold, std::vector<bool>& whitened);
+
+// Standard deviation of the replicas' chi-squares after `renormalisation` (r -> A r): how noisy one
+// evaluation's chi-square is at fixed parameters.
+double chi_square_spread(const std::vector<Eigen::VectorXd>& replica_residuals, const Eigen::MatrixXd& renormalisation);
+
 // Linear map from the residual normalised by the old targets to the one of `whitened` (per target:
 // L^-1 sigma_old), block diagonal: r_new = A r_old and J_new = A J_old without a model evaluation.
 Eigen::MatrixXd renormalisation(const std::vector<FitTarget>& old_targets, const std::vector<FitTarget>& whitened);

@@ -1,0 +1,79 @@
+// The verdict in words; see verdict_summary.hpp.
+#include "verdict_summary.hpp"
+
+#include <algorithm>
+
+#include "text_format.hpp"
+
+namespace demfit::diagnose::detail {
+
+std::string tests_text(const ResidualAnalysis& a) {
+  return format(
+      "runs p = %.3g, lag-1 autocorrelation %.3f (p = %.3g), variance ratio %.3g (p = %.3g), "
+      "smooth structure p = %.3g",
+      a.runs.p_value, a.autocorrelation.lag1, a.autocorrelation.p_value, a.variance.ratio, a.variance.p_value,
+      a.smooth.p_value);
+}
+
+std::string summarise(const Diagnosis& d) {
+  const ResidualAnalysis& a = d.base_analysis;
+  std::string where;
+  if (a.worst_region >= 0)
+    where = "; largest misfit in " + a.regions[a.worst_region].label +
+            format(" (RMS/sigma %.3g)", a.regions[a.worst_region].rms_over_sigma);
+  // Each target normalised by its own noise level before pooling (targets may differ in units).
+  const std::string base_numbers =
+      format("base fit RMS/sigma %.3g, max/sigma %.3g", a.rms_over_sigma, a.max_over_sigma);
+  switch (d.verdict) {
+    case Verdict::no_missing_effect:
+      if (d.scatter_in_noise_model)
+        return "No missing effect beyond the model's own scatter: the base residual is structural against the data "
+               "noise alone (" +
+               tests_text(d.base_analysis_data_noise) +
+               ") but consistent with data noise + the run-to-run scatter of the model (" + tests_text(a) + "); " +
+               base_numbers + (d.refits.empty() ? "." : "; no candidate is favoured under that noise.") +
+               " A finer model (less scatter) or more data is needed to detect a smaller effect.";
+      return "No missing effect: the base residual is consistent with noise (" + tests_text(a) + "); " + base_numbers +
+             ".";
+    case Verdict::effect_identified: {
+      const CandidateFit& c = d.refits[d.chosen];
+      return "Missing effect: '" + c.effect + "'" +
+             format(" (delta BIC %.4g > %.3g, delta AICc %.4g). ", c.delta_bic, d.bic_threshold, c.delta_aicc) +
+             "Residual before: " + tests_text(a) + where + ". After: " + tests_text(c.analysis) +
+             format(". RMS/sigma %.3g -> %.3g, max/sigma %.3g -> %.3g (each target by its own noise level).",
+                    a.rms_over_sigma, c.analysis.rms_over_sigma, a.max_over_sigma, c.analysis.max_over_sigma);
+    }
+    case Verdict::ambiguous: {
+      std::string names;
+      for (int i : d.tied)
+        names += (names.empty() ? "'" : ", '") + d.refits[i].effect + "'" +
+                 format(" (delta BIC %.4g)", d.refits[i].delta_bic);
+      return "Ambiguous: the base residual is not noise (" + tests_text(a) + where + "); " + base_numbers +
+             ". Each of " + names +
+             format(
+                 " is favoured over the base by more than %.3g in BIC, and their BICs are within %.3g of each "
+                 "other",
+                 d.bic_threshold, d.bic_threshold) +
+             ": these data cannot tell them apart; no effect is named (add a curve or case that separates them).";
+    }
+    case Verdict::unexplained_structural: {
+      std::string best;
+      if (!d.refits.empty()) {
+        const auto it = std::max_element(d.refits.begin(), d.refits.end(),
+                                         [](const auto& x, const auto& y) { return x.delta_bic < y.delta_bic; });
+        best = " Best candidate '" + it->effect + "'" +
+               format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
+               (it->analysis.structural ? ", residual still structural (" + tests_text(it->analysis) + ")"
+                                        : std::string(", below the criterion")) +
+               ".";
+      } else {
+        best = " No candidate effects were given.";
+      }
+      return "Unexplained structural residual: the base residual is not noise (" + tests_text(a) + where + "); " +
+             base_numbers + "." + best + " No candidate explains it; no effect is named.";
+    }
+  }
+  return "";
+}
+
+}  // namespace demfit::diagnose::detail
