@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 namespace demfit::dem_core {
 
@@ -12,7 +13,9 @@ void use_bounded_spin_waiting(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;  // user's choice
   if (setenv("GOMP_SPINCOUNT", kDefaultSpinCount, 0) != 0) return;
   execv("/proc/self/exe", argv);  // returns only on failure
-  std::perror("demfit: re-executing with GOMP_SPINCOUNT set failed; running with libgomp's default waiting");
+  const std::string what = std::string(argv[0] != nullptr ? argv[0] : "program") +
+                           ": re-executing with GOMP_SPINCOUNT set failed; running with libgomp's default waiting";
+  std::perror(what.c_str());
 }
 
 std::string openmp_waiting_description() {
