@@ -24,11 +24,10 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
+// Runs `command` (stdout discarded) and returns its exit status and stderr (kept in dir).
+CliRun run_command(const std::string& command, const fs::path& dir) {
   const fs::path err = dir / "stderr.txt";
-  const std::string command = std::string("DEMFIT_CACHE_DIR='") + (dir / "cache").string() + "' '" + DEMFIT_EXE + "' " +
-                              arguments + " > /dev/null 2> '" + err.string() + "'";
-  const int raw = std::system(command.c_str());
+  const int raw = std::system((command + " > /dev/null 2> '" + err.string() + "'").c_str());
   CliRun run;
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   std::ifstream in(err);
@@ -36,6 +35,11 @@ CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
   text << in.rdbuf();
   run.error = text.str();
   return run;
+}
+
+CliRun run_demfit(const std::string& arguments, const fs::path& dir) {
+  return run_command(
+      std::string("DEMFIT_CACHE_DIR='") + (dir / "cache").string() + "' '" + DEMFIT_EXE + "' " + arguments, dir);
 }
 
 void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
@@ -113,14 +117,11 @@ namespace {
 // stderr of `demfit --version` with OpenMP's start-up settings displayed (OMP_DISPLAY_ENV is
 // printed by libgomp when it loads, i.e. once per executable image).
 std::string displayed_openmp_environment(const std::string& environment, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose " + environment + " '" +
-                              DEMFIT_EXE + "' --version > /dev/null 2> '" + err.string() + "'";
-  REQUIRE(std::system(command.c_str()) == 0);
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  const CliRun run = run_command("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose " + environment +
+                                     " '" + DEMFIT_EXE + "' --version",
+                                 dir);
+  REQUIRE(run.status == 0);
+  return run.error;
 }
 
 }  // namespace

@@ -33,3 +33,23 @@ execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json 
 if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --effects: unknown effect 'cohesion'")
   message(FATAL_ERROR "an unknown effect must be refused with a one-line error (${rc}): ${err}")
 endif()
+# --scatter-replicas: refused when negative; on the smooth analytic model the measured scatter is
+# below the threshold, so the noise model stays white and the same effect is named.
+execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/bad_replicas
+                        --scatter-replicas -2
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --scatter-replicas: must be >= 0" OR EXISTS ${OUT}/bad_replicas)
+  message(FATAL_ERROR "a negative --scatter-replicas must be refused with a one-line error, nothing written (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/replicas --no-plots
+                        --jobs 2 --scatter-replicas 3
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "stiffening")
+  message(FATAL_ERROR "with --scatter-replicas 3 the hidden stiffening must still be named (${rc}): ${out} ${err}")
+endif()
+file(READ ${OUT}/replicas/diagnosis.json json)
+string(JSON runs GET "${json}" targets 0 model_scatter runs)
+string(JSON whitened GET "${json}" targets 0 whitened)
+if(NOT runs EQUAL 4 OR whitened)
+  message(FATAL_ERROR "expected the scatter measured from 4 runs and left out of the noise model, got runs ${runs}, whitened ${whitened}")
+endif()
