@@ -89,6 +89,7 @@ double peak_rss_bytes() {
 
 int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled) {
   Simulation plain = make_box(particles, shuffled);
+  plain.set_reorder_particles(false);  // stored order: the A/B's reference (reordering is the default)
   plain.set_threads(2);
   plain.run_steps(static_cast<std::uint64_t>(std::clamp(steps, 10L, 50L)));  // warm-up: lists, first transients
   plain.set_wall_motion(0, FixedMotion{});  // requests a list rebuild: the peak includes one

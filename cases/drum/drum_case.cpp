@@ -139,7 +139,7 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
   run.particles = CurveTable{{"particle centres at the end time; drum axis z, gravity -y"},
                              {"x_mm", "y_mm", "z_mm", "radius_mm"},
                              std::vector<std::vector<double>>(4)};
-  for (std::size_t i = 0; i < sim.particle_count(); ++i) {
+  for (std::size_t i : sim.particles().indices_by_id()) {  // the table never shows memory order
     const Vec3 p = sim.positions()[i];
     const double v[4] = {p.x * 1e3, p.y * 1e3, p.z * 1e3, sim.radii()[i] * 1e3};
     for (int c = 0; c < 4; ++c) run.particles.values[c].push_back(v[c]);

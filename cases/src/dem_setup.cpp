@@ -139,7 +139,7 @@ void SnapshotSchedule::maybe_write(const dem_core::Simulation& simulation, doubl
 
 Fill fill_of(const dem_core::Simulation& simulation) {
   Fill fill;
-  for (std::size_t i = 0; i < simulation.particle_count(); ++i) {
+  for (std::size_t i : simulation.particles().indices_by_id()) {
     const auto p = simulation.positions()[i];
     fill.positions.push_back({p.x, p.y, p.z});
     fill.radii.push_back(simulation.radii()[i]);

@@ -91,6 +91,33 @@ TEST_CASE("VTK and CSV snapshots contain every particle with radius and velocity
   CHECK_THROWS_WITH(write_csv_snapshot(sim, "/nonexistent_dir/x.csv"), Catch::Contains("/nonexistent_dir/x.csv"));
 }
 
+TEST_CASE("Snapshots list particles in the order they were added after reordering moved them in memory",
+          "[dem_core][output]") {
+  SimulationSettings settings;
+  settings.reorder_particles = true;  // the default, stated: the test is about it
+  Simulation sim(settings);
+  sim.add_material({1e9, 2500.0, 0.3});
+  // Eight spheres added from far to near along x, each with its own radius: Morton order reverses
+  // them in memory, the files must not.
+  for (int k = 0; k < 8; ++k) sim.add_particle({0.1 * (7 - k), 0, 0}, 1e-3 * (1.0 + 0.1 * k));
+  sim.run_steps(2);
+  REQUIRE(sim.particles().id[0] != 0);  // reordering did move them (else this test proves nothing)
+  const auto path = std::filesystem::temp_directory_path() / "demfit_snapshot_order_test.csv";
+  write_csv_snapshot(sim, path.string());
+  std::istringstream csv(read_all(path));
+  std::string row;
+  std::getline(csv, row);  // header
+  for (int k = 0; k < 8; ++k) {
+    REQUIRE(std::getline(csv, row));
+    std::istringstream fields(row);
+    double x = 0.0, y = 0.0, z = 0.0, radius = 0.0;
+    char comma = 0;
+    fields >> x >> comma >> y >> comma >> z >> comma >> radius;
+    CHECK(radius == Approx(1e-3 * (1.0 + 0.1 * k)).epsilon(1e-8));
+    CHECK(x == Approx(0.1 * (7 - k)).margin(1e-6));
+  }
+}
+
 TEST_CASE("Hertz law: a sphere resting on a rigid plane has the Hertz static overlap", "[dem_core][walls]") {
   // Rigid wall: E* = E/(1 - nu^2), R* = R; m g = 4/3 E* sqrt(R) delta^{3/2}.
   const Material material{1.0e9, 2500.0, 0.3};

@@ -2,7 +2,9 @@
 // Particle state as a structure of arrays: one contiguous array per quantity, indexed by the
 // particle index (the layout of the hot loops). Solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2.
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include "demfit/dem_core/vec3.hpp"
@@ -42,6 +44,15 @@ struct ParticleState {
     f(position), f(velocity), f(angular_velocity), f(force), f(torque);
     f(radius), f(mass), f(inverse_mass), f(inverse_inertia), f(material), f(id);
     f(normal_compliance), f(shear_compliance);
+  }
+
+  /// Particle indices in ascending id: the order of every output (snapshots, particle tables),
+  /// so that files do not depend on where SimulationSettings::reorder_particles put particles.
+  [[nodiscard]] std::vector<std::size_t> indices_by_id() const {
+    std::vector<std::size_t> order(id.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+    return order;
   }
 };
 
