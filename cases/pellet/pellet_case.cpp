@@ -63,6 +63,7 @@ void add_container(dem_core::Simulation& sim, const CaseSpec& spec, double heigh
 Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
+  settings.reorder_particles = detail::kCaseReordering;
   settings.contact.normk = spec.pellet.fill_normk;
   settings.threads = options.threads;
   settings.time_step_factor = kFillTimeStepFactor;
@@ -202,6 +203,7 @@ namespace {
 CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
+  settings.reorder_particles = detail::kCaseReordering;
   settings.threads = options.threads;
   settings.time_step = spec.time_step.value;
   settings.time_step_factor = spec.time_step.factor;
