@@ -116,12 +116,14 @@ nlohmann::json fill_key(const CaseSpec& spec) {
        {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points", "image"}) {
     drum.erase(k);
   }
-  return {{"fill_format", 1},
-          {"particle", full["particle"]},
-          {"contact", full["contact"]},
-          {"wall_contact", full["wall_contact"]},
-          {"time_step_factor", kFillTimeStepFactor},
-          {"drum", drum}};
+  nlohmann::json key = {{"fill_format", 1},
+                        {"particle", full["particle"]},
+                        {"contact", full["contact"]},
+                        {"wall_contact", full["wall_contact"]},
+                        {"time_step_factor", kFillTimeStepFactor},
+                        {"drum", drum}};
+  if (full.contains("numerics")) key["numerics"] = full["numerics"];  // a reordered packing is another fill
+  return key;
 }
 
 namespace {

@@ -40,12 +40,14 @@ nlohmann::json fill_key(const CaseSpec& spec) {
   const nlohmann::json full = to_key_json(spec);
   nlohmann::json pellet = full["pellet"];
   for (const char* k : {"piston_speed", "max_pressure", "max_travel", "unload", "curve_points"}) pellet.erase(k);
-  return {{"fill_format", 1},
-          {"particle", full["particle"]},
-          {"contact", full["contact"]},
-          {"wall_contact", full["wall_contact"]},
-          {"time_step_factor", kFillTimeStepFactor},
-          {"pellet", pellet}};
+  nlohmann::json key = {{"fill_format", 1},
+                        {"particle", full["particle"]},
+                        {"contact", full["contact"]},
+                        {"wall_contact", full["wall_contact"]},
+                        {"time_step_factor", kFillTimeStepFactor},
+                        {"pellet", pellet}};
+  if (full.contains("numerics")) key["numerics"] = full["numerics"];  // a reordered pour is another fill
+  return key;
 }
 
 // Adds the bottom plate (disk at z = 0) and the container wall (cylinder of `height`).
@@ -63,7 +65,7 @@ void add_container(dem_core::Simulation& sim, const CaseSpec& spec, double heigh
 Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
-  settings.reorder_particles = detail::kCaseReordering;
+  settings.reorder_particles = spec.numerics.reorder_particles;
   settings.contact.normk = spec.pellet.fill_normk;
   settings.threads = options.threads;
   settings.time_step_factor = kFillTimeStepFactor;
@@ -203,7 +205,7 @@ namespace {
 CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
-  settings.reorder_particles = detail::kCaseReordering;
+  settings.reorder_particles = spec.numerics.reorder_particles;
   settings.threads = options.threads;
   settings.time_step = spec.time_step.value;
   settings.time_step_factor = spec.time_step.factor;

@@ -95,6 +95,12 @@ TimeStepSpec parse_time_step(const json& j, TimeStepSpec t) {
   return t;
 }
 
+NumericsSpec parse_numerics(const json& j, NumericsSpec n) {
+  require_known_keys(j, "numerics", {"reorder_particles"});
+  n.reorder_particles = read_bool(j, "numerics", "reorder_particles", n.reorder_particles);
+  return n;
+}
+
 OutputSpec parse_output(const json& j, OutputSpec o) {
   const char* p = "output";
   require_known_keys(j, p, {"snapshot_times", "progress_interval"});
@@ -160,9 +166,9 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
 }  // namespace
 
 CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir) {
-  require_known_keys(
-      document, "",
-      {"case", "description", "particle", "contact", "wall_contact", "time_step", "output", "pellet", "drum"});
+  require_known_keys(document, "",
+                     {"case", "description", "particle", "contact", "wall_contact", "time_step", "output", "numerics",
+                      "pellet", "drum"});
   CaseSpec spec;
   if (!document.contains("case")) throw std::runtime_error("'case' is missing: set \"case\": " + case_kind_names());
   const std::string kind = read_string(document, "", "case", "");
@@ -192,6 +198,7 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
   }
   spec.time_step = parse_time_step(child_object(document, "", "time_step"), spec.time_step);
   spec.output = parse_output(child_object(document, "", "output"), spec.output);
+  spec.numerics = parse_numerics(child_object(document, "", "numerics"), spec.numerics);
   switch (spec.kind) {  // the kind's own section (cases/<kind>/<kind>_section.cpp)
     case CaseKind::pellet_compression:
       spec.pellet = detail::parse_pellet_section(child_object(document, "", "pellet"), spec.pellet);
@@ -234,6 +241,7 @@ json to_json(const CaseSpec& s) {
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times}, {"progress_interval", s.output.progress_interval}};
+  j["numerics"] = {{"reorder_particles", s.numerics.reorder_particles}};
   switch (s.kind) {
     case CaseKind::pellet_compression:
       j["pellet"] = detail::pellet_section_json(s.pellet);
@@ -255,6 +263,8 @@ json to_key_json(const CaseSpec& s) {
     const std::string section = path.substr(0, dot);
     if (j.contains(section)) j[section].erase(path.substr(dot + 1));
   }
+  // Insertion order (the default) leaves the keys, and so the cached fills and results, as before.
+  if (!s.numerics.reorder_particles) j.erase("numerics");
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());

@@ -16,7 +16,7 @@ dem_core::SimulationSettings simulation_settings(const CaseSpec& spec) {
   dem_core::SimulationSettings settings;
   settings.law = spec.law;
   settings.contact = spec.contact;
-  settings.reorder_particles = kCaseReordering;
+  settings.reorder_particles = spec.numerics.reorder_particles;
   return settings;
 }
 

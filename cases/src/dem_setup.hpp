@@ -17,13 +17,6 @@ inline constexpr double kFillTimeStepFactor = 0.15;
 
 dem_core::Material to_material(const MaterialSpec& spec);
 
-/// The shipped cases keep their particles in insertion order (dem_core reorders by default): a
-/// reordered run is another round-off realisation of a chaotic flow, and the published figures
-/// are realisation-dependent at the level measured in issue 16's note (Table 3 surface error
-/// ratio 0.37 stored, 0.46 with the rotation reordered, 0.61 with the fills reordered too; the
-/// bench's round-off check: reordering moves the s = 4 torque like a 4-ulp nudge of one particle).
-inline constexpr bool kCaseReordering = false;
-
 /// Law, particle contact parameters and particle order of the spec; callers set gravity, threads
 /// and steps.
 dem_core::SimulationSettings simulation_settings(const CaseSpec& spec);

@@ -50,6 +50,20 @@ TEST_CASE("Unknown keys, negative radii and wrong types are rejected with the do
       std::string::npos);
 }
 
+TEST_CASE("numerics.reorder_particles is off unless the case asks, and only a case that asks gets other cache keys") {
+  const CaseSpec plain = parse_case(json{{"case", "rotary_drum"}});
+  CHECK_FALSE(plain.numerics.reorder_particles);
+  CHECK_FALSE(to_key_json(plain).contains("numerics"));  // fills and results cached before stay valid
+  const CaseSpec reordered = parse_case(json{{"case", "rotary_drum"}, {"numerics", {{"reorder_particles", true}}}});
+  CHECK(reordered.numerics.reorder_particles);
+  CHECK(to_key_json(reordered) != to_key_json(plain));
+  CHECK(to_json(parse_case(to_json(reordered))) == to_json(reordered));
+  CHECK(message_of(json{{"case", "rotary_drum"}, {"numerics", {{"reorder", true}}}}).find("numerics.reorder") !=
+        std::string::npos);
+  CHECK(message_of(json{{"case", "rotary_drum"}, {"numerics", {{"reorder_particles", "yes"}}}})
+            .find("numerics.reorder_particles") != std::string::npos);
+}
+
 TEST_CASE("FRICD defaults to FRICS when the file leaves it out (LS-DYNA default)") {
   const CaseSpec spec = parse_case(json{{"case", "pellet_compression"}, {"contact", {{"frics", 0.4}}}});
   CHECK(spec.contact.fricd == 0.4);
