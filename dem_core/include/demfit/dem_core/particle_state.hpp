@@ -1,8 +1,8 @@
 #pragma once
 // Particle state as a structure of arrays: one contiguous array per quantity, indexed by the
 // particle index (the layout of the hot loops). Solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2.
-#include <cstddef>
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <numeric>
 #include <vector>

@@ -50,8 +50,9 @@ struct SimulationSettings {
   /// memory-bound). All per-particle arrays and contact histories follow the permutation; results
   /// stay deterministic and identical for any thread count, but particle INDICES then change at
   /// rebuilds: identify particles by ParticleState::id (outputs are written in id order). On by
-  /// default: on the issue-16 drum it measured x1.10 on 1 thread and x1.37 on 2 (bench_dem --only
-  /// drum, 2026-12-02); switch it off to follow a particle by its index.
+  /// default: on the issue-16 drum x1.51 on 2 threads and nothing on 1 (bench/dem_core/measured/
+  /// drum_2026-12-02_reorder_default.txt), 3.3x less cost growth from 1e4 to 1e6 particles;
+  /// switch it off to follow a particle by its index.
   bool reorder_particles = true;
 };
 
