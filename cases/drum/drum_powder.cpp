@@ -110,20 +110,9 @@ std::size_t add_drum(dem_core::Simulation& sim, const CaseSpec& spec, double ome
 
 // to_key_json: effects at their off values leave the key (and so the cached fill) as before them.
 nlohmann::json fill_key(const CaseSpec& spec) {
-  const nlohmann::json full = to_key_json(spec);
-  nlohmann::json drum = full["drum"];
-  for (const char* k :
-       {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points", "image"}) {
-    drum.erase(k);
-  }
-  nlohmann::json key = {{"fill_format", 1},
-                        {"particle", full["particle"]},
-                        {"contact", full["contact"]},
-                        {"wall_contact", full["wall_contact"]},
-                        {"time_step_factor", kFillTimeStepFactor},
-                        {"drum", drum}};
-  if (full.contains("numerics")) key["numerics"] = full["numerics"];  // a reordered packing is another fill
-  return key;
+  return detail::fill_key_of(
+      spec, "drum",
+      {"rpm", "duration", "torque_interval", "surface_window", "surface_snapshots", "surface_points", "image"});
 }
 
 namespace {

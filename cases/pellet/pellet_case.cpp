@@ -37,17 +37,7 @@ double container_radius(const CaseSpec& spec) { return 0.5 * spec.pellet.contain
 // Everything the settled fill depends on; the cache key.
 // to_key_json: effects at their off values leave the key (and so the cached fill) as before them.
 nlohmann::json fill_key(const CaseSpec& spec) {
-  const nlohmann::json full = to_key_json(spec);
-  nlohmann::json pellet = full["pellet"];
-  for (const char* k : {"piston_speed", "max_pressure", "max_travel", "unload", "curve_points"}) pellet.erase(k);
-  nlohmann::json key = {{"fill_format", 1},
-                        {"particle", full["particle"]},
-                        {"contact", full["contact"]},
-                        {"wall_contact", full["wall_contact"]},
-                        {"time_step_factor", kFillTimeStepFactor},
-                        {"pellet", pellet}};
-  if (full.contains("numerics")) key["numerics"] = full["numerics"];  // a reordered pour is another fill
-  return key;
+  return detail::fill_key_of(spec, "pellet", {"piston_speed", "max_pressure", "max_travel", "unload", "curve_points"});
 }
 
 // Adds the bottom plate (disk at z = 0) and the container wall (cylinder of `height`).

@@ -20,6 +20,20 @@ dem_core::SimulationSettings simulation_settings(const CaseSpec& spec) {
   return settings;
 }
 
+nlohmann::json fill_key_of(const CaseSpec& spec, const char* section, std::initializer_list<const char*> run_only) {
+  const nlohmann::json full = to_key_json(spec);
+  nlohmann::json kind_section = full[section];
+  for (const char* k : run_only) kind_section.erase(k);
+  nlohmann::json key = {{"fill_format", 1},
+                        {"particle", full["particle"]},
+                        {"contact", full["contact"]},
+                        {"wall_contact", full["wall_contact"]},
+                        {"time_step_factor", kFillTimeStepFactor},
+                        {section, kind_section}};
+  if (full.contains("numerics")) key["numerics"] = full["numerics"];  // a reordered settle is another fill
+  return key;
+}
+
 dem_core::Material to_material(const MaterialSpec& spec) {
   dem_core::Material m;
   m.bulk_modulus = spec.bulk_modulus();

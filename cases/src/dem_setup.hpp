@@ -1,5 +1,6 @@
 #pragma once
 // Internal: CaseSpec pieces -> dem_core inputs, and the evaluated-parameter overrides.
+#include <initializer_list>
 #include <string>
 
 #include "demfit/cases/case_spec.hpp"
@@ -16,6 +17,11 @@ namespace demfit::cases::detail {
 inline constexpr double kFillTimeStepFactor = 0.15;
 
 dem_core::Material to_material(const MaterialSpec& spec);
+
+/// The fill cache key of a case: everything the settled fill depends on (to_key_json, so effects
+/// at their off values and insertion order leave it as before them), with the kind's `section`
+/// minus its `run_only` keys (the measured stage's settings, which do not change the fill).
+nlohmann::json fill_key_of(const CaseSpec& spec, const char* section, std::initializer_list<const char*> run_only);
 
 /// Law, particle contact parameters and particle order of the spec; callers set gravity, threads
 /// and steps.
