@@ -1,0 +1,51 @@
+#!/bin/bash
+# Issue 16: one full-resolution (s = 1) run's wall time on 2 threads, before and after particle
+# reordering (numerics.reorder_particles, docs/cases.md), for
+#   - the paper's drum (cases/rotary_drum.json: s = 1, ~9,000 spheres, 3 s at 60 rpm), and
+#   - the GranuDrum MCC drum (cases/granudrum_mcc.json at s = 1: 29,185 spheres, 1.7 s at 15 rpm,
+#     the source's published frics 0.561 and fricr 0.293).
+# Each run is cold: its own empty DEMFIT_CACHE_DIR, so the time includes packing and densifying the
+# fill (the reordered run packs its own fill: its cache key differs). One run per variant (a
+# GranuDrum run takes tens of minutes); the load average is printed beside each figure.
+# Time it only when nothing else runs (README "Performance").
+# Usage: bench/dem_core/s1_wall_times.sh BUILD_DIR OUT_DIR [paper|granudrum|all (all)]
+set -euo pipefail
+demfit="$(cd "$1" && pwd)/apps/demfit"
+out="$2"
+which="${3:-all}"
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+
+run_case() {  # label case-file order(stored|reordered) [--set ...]
+  local label="$1" case_file="$2" order="$3"
+  shift 3
+  local dir="$out/$label-$order"
+  local cache="$out/cache-$label-$order"
+  rm -rf "$dir" "$cache"
+  mkdir -p "$cache"
+  local reorder=false
+  [ "$order" = reordered ] && reorder=true
+  local load_before start end
+  load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
+  start="$(date +%s.%N)"
+  DEMFIT_CACHE_DIR="$cache" "$demfit" simulate "$case_file" --threads 2 --out "$dir" \
+    --set "numerics.reorder_particles=$reorder" "$@" >"$out/$label-$order.log" 2>&1
+  end="$(date +%s.%N)"
+  printf '%-10s %-9s %8.1f s wall, 2 threads  [load before %s, after %s]\n' "$label" "$order" \
+    "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$load_before" "$(cut -d' ' -f1-3 /proc/loadavg)"
+  # The run's own split and what it computed (another order is another round-off realisation).
+  grep -E "particles  |fill wall time|rotation wall time|dynamic angle of repose|mean drive torque" "$dir/summary.txt" |
+    sed -E 's/  +/ /g; s/^/    /'
+}
+
+echo "s = 1 wall times (demfit simulate --threads 2, cold cache: fill included), $(date -u +%F)"
+if [ "$which" = paper ] || [ "$which" = all ]; then
+  for order in stored reordered; do run_case paper "$root/cases/rotary_drum.json" "$order"; done
+fi
+if [ "$which" = granudrum ] || [ "$which" = all ]; then
+  for order in stored reordered; do
+    run_case granudrum "$root/cases/granudrum_mcc.json" "$order" --set drum.scale_factor=1 \
+      --set frics=0.561 --set fricr=0.293
+  done
+fi
