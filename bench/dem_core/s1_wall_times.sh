@@ -8,7 +8,10 @@
 # fill (the reordered run packs its own fill: its cache key differs). One run per variant (a
 # GranuDrum run takes tens of minutes); the load average is printed beside each figure.
 # Time it only when nothing else runs (README "Performance").
-# Usage: bench/dem_core/s1_wall_times.sh BUILD_DIR OUT_DIR [paper|granudrum|all (all)]
+# After both orders of a case, the RMS difference of their free surfaces (common x-range, linear
+# interpolation at 400 points) says how far a round-off realisation moves the result.
+# Usage: bench/dem_core/s1_wall_times.sh BUILD_DIR OUT_DIR [paper|granudrum|all (all)|compare]
+# (compare: only the surface differences of the runs already in OUT_DIR)
 set -euo pipefail
 demfit="$(cd "$1" && pwd)/apps/demfit"
 out="$2"
@@ -39,13 +42,39 @@ run_case() {  # label case-file order(stored|reordered) [--set ...]
     sed -E 's/  +/ /g; s/^/    /'
 }
 
+surface_difference() {  # label csv-name: RMS and max |dz| [mm] between the stored and reordered profiles
+  local a="$out/$1-stored/$2" b="$out/$1-reordered/$2"
+  [ -f "$a" ] && [ -f "$b" ] || return 0
+  awk -F, -v label="$1" -v name="$2" '
+    FNR == 1 { file++ } /^#/ || /^x_mm/ { next }
+    { n[file]++; x[file, n[file]] = $1; z[file, n[file]] = $2 }
+    function at(f, xq,   k, t) {
+      for (k = 2; k <= n[f]; k++)
+        if (x[f, k] >= xq) { t = (xq - x[f, k - 1]) / (x[f, k] - x[f, k - 1]); return z[f, k - 1] + t * (z[f, k] - z[f, k - 1]) }
+      return z[f, n[f]]
+    }
+    END {
+      lo = x[1, 1] > x[2, 1] ? x[1, 1] : x[2, 1]; hi = x[1, n[1]] < x[2, n[2]] ? x[1, n[1]] : x[2, n[2]]
+      for (k = 0; k < 400; k++) { xq = lo + (hi - lo) * k / 399; d = at(1, xq) - at(2, xq); s += d * d; if (d < 0) d = -d; if (d > m) m = d }
+      printf "%-10s %s stored vs reordered: RMS %.3f mm, max %.3f mm over x %.1f..%.1f mm\n", label, name, sqrt(s / 400), m, lo, hi
+    }' "$a" "$b"
+}
+
+if [ "$which" = compare ]; then
+  surface_difference paper free_surface.csv
+  surface_difference granudrum free_surface_image.csv
+  exit 0
+fi
+
 echo "s = 1 wall times (demfit simulate --threads 2, cold cache: fill included), $(date -u +%F)"
 if [ "$which" = paper ] || [ "$which" = all ]; then
   for order in stored reordered; do run_case paper "$root/cases/rotary_drum.json" "$order"; done
+  surface_difference paper free_surface.csv
 fi
 if [ "$which" = granudrum ] || [ "$which" = all ]; then
   for order in stored reordered; do
     run_case granudrum "$root/cases/granudrum_mcc.json" "$order" --set drum.scale_factor=1 \
       --set frics=0.561 --set fricr=0.293
   done
+  surface_difference granudrum free_surface_image.csv
 fi
