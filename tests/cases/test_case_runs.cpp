@@ -59,7 +59,7 @@ TEST_CASE(
   check_curves_as_declared(spec, result);
   const CurveTable& history = result.tables.at("history");
   REQUIRE(history.columns.at(5) == "bottom_force_N");
-  const double mass = 120 * spec.material.density * sphere_volume(spec.material.radius);
+  const double mass = spec.pellet.particle_count * spec.material.density * sphere_volume(spec.material.radius);
   // Quasi-static loading: piston force + weight = bottom force at the end of loading (2 %).
   const auto& piston = history.values[4];
   const auto& bottom = history.values[5];
@@ -105,10 +105,13 @@ TEST_CASE("A pellet case that asks for reordered particles runs another realisat
   CHECK(a.curves.at("pressure_volume").y != b.curves.at("pressure_volume").y);
   // ... with the same statics: piston force + weight = bottom force at the end of loading (2 %).
   const CurveTable& history = b.tables.at("history");
+  REQUIRE(history.columns.at(4) == "piston_force_N");
+  REQUIRE(history.columns.at(5) == "bottom_force_N");
   const auto& piston = history.values[4];
   const auto& bottom = history.values[5];
   const auto end = static_cast<std::size_t>(std::max_element(piston.begin(), piston.end()) - piston.begin());
-  const double mass = 120 * reordered.material.density * sphere_volume(reordered.material.radius);
+  const double mass =
+      reordered.pellet.particle_count * reordered.material.density * sphere_volume(reordered.material.radius);
   CHECK(bottom[end] == Approx(piston[end] + mass * 9.81).epsilon(0.02));
 }
 
