@@ -105,9 +105,10 @@ struct OutputSpec {
 };
 
 // How the kernel runs, not what it simulates. "numerics.reorder_particles": Morton order at list
-// rebuilds (dem_core's default; x1.5 on 2 threads on the issue-16 drum, x2.1-6.4 past the cache at
-// 1e5-1e6 particles, bench_dem --only scaling). Off in cases by default: a reordered run is another round-off
-// realisation of the flow, and the shipped figures (Tables 1 and 3) were made in insertion order.
+// rebuilds (dem_core's default; x1.5 on 2 threads on the issue-16 drum, x2.1-6.4 past the cache
+// at 1e5-1e6 particles, bench_dem --only scaling). Off in cases by default: a reordered run is
+// another round-off realisation of the flow, and the shipped figures (Tables 1 and 3) were made
+// in insertion order.
 struct NumericsSpec {
   bool reorder_particles = false;
 };
