@@ -133,6 +133,8 @@ nlohmann::json to_json(const Diagnosis& d) {
                          {"score", s.score},
                          {"p_value", s.p_value},
                          {"fraction_explained", s.fraction_explained},
+                         {"absorbed_by_base", s.absorbed_by_base},
+                         {"full_range_gain", s.full_range_gain},
                          {"evaluated", s.evaluated}});
   nlohmann::json refits = nlohmann::json::array();
   for (const auto& r : d.refits)
@@ -220,10 +222,15 @@ std::string markdown_report(const Diagnosis& d) {
       md << format(" | %.3g | %.3g", r.analysis.regions[g].rms_over_sigma, r.analysis.regions[g].max_over_sigma);
     md << " |\n";
   }
-  md << "\n## Screening (score test at the base optimum)\n\n| effect | score | p | share of residual SS "
-        "|\n|---|---|---|---|\n";
+  md << "\n## Screening (score test at the base optimum)\n\nabsorbed by base: share of the effect's change of the "
+        "curves that the base variables reproduce; gain at full range: chi-square the rest of it could bring at the "
+        "far "
+        "end of the effect's range (below the threshold: undetectable with these data).\n\n"
+        "| effect | score | p | share of residual SS | absorbed by base | gain at full range |\n"
+        "|---|---|---|---|---|---|\n";
   for (const auto& s : d.screening)
-    md << format("| %s | %.4g | %.3g | %.3g |%s\n", s.effect.c_str(), s.score, s.p_value, s.fraction_explained,
+    md << format("| %s | %.4g | %.3g | %.3g | %.3g | %.4g |%s\n", s.effect.c_str(), s.score, s.p_value,
+                 s.fraction_explained, s.absorbed_by_base, s.full_range_gain,
                  s.evaluated ? "" : " (a perturbed run failed)");
   md << "\n## Re-identification and criterion (threshold: delta BIC > " << format("%.3g", d.bic_threshold)
      << " and residual = noise)\n\n| model | parameters | chi-square | BIC | delta BIC | AICc | delta AICc | named |\n"

@@ -75,9 +75,14 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
     s.score = (S_perp * beta).squaredNorm();
     s.p_value = chi_square_upper_p(s.score, static_cast<double>(m));
     s.fraction_explained = r.squaredNorm() > 0.0 ? s.score / r.squaredNorm() : 0.0;
+    s.absorbed_by_base =
+        S.squaredNorm() > 0.0 ? std::clamp(1.0 - S_perp.squaredNorm() / S.squaredNorm(), 0.0, 1.0) : 0.0;
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto& e = c.parameters[j];
       s.start.push_back(std::clamp(e.off_value + beta(j), e.lower, e.upper));
+      const double reach =
+          steps[k - static_cast<std::size_t>(m - j)] > 0.0 ? e.upper - e.off_value : e.lower - e.off_value;
+      s.full_range_gain = std::max(s.full_range_gain, S_perp.col(j).squaredNorm() * reach * reach);
     }
     scores.push_back(s);
   }

@@ -15,7 +15,35 @@ std::string tests_text(const ResidualAnalysis& a) {
       a.smooth.p_value);
 }
 
+namespace {
+
+// Screened candidates that could not pass the criterion even at the far end of their range (the
+// part of their change the base variables cannot reproduce gains less chi-square than the
+// threshold): silence about them is not evidence of absence, and the user should hear so.
+std::string undetectable_text(const Diagnosis& d) {
+  std::string names;
+  for (const auto& s : d.screening)
+    if (s.evaluated && s.full_range_gain < d.bic_threshold)
+      names += (names.empty() ? "'" : ", '") + s.effect + "'" +
+               format(" (gain %.3g, %.0f %% of its change absorbed)", s.full_range_gain, 100.0 * s.absorbed_by_base);
+  if (names.empty()) return "";
+  return " Undetectable with these data: " + names +
+         format(
+             " — even at the far end of its range (the screening step extrapolated linearly), the part of the change "
+             "the base variables cannot reproduce gains "
+             "less chi-square than the threshold %.3g, so these data can neither show nor exclude it; a curve or case "
+             "where it acts differently from the base variables would.",
+             d.bic_threshold);
+}
+
+}  // namespace
+
 std::string summarise(const Diagnosis& d) {
+  const std::string verdict = summarise_verdict(d);
+  return d.verdict == Verdict::effect_identified ? verdict : verdict + undetectable_text(d);
+}
+
+std::string summarise_verdict(const Diagnosis& d) {
   const ResidualAnalysis& a = d.base_analysis;
   std::string where;
   if (a.worst_region >= 0)

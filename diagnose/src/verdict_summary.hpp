@@ -10,7 +10,11 @@ namespace demfit::diagnose::detail {
 // "runs p = ..., lag-1 autocorrelation ..., variance ratio ..., smooth structure p = ..."
 std::string tests_text(const ResidualAnalysis& analysis);
 
-// The verdict in words: what was found, the residual tests before and after, the numbers.
+// The verdict in words: what was found, the residual tests before and after, the numbers; when no
+// effect is named, also the candidates these data cannot detect (ScreeningScore::full_range_gain).
 std::string summarise(const Diagnosis& diagnosis);
+
+// The verdict alone (summarise without the note on undetectable candidates).
+std::string summarise_verdict(const Diagnosis& diagnosis);
 
 }  // namespace demfit::diagnose::detail

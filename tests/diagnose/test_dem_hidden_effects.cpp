@@ -192,8 +192,8 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
               d.base_analysis.autocorrelation.p_value, d.base_analysis.variance.ratio, d.base_analysis.variance.p_value,
               d.base_analysis.smooth.p_value, d.base_analysis.structural ? "structure" : "noise");
   for (const auto& sc : d.screening)
-    std::printf("  screening %-20s score %10.4g  share %.3f%s\n", sc.effect.c_str(), sc.score, sc.fraction_explained,
-                sc.evaluated ? "" : "  (perturbed run failed)");
+    std::printf("  screening %-20s score %10.4g  share %.3f  absorbed by base %.3f%s\n", sc.effect.c_str(), sc.score,
+                sc.fraction_explained, sc.absorbed_by_base, sc.evaluated ? "" : "  (perturbed run failed)");
   auto values = [](const FitResult& f, const std::vector<FitVariable>& base, const std::string& extra) {
     std::string text;
     for (const auto& v : base) text += v.name + " " + std::to_string(f.parameters.at(v.name)) + ", ";
@@ -292,7 +292,8 @@ TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the
 // the candidates' gains (delta BIC -8 to 21) are within that spread. So at s = 4 the contract is:
 // never another effect's name; and when nothing is named, say it is below the model's own scatter
 // (not "no missing effect" against the data noise alone, nor "unexplained"). Issue 15's target
-// (the right name or "ambiguous" on every seed) needs a model with less scatter than this one.
+// (the right name or "ambiguous" on every seed) needs less scatter and, as the FRICR 0.25 test below
+// shows, a second curve: one free surface cannot separate rolling from sliding friction.
 // ~130-150 s per seed on 2 cores; hidden ([.]), run it by name.
 TEST_CASE("A hidden rolling friction in an s = 4 drum is never misnamed and is reported as below the model's scatter",
           "[.][slow][drum]") {
@@ -318,5 +319,31 @@ TEST_CASE("A hidden rolling friction in an s = 4 drum is never misnamed and is r
       for (int i : d.tied) listed = listed || d.refits[i].effect == "rolling_resistance";
       CHECK(listed);  // ambiguous between the true effect and another, not between two wrong ones
     }
+  }
+}
+
+// The same drum with a larger rolling friction (FRICR 0.25; the rolling_resistance candidate's
+// range is 0-0.3). Measured 2026-12-02 (seeds 31, 32): the base fit with FRICS alone lands at FRICS
+// 0.49-0.50 (truth 0.3) and leaves RMS/sigma_true 2.2-2.5, which is the model's own scatter (0.90-0.97
+// mm against the data's 0.46 mm); the rolling_resistance re-fit goes to FRICR 0.015 with FRICS 0.51.
+// One free surface cannot tell rolling from sliding friction: more sliding friction raises the
+// surface the same way. So issue 15's "right name or ambiguous" cannot be reached from this data;
+// the contract here is that the degeneracy is reported as it is (sliding friction absorbs it, no
+// other effect named). Hidden ([.]), ~2-4 min per seed on 2 cores.
+TEST_CASE(
+    "A larger hidden rolling friction in an s = 4 drum surface is absorbed by the sliding friction and not misnamed",
+    "[.][slow][drum]") {
+  for (std::uint64_t seed = 31; seed <= 32; ++seed) {
+    Scenario s =
+        drum_scenario("drum, hidden rolling friction 0.25, seed " + std::to_string(seed), {{"fricr", 0.25}}, seed);
+    s.variables = {{"frics", 0.1, 0.8, 0.5, false, 1.0}};
+    s.truth["fricr"] = 0.25;
+    s.noise_given = true;
+    const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
+    const Diagnosis& d = o.diagnosis;
+    INFO("seed " << seed << ": " << d.summary);
+    const bool named = d.verdict == Verdict::effect_identified;
+    CHECK_FALSE((named && d.refits[d.chosen].effect != "rolling_resistance"));
+    if (!named) CHECK(d.base.parameters.at("frics") > 0.4);  // the sliding friction took the rolling friction's part
   }
 }

@@ -265,3 +265,23 @@ TEST_CASE("A curve-mapping target is refused with a one-line message naming the 
   CHECK_THROWS_WITH(run_diagnosis(spec, model, analytic_effect_candidates(), DiagnoseOptions{}),
                     Catch::Contains("target 'response'") && Catch::Contains("use \"mse\""));
 }
+
+// Independent reference: projecting x^2 and -(x-0.7)+/0.3 on the base sensitivities at the true
+// base values (1 - e^{-3x}, x e^{-3x}, x; 101 stations) leaves 0.008 % and 3.7 % of their squared
+// norm (Gram-Schmidt, computed outside demfit), i.e. absorbed shares 0.99992 and 0.963.
+TEST_CASE("A candidate that cannot pass the criterion even at the end of its range is reported as undetectable") {
+  std::vector<EffectCandidate> candidates = analytic_effect_candidates();
+  candidates.erase(candidates.begin());     // toe_shift
+  candidates[0].parameters[0].lower = 0.0;  // stiffening: at most 1e-4 x^2, far below the noise
+  candidates[0].parameters[0].upper = 1e-4;
+  const Diagnosis d = diagnose_hidden("", 0.0, 31, candidates);
+  INFO(d.summary);
+  REQUIRE(d.screening.size() == 2);
+  CHECK(d.screening[0].absorbed_by_base == Approx(0.99992).margin(0.001));
+  CHECK(d.screening[1].absorbed_by_base == Approx(0.963).margin(0.02));
+  CHECK(d.screening[0].full_range_gain < d.bic_threshold);
+  CHECK(d.screening[1].full_range_gain > d.bic_threshold);
+  CHECK(d.verdict == Verdict::no_missing_effect);
+  CHECK(d.summary.find("Undetectable with these data: 'stiffening'") != std::string::npos);
+  CHECK(d.summary.find("'yield_drop' (gain") == std::string::npos);
+}
