@@ -224,8 +224,7 @@ std::string markdown_report(const Diagnosis& d) {
   }
   md << "\n## Screening (score test at the base optimum)\n\nabsorbed by base: share of the effect's change of the "
         "curves that the base variables reproduce; gain at full range: chi-square the rest of it could bring at the "
-        "far "
-        "end of the effect's range (below the threshold: undetectable with these data).\n\n"
+        "far end of the effect's range (below the threshold: undetectable with these data).\n\n"
         "| effect | score | p | share of residual SS | absorbed by base | gain at full range |\n"
         "|---|---|---|---|---|---|\n";
   for (const auto& s : d.screening)

@@ -59,6 +59,7 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
     s.effect = c.name;
     const Eigen::Index m = static_cast<Eigen::Index>(c.parameters.size());
     Eigen::MatrixXd S(r.size(), m);
+    const std::size_t first = k;  // this candidate's entries in sets/steps/rs
     for (Eigen::Index j = 0; j < m; ++j, ++k) {
       if (rs[k].size() != r.size()) {
         s.evaluated = false;
@@ -80,8 +81,9 @@ std::vector<ScreeningScore> screen_candidates(const identify::Model& model, cons
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto& e = c.parameters[j];
       s.start.push_back(std::clamp(e.off_value + beta(j), e.lower, e.upper));
+      // From the off value to the far end of the range, on the side the screening stepped to.
       const double reach =
-          steps[k - static_cast<std::size_t>(m - j)] > 0.0 ? e.upper - e.off_value : e.lower - e.off_value;
+          steps[first + static_cast<std::size_t>(j)] > 0.0 ? e.upper - e.off_value : e.lower - e.off_value;
       s.full_range_gain = std::max(s.full_range_gain, S_perp.col(j).squaredNorm() * reach * reach);
     }
     scores.push_back(s);

@@ -36,13 +36,7 @@ std::string undetectable_text(const Diagnosis& d) {
              d.bic_threshold);
 }
 
-}  // namespace
-
-std::string summarise(const Diagnosis& d) {
-  const std::string verdict = summarise_verdict(d);
-  return d.verdict == Verdict::effect_identified ? verdict : verdict + undetectable_text(d);
-}
-
+// The verdict alone, without the note on undetectable candidates.
 std::string summarise_verdict(const Diagnosis& d) {
   const ResidualAnalysis& a = d.base_analysis;
   std::string where;
@@ -102,6 +96,13 @@ std::string summarise_verdict(const Diagnosis& d) {
     }
   }
   return "";
+}
+
+}  // namespace
+
+std::string summarise(const Diagnosis& d) {
+  const std::string verdict = summarise_verdict(d);
+  return d.verdict == Verdict::effect_identified ? verdict : verdict + undetectable_text(d);
 }
 
 }  // namespace demfit::diagnose::detail

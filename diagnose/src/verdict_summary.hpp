@@ -14,7 +14,4 @@ std::string tests_text(const ResidualAnalysis& analysis);
 // effect is named, also the candidates these data cannot detect (ScreeningScore::full_range_gain).
 std::string summarise(const Diagnosis& diagnosis);
 
-// The verdict alone (summarise without the note on undetectable candidates).
-std::string summarise_verdict(const Diagnosis& diagnosis);
-
 }  // namespace demfit::diagnose::detail

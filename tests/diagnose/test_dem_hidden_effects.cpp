@@ -192,8 +192,9 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
               d.base_analysis.autocorrelation.p_value, d.base_analysis.variance.ratio, d.base_analysis.variance.p_value,
               d.base_analysis.smooth.p_value, d.base_analysis.structural ? "structure" : "noise");
   for (const auto& sc : d.screening)
-    std::printf("  screening %-20s score %10.4g  share %.3f  absorbed by base %.3f%s\n", sc.effect.c_str(), sc.score,
-                sc.fraction_explained, sc.absorbed_by_base, sc.evaluated ? "" : "  (perturbed run failed)");
+    std::printf("  screening %-20s score %10.4g  share %.3f  absorbed by base %.3f  gain at full range %.4g%s\n",
+                sc.effect.c_str(), sc.score, sc.fraction_explained, sc.absorbed_by_base, sc.full_range_gain,
+                sc.evaluated ? "" : "  (perturbed run failed)");
   auto values = [](const FitResult& f, const std::vector<FitVariable>& base, const std::string& extra) {
     std::string text;
     for (const auto& v : base) text += v.name + " " + std::to_string(f.parameters.at(v.name)) + ", ";
