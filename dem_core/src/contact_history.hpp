@@ -40,26 +40,28 @@ void carry_pair_histories(const PairRebuild& r, std::vector<History>& history) {
   history.assign(pairs, History{});
   if (old_history.empty() || r.old.particle_count() != r.list.particle_count()) return;
   // Look each new pair up in the old list (by old indices when the particles were reordered).
-  const auto first = r.list.first();
+  const auto rows = r.list.row_offsets();
   const auto second = r.list.second();
   const bool reordered = !r.order.empty();
-  const auto count = static_cast<std::int64_t>(pairs);
+  const auto count = static_cast<std::int64_t>(r.list.particle_count());
 #pragma omp parallel for schedule(static) num_threads(r.threads) if (r.threads > 1)
-  for (std::int64_t kk = 0; kk < count; ++kk) {
-    const auto k = static_cast<std::size_t>(kk);
-    std::size_t a = first[k], b = second[k];
-    if (reordered) {
-      a = r.order[a];
-      b = r.order[b];
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      std::size_t a = i, b = second[k];
+      if (reordered) {
+        a = r.order[a];
+        b = r.order[b];
+      }
+      // The tangential elongation is that of the first particle relative to the second: a pair
+      // whose members swapped roles carries it negated (exact); the rest of the history is scalar.
+      const bool swapped = a > b;
+      const std::size_t old_k = swapped ? r.old.find(b, a) : r.old.find(a, b);
+      if (old_k == NeighborList::npos) continue;
+      history[k] = old_history[old_k];
+      if (swapped) history[k].tangential_displacement = -history[k].tangential_displacement;
+      r.touching[k] = r.old_touching[old_k];  // so the pair loop clears it if it has ended
     }
-    // The tangential elongation is that of the first particle relative to the second: a pair
-    // whose members swapped roles carries it negated (exact); the rest of the history is scalar.
-    const bool swapped = a > b;
-    const std::size_t old_k = swapped ? r.old.find(b, a) : r.old.find(a, b);
-    if (old_k == NeighborList::npos) continue;
-    history[k] = old_history[old_k];
-    if (swapped) history[k].tangential_displacement = -history[k].tangential_displacement;
-    r.touching[k] = r.old_touching[old_k];  // so the pair loop clears it if it has ended
   }
 }
 

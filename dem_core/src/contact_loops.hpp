@@ -22,7 +22,6 @@ struct PairSide {
   typename Law::History* history;
   Vec3* force;          // on the first particle (the second particle gathers -force)
   Vec3* torque_second;  // on the second particle (the first one sums its torque directly)
-  double* energy;
   std::uint8_t* touching;
 };
 
@@ -51,33 +50,21 @@ struct StepInputs {
   int threads;
 };
 
-/// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
-/// torque contributions (zero for a pair out of contact, added like the stored zeros were).
-template <class Law>
-void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
-                  const StepInputs& step, Vec3& force_i, Vec3& torque_i) {
+/// Geometry and kinematics of the pair (i, j), i < j, when the spheres overlap (false: apart).
+/// branch_i/j [m]: centre-to-contact-point distances (the contact point halves the overlap).
+inline bool pair_geometry(const ParticleState& p, std::size_t i, std::size_t j, bool rotation, ContactGeometry& g,
+                          double& branch_i, double& branch_j) {
   const Vec3 d = p.position[j] - p.position[i];
   const double r_sum = p.radius[i] + p.radius[j];
   const double dist2 = norm2(d);
-  if (dist2 >= r_sum * r_sum) {
-    force_i = {};
-    torque_i = {};
-    if (!pairs.touching[k]) return;  // already cleared
-    pairs.history[k] = {};
-    pairs.force[k] = {};
-    pairs.torque_second[k] = {};
-    pairs.energy[k] = 0.0;
-    pairs.touching[k] = 0;
-    return;
-  }
+  if (dist2 >= r_sum * r_sum) return false;
   const double dist = std::sqrt(dist2);
-  ContactGeometry g;
   g.normal = (1.0 / dist) * d;
   g.overlap = r_sum - dist;
-  const double branch_i = p.radius[i] - 0.5 * g.overlap;
-  const double branch_j = p.radius[j] - 0.5 * g.overlap;
+  branch_i = p.radius[i] - 0.5 * g.overlap;
+  branch_j = p.radius[j] - 0.5 * g.overlap;
   g.contact_velocity = p.velocity[i] - p.velocity[j];
-  if (step.rotation) {
+  if (rotation) {
     g.contact_velocity +=
         cross(p.angular_velocity[i], branch_i * g.normal) + cross(p.angular_velocity[j], branch_j * g.normal);
     g.relative_angular_velocity = p.angular_velocity[i] - p.angular_velocity[j];
@@ -87,6 +74,26 @@ void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_
   g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
   g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
   g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
+  return true;
+}
+
+/// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
+/// torque contributions (zero for a pair out of contact, added like the stored zeros were).
+template <class Law>
+void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
+                  const StepInputs& step, Vec3& force_i, Vec3& torque_i) {
+  ContactGeometry g;
+  double branch_i = 0.0, branch_j = 0.0;
+  if (!pair_geometry(p, i, j, step.rotation, g, branch_i, branch_j)) {
+    force_i = {};
+    torque_i = {};
+    if (!pairs.touching[k]) return;  // already cleared
+    pairs.history[k] = {};
+    pairs.force[k] = {};
+    pairs.torque_second[k] = {};
+    pairs.touching[k] = 0;
+    return;
+  }
   const ContactForce f = pairs.law.force(g, pairs.history[k], step.dt);
   pairs.force[k] = f.force;
   force_i = f.force;
@@ -95,8 +102,27 @@ void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_
     torque_i = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
     pairs.torque_second[k] = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
   }
-  pairs.energy[k] = f.elastic_energy;
   pairs.touching[k] = 1;
+}
+
+/// Elastic energy [J] of the pairs in contact, in pair order, computed only when asked for (a
+/// stored per-pair energy would cost 8 bytes per pair on every step): the law's spring energy at
+/// the current positions with the stored histories, the same value the last evaluation computed
+/// when the particles have not moved since.
+template <class Law>
+double pair_elastic_energy(const Law& law, const NeighborList& list, const typename Law::History* history,
+                           const std::uint8_t* touching, const ParticleState& p, bool rotation) {
+  const auto rows = list.row_offsets();
+  const auto second = list.second();
+  double energy = 0.0;
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i)
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      ContactGeometry g;
+      double branch_i = 0.0, branch_j = 0.0;
+      if (!touching[k] || !pair_geometry(p, i, second[k], rotation, g, branch_i, branch_j)) continue;
+      energy += law.elastic_energy(g, history[k]);
+    }
+  return energy;
 }
 
 /// Pair loads row by row (rows of the half list are contiguous pair ranges): the first member's

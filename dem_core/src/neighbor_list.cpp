@@ -91,7 +91,6 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   ++build_count_;
   reference_positions_.assign(positions.begin(), positions.end());
   row_offsets_.assign(n + 1, 0);
-  first_.clear();
   second_.clear();
   column_offsets_.assign(n + 1, 0);
   column_pairs_.clear();
@@ -107,16 +106,12 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   }
   for (std::size_t i = 0; i < n; ++i) row_offsets_[i + 1] += row_offsets_[i];
   const std::size_t pairs = row_offsets_[n];
-  first_.resize(pairs);
   second_.resize(pairs);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     const auto ii = static_cast<std::size_t>(i);
     std::uint32_t k = row_offsets_[ii];
-    for_each_partner(grid, positions, radii, skin, ii, [&](std::uint32_t j) {
-      first_[k] = static_cast<std::uint32_t>(ii);
-      second_[k++] = j;
-    });
+    for_each_partner(grid, positions, radii, skin, ii, [&](std::uint32_t j) { second_[k++] = j; });
     std::sort(second_.begin() + row_offsets_[ii], second_.begin() + row_offsets_[ii + 1]);
   }
   // Transposed index; pairs are visited in ascending first member, so columns come out sorted.
@@ -125,6 +120,12 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   column_pairs_.resize(pairs);
   std::vector<std::uint32_t> fill(column_offsets_.begin(), column_offsets_.end() - 1);
   for (std::size_t p = 0; p < pairs; ++p) column_pairs_[fill[second_[p]]++] = static_cast<std::uint32_t>(p);
+}
+
+void NeighborList::keep_rows_only() {
+  column_offsets_ = decltype(column_offsets_)();  // frees the storage (`= {}` would keep it)
+  column_pairs_ = decltype(column_pairs_)();  // frees the storage (`= {}` would keep it)
+  reference_positions_ = decltype(reference_positions_)();  // frees the storage (`= {}` would keep it)
 }
 
 bool NeighborList::needs_rebuild(std::span<const Vec3> positions, int threads) const {

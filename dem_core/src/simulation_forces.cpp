@@ -36,8 +36,12 @@ void Simulation::ensure_neighbors(double moved) {
   const std::vector<std::uint32_t> order =
       settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates(order);
-  // Moved, not copied (peak memory at rebuilds); the counters stay with neighbors_.
-  const NeighborList old = std::move(neighbors_);
+  // Moved, not copied (peak memory at rebuilds); the counters stay with neighbors_. Only the old
+  // rows are needed to carry the histories; the per-pair loads are recomputed on the next step.
+  NeighborList old = std::move(neighbors_);
+  old.keep_rows_only();
+  pair_force_ = decltype(pair_force_)();  // frees the storage (`= {}` would keep it)
+  pair_torque_second_ = decltype(pair_torque_second_)();  // frees the storage (`= {}` would keep it)
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
   rebuild_pair_arrays(old, order);
 }
@@ -91,7 +95,6 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
                             state.pair_history.data(),
                             pair_force_.data(),
                             pair_torque_second_.data(),
-                            pair_energy_.data(),
                             pair_touching_.data()};
   const WallSide<Law> walls{state.wall_laws,
                             walls_,
@@ -136,10 +139,15 @@ void Simulation::reduce_diagnostics() const {
   }
   for (Wall& w : walls_) w.torque = dot(w.moment, w.torque_axis.direction);
   std::size_t touching = 0;
-  for (std::size_t k = 0; k < pair_energy_.size(); ++k) {
-    energy += pair_energy_[k];
-    touching += pair_touching_[k];
-  }
+  for (const std::uint8_t t : pair_touching_) touching += t;
+  if (neighbors_.particle_count() == particles_.size() && neighbors_.pair_count() == pair_touching_.size())
+    std::visit(
+        [&]<class Law>(const ContactLawState<Law>& state) {
+          if (state.pair_history.size() != pair_touching_.size()) return;
+          energy += pair_elastic_energy(Law::for_pairs(state.evaluated_with), neighbors_, state.pair_history.data(),
+                                        pair_touching_.data(), particles_, state.evaluated_with.rotation_enabled());
+        },
+        contact_state_);
   elastic_energy_ = energy;
   contact_count_ = touching;
 }

@@ -21,14 +21,18 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
 
 void Simulation::rebuild_pair_arrays(const NeighborList& old, const std::vector<std::uint32_t>& order) {
   const std::size_t pairs = neighbors_.pair_count();
-  pair_force_.assign(pairs, Vec3{});
-  pair_torque_second_.assign(pairs, Vec3{});
-  pair_energy_.assign(pairs, 0.0);
   std::vector<std::uint8_t> old_touching;
   old_touching.swap(pair_touching_);
   pair_touching_.assign(pairs, 0);
-  const PairRebuild rebuild{old, neighbors_, order, old_touching, pair_touching_, settings_.threads};
-  std::visit([&](auto& state) { carry_pair_histories(rebuild, state.pair_history); }, contact_state_);
+  {
+    const PairRebuild rebuild{old, neighbors_, order, old_touching, pair_touching_, settings_.threads};
+    std::visit([&](auto& state) { carry_pair_histories(rebuild, state.pair_history); }, contact_state_);
+  }
+  // Allocated once the old histories are gone (ensure_neighbors freed the old loads before the
+  // build): the peak of a rebuild stays below the steady per-pair storage.
+  old_touching = decltype(old_touching)();  // frees the storage (`= {}` would keep it)
+  pair_force_.assign(pairs, Vec3{});
+  pair_torque_second_.assign(pairs, Vec3{});
 }
 
 void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {

@@ -101,6 +101,15 @@ struct HertzMindlinLaw {
     out.rolling_torque = rolling.evaluate(g, n.force, dt);
     return out;
   }
+  /// The springs' energy [J] as `force` left them (same terms, same order: bit-identical).
+  double elastic_energy(const ContactGeometry& contact, const History& history) const {
+    ContactGeometry g = contact;
+    g.normal_compliance += body_normal_compliance;
+    g.shear_compliance += body_shear_compliance;
+    const HertzNormal::Result n = normal.evaluate(g);
+    const double s_t = 8.0 * n.contact_radius / g.shear_compliance;
+    return n.energy + 0.5 * s_t * norm2(history.tangential_displacement);
+  }
 };
 
 }  // namespace demfit::dem_core

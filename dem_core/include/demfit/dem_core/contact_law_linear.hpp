@@ -103,6 +103,12 @@ struct LinearLaw {
     out.rolling_torque = rolling.evaluate(g, n.friction_load, dt);
     return out;
   }
+  /// The springs' energy [J] as `force` left them (same terms, same order: bit-identical).
+  double elastic_energy(const ContactGeometry& g, const History& history) const {
+    History copy = history;  // the effects' normal part updates its memory when evaluated
+    const typename Normal::Result n = normal.evaluate(g, copy);
+    return n.energy + 0.5 * (shear_ratio * n.stiffness) * norm2(history.tangential_displacement);
+  }
 };
 
 /// The plain LS-DYNA law (SPEC 1) and the same law with the effects library.

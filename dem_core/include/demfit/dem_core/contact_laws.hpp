@@ -31,7 +31,8 @@ namespace demfit::dem_core {
 /// - `time_step`: automatic step and stability limit;
 /// - `restarts_history(before, after)`: true when changing the parameters between two force
 ///   evaluations must restart the memory beyond the tangential spring;
-/// - `force`: the loads of one contact, updating its history.
+/// - `force`: the loads of one contact, updating its history;
+/// - `elastic_energy`: the energy of its springs as `force` left them (asked for only by probes).
 template <class Law>
 concept ContactLaw = requires(const Law law, const ContactGeometry& g, typename Law::History& history,
                               const ContactParameters& p, const WallContactParameters& w, const Material& m,
@@ -44,6 +45,7 @@ concept ContactLaw = requires(const Law law, const ContactGeometry& g, typename 
   { Law::time_step(inputs) } -> std::same_as<TimeStepEstimate>;
   { Law::restarts_history(p, p) } -> std::same_as<bool>;
   { law.force(g, history, dt) } -> std::same_as<ContactForce>;
+  { law.elastic_energy(g, history) } -> std::same_as<double>;
 };
 
 /// One row per ContactLawKind: its name in case files and messages.

@@ -31,7 +31,6 @@ class NeighborList {
   [[nodiscard]] double skin() const { return skin_; }
   /// CSR rows: pairs whose first member is i are [row_offsets()[i], row_offsets()[i+1]), ascending second.
   [[nodiscard]] std::span<const std::uint32_t> row_offsets() const { return row_offsets_; }
-  [[nodiscard]] std::span<const std::uint32_t> first() const { return first_; }
   [[nodiscard]] std::span<const std::uint32_t> second() const { return second_; }
   /// Transposed CSR: pair indices whose SECOND member is j, ascending by first member.
   [[nodiscard]] std::span<const std::uint32_t> column_offsets() const { return column_offsets_; }
@@ -39,11 +38,14 @@ class NeighborList {
   /// Pair index of (i, j) with i < j, or npos (binary search in row i).
   [[nodiscard]] std::size_t find(std::size_t i, std::size_t j) const;
   [[nodiscard]] std::size_t build_count() const { return build_count_; }
+  /// Frees the transposed index and the reference positions (what a list kept only for find()
+  /// does not need: the carry of contact histories across a rebuild).
+  void keep_rows_only();
   /// Positions at the last build (for callers that fuse the displacement check into their loops).
   [[nodiscard]] std::span<const Vec3> reference_positions() const { return reference_positions_; }
 
  private:
-  std::vector<std::uint32_t> row_offsets_, first_, second_, column_offsets_, column_pairs_;
+  std::vector<std::uint32_t> row_offsets_, second_, column_offsets_, column_pairs_;
   std::vector<Vec3> reference_positions_{};
   double skin_ = 0.0;
   std::size_t build_count_ = 0;

@@ -175,7 +175,6 @@ class Simulation {
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices (their histories: contact_state_).
   std::vector<Vec3> pair_force_, pair_torque_second_;  // the first member sums its share directly
-  std::vector<double> pair_energy_{};
   std::vector<std::uint8_t> pair_touching_{};
   WallSlots wall_slots_{};  // particle–wall candidates and their last loads
   // The active law's contact histories (pairs and wall slots, of its history type) and wall laws.
