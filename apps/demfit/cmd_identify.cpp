@@ -108,7 +108,7 @@ void run_identify_rank0(const IdentifyOptions& o, identify::RunOptions options, 
   std::optional<identify::StoreLock> lock;
   if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
   options.resolved_model = resolved_model(parsed);
-  const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator);
+  const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator, &options.initial_run);
   identify::prepare_output_folder(options.output_dir, inputs, "--out");
   if (!lock) lock.emplace(options.output_dir);
   options.evaluator = &evaluator;
@@ -181,8 +181,8 @@ void run_identify(const IdentifyOptions& o) {
   if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
   const auto model = make_model(parsed);
   options.resolved_model = resolved_model(parsed);
-  const identify::StudySpec spec =
-      identify::preflight_study(parsed, *model, {options.threads_per_job, static_cast<unsigned long>(parsed.seed)});
+  const identify::StudySpec spec = identify::preflight_study(
+      parsed, *model, {options.threads_per_job, static_cast<unsigned long>(parsed.seed)}, &options.initial_run);
   identify::prepare_output_folder(options.output_dir, inputs, "--out");
   if (!lock) lock.emplace(options.output_dir);
   const auto result = identify::run_study(spec, *model, options);

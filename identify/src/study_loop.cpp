@@ -64,6 +64,8 @@ class StudyLoop {
  private:
   void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
   void collect(int iteration, const MatrixXd& points);
+  // Stores one finished run, prints its progress line, calls the test hook.
+  void record_evaluation(const EvaluationRecord& record, int point, int points, const char* note);
   EvaluationRecord make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
                                const ParameterSet& parameters, const EvaluationOutcome& outcome) const;
   std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
@@ -134,7 +136,14 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
                                  "demfit build, start the study in a new --out folder");
       continue;  // finished (or failed) before: never repeated
     }
-    pending.push_back(detail::model_parameters(spec_, model_, variables_, unit));
+    ParameterSet parameters = detail::model_parameters(spec_, model_, variables_, unit);
+    if (iteration == 0 && kinds[i] == "initial" && options_.initial_run &&
+        options_.initial_run->parameters == parameters) {
+      record_evaluation(make_record(iteration, i, kinds[i], unit, parameters, options_.initial_run->outcome), i,
+                        static_cast<int>(points.rows()), " (the initial-point check's run)");
+      continue;  // evaluated by preflight_study with exactly these parameters
+    }
+    pending.push_back(std::move(parameters));
     pending_point.push_back(i);
   }
   if (pending.empty()) return collect(iteration, points);
@@ -142,18 +151,22 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
   // recorded when its last experiment finishes.
   evaluator_.evaluate_points(model_, pending, [&](std::size_t p, const EvaluationOutcome& outcome) {
     const int i = pending_point[p];
-    const EvaluationRecord record = make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome);
-    store_.add_evaluation(record);
-    ++evaluated_here_;
-    evaluated_wall_ += outcome.wall_seconds;
-    if (options_.progress)
-      std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s; %d runs in this session)\n", iteration,
-                   i + 1, static_cast<int>(points.rows()), record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
-                   record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
-                   record.wall_seconds, evaluated_here_);
-    if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
+    record_evaluation(make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome), i,
+                      static_cast<int>(points.rows()), "");
   });
   collect(iteration, points);
+}
+
+void StudyLoop::record_evaluation(const EvaluationRecord& record, int point, int points, const char* note) {
+  store_.add_evaluation(record);
+  ++evaluated_here_;
+  evaluated_wall_ += record.wall_seconds;
+  if (options_.progress)
+    std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s%s; %d runs in this session)\n",
+                 record.iteration, point + 1, points, record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
+                 record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
+                 record.wall_seconds, note, evaluated_here_);
+  if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
 }
 
 void StudyLoop::collect(int iteration, const MatrixXd& points) {

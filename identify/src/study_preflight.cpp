@@ -1,6 +1,7 @@
 #include "demfit/identify/study_preflight.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <stdexcept>
@@ -24,18 +25,25 @@ void convert(std::vector<double>& values, double factor) {
 }
 
 StudySpec checked_against(const StudySpec& spec, const Model& model,
-                          const std::function<CurveSet(const ParameterSet&)>& evaluate) {
+                          const std::function<EvaluationOutcome(const ParameterSet&)>& evaluate,
+                          std::optional<InitialRun>* initial) {
   detail::check_parameter_names(spec, model);  // names first: the evaluation would fail less clearly
   detail::check_declared_curves(spec, model);
-  ParameterSet parameters = model.default_parameters();
-  for (const auto& [name, value] : spec.fixed_parameters) parameters[name] = value;
-  for (const auto& v : spec.variables) parameters[v.name] = v.initial;
-  CurveSet curves;
+  // The loop's run 0/0: the initial values through the unit coordinates (a log-scaled value may
+  // differ from the written one in the last bit), so its outcome can stand for that run.
+  const auto variables = detail::rbf_variables(spec);
+  const ParameterSet parameters =
+      detail::model_parameters(spec, model, variables, rbf_surrogate::to_unit(variables, detail::initial_values(spec)));
+  EvaluationOutcome outcome;
   try {
-    curves = evaluate(parameters);
+    outcome = evaluate(parameters);
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("study: the model fails at the initial point of the variables: ") + e.what());
+    outcome.ok = false;
+    outcome.error = e.what();
   }
+  if (!outcome.ok)
+    throw std::runtime_error("study: the model fails at the initial point of the variables: " + outcome.error);
+  const CurveSet& curves = outcome.curves;
   StudySpec out = spec;
   for (std::size_t i = 0; i < out.targets.size(); ++i) {
     TargetSpec& t = out.targets[i];
@@ -61,21 +69,32 @@ StudySpec checked_against(const StudySpec& spec, const Model& model,
                                " does not overlap the model's x at the initial point " + range_text(m.x, m.x_label) +
                                "; check the units and the fill (docs/study_format.md, \"Matching the fill\")");
   }
+  if (initial) *initial = InitialRun{parameters, outcome};
   return out;
 }
 
 }  // namespace
 
-StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context) {
-  return checked_against(spec, model, [&](const ParameterSet& p) { return model.evaluate(p, context); });
+StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context,
+                          std::optional<InitialRun>* initial) {
+  return checked_against(
+      spec, model,
+      [&](const ParameterSet& p) {
+        const auto start = std::chrono::steady_clock::now();
+        EvaluationOutcome outcome;
+        outcome.curves = model.evaluate(p, context);
+        outcome.ok = true;
+        outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return outcome;
+      },
+      initial);
 }
 
-StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator) {
-  return checked_against(spec, model, [&](const ParameterSet& p) {
-    EvaluationOutcome outcome = evaluator.evaluate_points(model, {p}, nullptr).at(0);
-    if (!outcome.ok) throw std::runtime_error(outcome.error);
-    return std::move(outcome.curves);
-  });
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator,
+                          std::optional<InitialRun>* initial) {
+  return checked_against(
+      spec, model, [&](const ParameterSet& p) { return evaluator.evaluate_points(model, {p}, nullptr).at(0); },
+      initial);
 }
 
 }  // namespace demfit::identify

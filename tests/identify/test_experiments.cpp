@@ -10,6 +10,7 @@
 
 #include "demfit/identify/experiments.hpp"
 #include "demfit/identify/study.hpp"
+#include "demfit/identify/study_preflight.hpp"
 #include "demfit/identify/study_store.hpp"
 #include "test_helpers.hpp"
 
@@ -312,4 +313,30 @@ TEST_CASE("A study with experiments stopped after some points resumes to the sam
   CHECK(result.best_objective == reference.best_objective);
   // the 7 stored points are not run again: at most the points in flight when stopped are repeated
   CHECK(calls.load() - before <= reference_calls.load() - 2 * 7 + 2);
+}
+
+TEST_CASE("The initial-point check's run is stored as run 0 and not evaluated again", "[identify][experiments]") {
+  // demfit identify evaluates the initial point before the store exists (preflight_study); the loop
+  // takes that run as its run 0/0 when the parameters are exactly the same, and the study's answer
+  // is the one it gives when it evaluates run 0/0 itself.
+  const StudySpec parsed = parse_study(study(true, true), ".");
+  std::atomic<int> calls_plain{0}, calls_reused{0}, calls_other{0};
+  const auto plain = run_study(parsed, *models_for(parsed, &calls_plain), quiet(test::fresh_dir("initial_plain")));
+  RunOptions reuse = quiet(test::fresh_dir("initial_reused"));
+  const auto model = models_for(parsed, &calls_reused);
+  const StudySpec spec = preflight_study(parsed, *model, EvaluationContext{}, &reuse.initial_run);
+  REQUIRE(reuse.initial_run.has_value());
+  CHECK(calls_reused.load() == 2);  // both experiments, once
+  const auto reused = run_study(spec, *model, reuse);
+  CHECK(calls_reused.load() == calls_plain.load());  // run 0/0 was not evaluated a second time
+  CHECK(reused.runs == plain.runs);
+  CHECK(reused.best == plain.best);
+  CHECK(reused.best_objective == plain.best_objective);
+  // A run of other parameters is not taken for run 0/0.
+  RunOptions other = quiet(test::fresh_dir("initial_other"));
+  other.initial_run = reuse.initial_run;
+  other.initial_run->parameters["a"] *= 1.5;
+  const auto evaluated = run_study(parsed, *models_for(parsed, &calls_other), other);
+  CHECK(calls_other.load() == calls_plain.load());
+  CHECK(evaluated.best == plain.best);
 }

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/model.hpp"
 #include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/study_spec.hpp"
@@ -15,6 +17,12 @@
 namespace demfit::identify {
 
 class Evaluator;
+
+// One evaluation of the study's initial point and the complete parameters it was run with.
+struct InitialRun {
+  ParameterSet parameters;
+  EvaluationOutcome outcome;
+};
 
 struct RunOptions {
   int jobs = 1;                      // simulations evaluated at once (threads of the evaluator pool)
@@ -34,6 +42,9 @@ struct RunOptions {
   // What is simulated, resolved (DEM: the case with defaults filled in; see model_fingerprint.hpp).
   // Recorded in a new store; --resume refuses a store whose recorded model differs. null = none.
   nlohmann::json resolved_model;
+  // The initial point's run when the caller has already evaluated it (preflight_study): stored as
+  // run 0/0 instead of evaluating it again, if its parameters are exactly those of that run.
+  std::optional<InitialRun> initial_run;
 };
 
 struct StudyResult {

@@ -5,18 +5,25 @@
 //   - the curve exists (else the error lists the model's curves),
 //   - the target's units are converted to the model's (units.hpp), a dimension mismatch refused,
 //   - the target's x-range overlaps the model's x-range at the initial point.
+#include <optional>
+
 #include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::identify {
 
 // Returns `spec` with the target data in the model's units (labels = the model's); throws
-// std::runtime_error "study: targets[i].<field>: ..." otherwise.
-StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context);
+// std::runtime_error "study: targets[i].<field>: ..." otherwise. The point evaluated is the study's
+// run 0/0 exactly (the initial values through the loop's unit coordinates); with `initial`, that
+// run is handed back so the loop does not evaluate it a second time (RunOptions::initial_run).
+StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context,
+                          std::optional<InitialRun>* initial = nullptr);
 
 // The same, with the initial point evaluated by `evaluator` (e.g. on an MPI worker rank, so rank 0
 // only schedules and the run uses the workers' settings).
-StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator);
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator,
+                          std::optional<InitialRun>* initial = nullptr);
 
 }  // namespace demfit::identify
