@@ -108,13 +108,13 @@ void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_
 /// Elastic energy [J] of the pairs in contact, in pair order, computed only when asked for (a
 /// stored per-pair energy would cost 8 bytes per pair on every step): the law's spring energy at
 /// the current positions with the stored histories, the same value the last evaluation computed
-/// when the particles have not moved since.
+/// when the particles have not moved since. Each pair is added to `energy` (the walls' sum) in
+/// pair order, as the stored energies were: a separate pair subtotal would round differently.
 template <class Law>
 double pair_elastic_energy(const Law& law, const NeighborList& list, const typename Law::History* history,
-                           const std::uint8_t* touching, const ParticleState& p, bool rotation) {
+                           const std::uint8_t* touching, const ParticleState& p, bool rotation, double energy) {
   const auto rows = list.row_offsets();
   const auto second = list.second();
-  double energy = 0.0;
   for (std::size_t i = 0; i + 1 < rows.size(); ++i)
     for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
       ContactGeometry g;

@@ -40,7 +40,7 @@ void Simulation::ensure_neighbors(double moved) {
   // rows are needed to carry the histories; the per-pair loads are recomputed on the next step.
   NeighborList old = std::move(neighbors_);
   old.keep_rows_only();
-  pair_force_ = decltype(pair_force_)();  // frees the storage (`= {}` would keep it)
+  pair_force_ = decltype(pair_force_)();                  // frees the storage (`= {}` would keep it)
   pair_torque_second_ = decltype(pair_torque_second_)();  // frees the storage (`= {}` would keep it)
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
   rebuild_pair_arrays(old, order);
@@ -144,8 +144,9 @@ void Simulation::reduce_diagnostics() const {
     std::visit(
         [&]<class Law>(const ContactLawState<Law>& state) {
           if (state.pair_history.size() != pair_touching_.size()) return;
-          energy += pair_elastic_energy(Law::for_pairs(state.evaluated_with), neighbors_, state.pair_history.data(),
-                                        pair_touching_.data(), particles_, state.evaluated_with.rotation_enabled());
+          energy =
+              pair_elastic_energy(Law::for_pairs(state.evaluated_with), neighbors_, state.pair_history.data(),
+                                  pair_touching_.data(), particles_, state.evaluated_with.rotation_enabled(), energy);
         },
         contact_state_);
   elastic_energy_ = energy;
