@@ -23,7 +23,8 @@ ReportedInterval reported_interval(const nlohmann::json& uncertainty, const std:
     const auto& v = posterior["variables"][variable];
     if (v.value("lower_95", nlohmann::json()).is_number() && v.value("upper_95", nlohmann::json()).is_number()) {
       out.available = true;
-      out.method = "posterior";
+      out.method =
+          v.value("widened_by_interval_check", false) ? "posterior, widened by interval-end runs" : "posterior";
       out.lower = v["lower_95"].get<double>();
       out.upper = v["upper_95"].get<double>();
       out.identifiable = !v.value("unidentifiable", false);
@@ -33,7 +34,7 @@ ReportedInterval reported_interval(const nlohmann::json& uncertainty, const std:
         // interval, so the interval is widened to it (covering more than 95 %) and says so.
         out.lower = std::min(out.lower, value);
         out.upper = std::max(out.upper, value);
-        out.method = "posterior, widened to the best run";
+        out.method += ", widened to the best run";
       }
       return out;
     }

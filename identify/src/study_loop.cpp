@@ -27,6 +27,7 @@
 #include "demfit/rbf_surrogate/optimize.hpp"
 #include "demfit/rbf_surrogate/srsm.hpp"
 #include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/interval_check.hpp"
 #include "response_surrogate.hpp"
 #include "study_strategy.hpp"
 #include "study_support.hpp"
@@ -43,6 +44,7 @@ struct Run {
   VectorXd unit;
   VectorXd responses;
   double objective = 0.0;
+  bool replicate = false;  // an interval check's nudged re-run: kept out of surrogate fits (a near-duplicate)
 };
 
 class StudyLoop {
@@ -78,6 +80,10 @@ class StudyLoop {
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
   RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
+  // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
+  void check_intervals(const Run& best, int first_iteration, nlohmann::json& uncertainty);
+  VectorXd profile_point(const std::optional<detail::ResponseSurrogate>& surrogate, const VectorXd& best_unit,
+                         int variable, double unit_value) const;
   void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
 
   const StudySpec& spec_;
@@ -91,7 +97,10 @@ class StudyLoop {
   StudyStore store_;
   std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
   std::vector<Run> runs_;                            // successful runs, in (iteration, point) order
-  std::vector<VectorXd> all_points_;                 // every run (failed ones too), in order
+  // The first runs_ that decide the answer and its posterior; the interval check's runs come after
+  // and only measure the interval.
+  std::size_t decision_runs_ = std::numeric_limits<std::size_t>::max();
+  std::vector<VectorXd> all_points_;  // every run (failed ones too), in order
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
   double evaluated_wall_ = 0.0;
   std::string first_error_;
@@ -182,7 +191,8 @@ void StudyLoop::collect(int iteration, const MatrixXd& points) {
       if (first_error_.empty()) first_error_ = r->error;
       continue;
     }
-    Run run{iteration, i, points.row(i).transpose(), objective_.responses(r->curves), r->objective};
+    Run run{
+        iteration, i, points.row(i).transpose(), objective_.responses(r->curves), r->objective, r->kind == "replicate"};
     runs_.push_back(std::move(run));
   }
   if (ask_tell_) ask_tell_->tell(points, objectives);
@@ -211,15 +221,20 @@ std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
   const int minimum = std::max(2 * spec_.points_per_iteration, dims_ + 2);
   const int maximum = std::max(minimum, 300);
   std::vector<VectorXd> units;
-  for (const Run& r : runs_) units.push_back(r.unit);
+  std::vector<int> index;
+  for (int i = 0; i < static_cast<int>(runs_.size()); ++i)
+    if (!runs_[i].replicate) {
+      units.push_back(runs_[i].unit);
+      index.push_back(i);
+    }
   // Within the box = within half its width of its centre; a re-run of the same point adds
   // nothing and would break the fit, so repeated points count once.
   const std::vector<int> chosen = detail::nearest_distinct(units, box.center(), 0.5 * box.width(), minimum, maximum);
   if (static_cast<int>(chosen.size()) < dims_ + 2) return std::nullopt;
   MatrixXd x(chosen.size(), dims_), y(chosen.size(), objective_.response_size());
   for (std::size_t r = 0; r < chosen.size(); ++r) {
-    x.row(r) = runs_[chosen[r]].unit.transpose();
-    y.row(r) = runs_[chosen[r]].responses.transpose();
+    x.row(r) = runs_[index[chosen[r]]].unit.transpose();
+    y.row(r) = runs_[index[chosen[r]]].responses.transpose();
   }
   try {
     return detail::ResponseSurrogate(x, y, box, spec_);
@@ -232,8 +247,8 @@ std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
 
 const Run* StudyLoop::best_run() const {
   const Run* best = nullptr;
-  for (const Run& r : runs_)
-    if (!best || r.objective < best->objective) best = &r;
+  for (std::size_t i = 0; i < std::min(decision_runs_, runs_.size()); ++i)
+    if (!best || runs_[i].objective < best->objective) best = &runs_[i];
   return best;
 }
 
@@ -287,7 +302,7 @@ RunSample StudyLoop::uncertainty_sample(const Run& best, const Box& final_region
   const int maximum = std::max(2 * dims_ + 3, 3 * spec_.points_per_iteration);
   const int minimum = maximum;
   std::vector<VectorXd> units;
-  for (const Run& r : runs_) units.push_back(r.unit);
+  for (std::size_t i = 0; i < std::min(decision_runs_, runs_.size()); ++i) units.push_back(runs_[i].unit);
   const std::vector<int> chosen = detail::nearest_distinct(units, best.unit, final_region.width(), minimum, maximum);
   RunSample sample;
   sample.unit_points.resize(chosen.size(), dims_);
@@ -302,8 +317,93 @@ RunSample StudyLoop::uncertainty_sample(const Run& best, const Box& final_region
   return sample;
 }
 
+VectorXd StudyLoop::profile_point(const std::optional<detail::ResponseSurrogate>& surrogate, const VectorXd& best_unit,
+                                  int variable, double unit_value) const {
+  VectorXd point = best_unit;
+  point(variable) = unit_value;
+  if (!surrogate || dims_ == 1) return point;
+  // The surrogate's optimum over the other coordinates with this one held (a profile).
+  const auto full = [&](const VectorXd& others) {
+    VectorXd x(dims_);
+    for (int j = 0, k = 0; j < dims_; ++j) x(j) = j == variable ? unit_value : others(k++);
+    return x;
+  };
+  const auto function = [&](const VectorXd& others, VectorXd* gradient) {
+    const VectorXd x = full(others);
+    if (gradient) {
+      const VectorXd g = surrogate->objective_gradient(x, objective_);
+      gradient->resize(dims_ - 1);
+      for (int j = 0, k = 0; j < dims_; ++j)
+        if (j != variable) (*gradient)(k++) = g(j);
+    }
+    return surrogate->predicted_objective(x, objective_);
+  };
+  rbf_surrogate::MinimizeOptions options;
+  options.global_evaluations = 300 + 100 * (dims_ - 1);
+  options.local_starts = 3;
+  options.seed = detail::iteration_seed(spec_.seed, 1000 + variable);
+  options.use_gradient = true;
+  options.local_evaluations = 200;
+  return full(rbf_surrogate::minimize(function, Box::unit(dims_ - 1), options).x);
+}
+
+void StudyLoop::check_intervals(const Run& best, int first_iteration, nlohmann::json& uncertainty) {
+  nlohmann::json& posterior = uncertainty["posterior"];
+  std::vector<double> lower, upper;
+  for (const auto& v : spec_.variables) {
+    lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
+    upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
+  }
+  // The whole box: the ends can lie far from the last subregion. Refitted after every batch, so a
+  // retried end's profile knows the run that missed.
+  std::optional<detail::ResponseSurrogate> surrogate = fit(Box::unit(dims_));
+  const auto profile = [&](int variable, double unit_value) {
+    return profile_point(surrogate, best.unit, variable, unit_value);
+  };
+  const auto evaluate = [&](int batch, const MatrixXd& points, const std::vector<std::string>& kinds) {
+    if (options_.progress)
+      std::fprintf(stderr, "demfit: interval check, step %d: %d runs\n", batch + 1, static_cast<int>(points.rows()));
+    evaluate_points(first_iteration + batch, points, kinds);
+    VectorXd objectives(points.rows());
+    for (int i = 0; i < points.rows(); ++i) {
+      const EvaluationRecord* r = store_.find_evaluation(first_iteration + batch, i);
+      objectives(i) = r->ok ? r->objective : std::numeric_limits<double>::quiet_NaN();
+    }
+    surrogate = fit(Box::unit(dims_));
+    return objectives;
+  };
+  std::vector<double> nearby;  // other runs at (almost) the best point: the run-to-run spread there
+  const Run* best_stored = best_run();
+  for (std::size_t i = 0; i < decision_runs_; ++i)
+    if (&runs_[i] != best_stored && (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
+      nearby.push_back(runs_[i].objective);
+  const IntervalCheckOutcome outcome = check_interval_ends(spec_.variables, best.unit, best.objective, nearby, lower,
+                                                           upper, spec_.interval_check, profile, evaluate);
+  for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
+    const auto& v = spec_.variables[j];
+    nlohmann::json& entry = posterior["variables"][v.name];
+    entry["sampled_lower_95"] = lower[j];
+    entry["sampled_upper_95"] = upper[j];
+    entry["lower_95"] = outcome.lower[j].end;
+    entry["upper_95"] = outcome.upper[j].end;
+    entry["widened_by_interval_check"] = outcome.lower[j].widened || outcome.upper[j].widened;
+    const double lower_unit = rbf_surrogate::to_unit({variables_[j]}, VectorXd::Constant(1, outcome.lower[j].end))(0);
+    const double upper_unit = rbf_surrogate::to_unit({variables_[j]}, VectorXd::Constant(1, outcome.upper[j].end))(0);
+    if (upper_unit - lower_unit > 0.5) entry["unidentifiable"] = true;  // the posterior's own rule
+  }
+  posterior["interval_check"] = interval_check_json(outcome, spec_.variables);
+  if (options_.progress)
+    for (std::size_t j = 0; j < spec_.variables.size(); ++j)
+      std::fprintf(stderr, "demfit: interval check: %s [%s, %s] -> [%s, %s] (spread threshold %s)\n",
+                   spec_.variables[j].name.c_str(), detail::format_number(lower[j]).c_str(),
+                   detail::format_number(upper[j]).c_str(), detail::format_number(outcome.lower[j].end).c_str(),
+                   detail::format_number(outcome.upper[j].end).c_str(),
+                   detail::format_number(outcome.threshold).c_str());
+}
+
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
-  const Run& best = *best_run();
+  decision_runs_ = runs_.size();
+  const Run best = *best_run();  // a copy: the interval check appends runs
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;
@@ -324,6 +424,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
         detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
     if (options_.progress && !posterior_warning.empty())
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
+    if (spec_.interval_check.max_steps > 0 && uncertainty["posterior"].is_object())
+      check_intervals(best, verification_iteration + 1, uncertainty);
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
       result.ci_half_width[name] = estimate.ci_half_width[j];
@@ -338,6 +440,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
     for (int i = 0; i < dims_; ++i)
       for (int j = 0; j < dims_; ++j) result.correlation[i][j] = estimate.correlation(i, j);
   }
+  result.runs = total_runs_;  // the interval check's runs included
+  result.failed_runs = failed_runs_;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   store_.put_result({{"best_iteration", best.iteration},
                      {"best_point", best.point},

@@ -263,6 +263,18 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
   if (!(spec.objective_tolerance >= 0.0)) in.fail("objective_tolerance", "must be >= 0");
 }
 
+void parse_interval_check(JsonReader in, StudySpec& spec) {
+  IntervalCheckSpec& check = spec.interval_check;
+  check.max_steps = in.integer_or("max_steps", 6);
+  check.replicates = in.integer_or("replicates", check.replicates);
+  check.first_step = in.number_or("first_step", check.first_step);
+  in.finish();
+  if (check.max_steps < 0 || check.max_steps > 20) in.fail("max_steps", "must be 0 (no check) to 20");
+  if (check.replicates < 1 || check.replicates > 20) in.fail("replicates", "must be 1 to 20");
+  if (!(check.first_step > 0.0 && check.first_step <= 0.5))
+    in.fail("first_step", "must be in (0, 0.5] (a fraction of each variable's range)");
+}
+
 std::string metric_name(CurveMetric metric) {
   switch (metric) {
     case CurveMetric::mse:
@@ -344,6 +356,7 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
   if (in.has("domain_reduction")) parse_domain_reduction(in.object("domain_reduction"), spec);
   if (in.has("surrogate")) parse_surrogate(in.object("surrogate"), spec);
   if (in.has("stopping")) parse_stopping(in.object("stopping"), spec);
+  if (in.has("interval_check")) parse_interval_check(in.object("interval_check"), spec);
   if (in.has("seed")) {
     const auto& seed = in.raw("seed");
     if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
@@ -400,6 +413,10 @@ nlohmann::json to_json(const StudySpec& spec) {
   json["stopping"] = {{"max_iterations", spec.max_iterations},
                       {"design_tolerance", spec.design_tolerance},
                       {"objective_tolerance", spec.objective_tolerance}};
+  if (spec.interval_check.max_steps > 0)  // written only when on: older resolved studies stay unchanged
+    json["interval_check"] = {{"max_steps", spec.interval_check.max_steps},
+                              {"replicates", spec.interval_check.replicates},
+                              {"first_step", spec.interval_check.first_step}};
   json["seed"] = spec.seed;
   return json;
 }
@@ -407,9 +424,11 @@ nlohmann::json to_json(const StudySpec& spec) {
 std::uint64_t study_hash(const StudySpec& spec) {
   // FNV-1a 64 over the resolved JSON text: stable across runs and compilers (std::hash is not).
   // The stopping rule is left out so that a finished study can be resumed with a larger
-  // iteration limit; informational "source" paths are left out (the data itself is hashed).
+  // iteration limit; informational "source" paths are left out (the data itself is hashed). The
+  // interval check runs after the loop, so a finished study can be resumed to add it.
   nlohmann::json json = to_json(spec);
   json.erase("stopping");
+  json.erase("interval_check");
   if (json.contains("targets"))
     for (auto& target : json["targets"]) target.erase("source");
   if (json.contains("experiments"))

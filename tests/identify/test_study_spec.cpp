@@ -82,6 +82,29 @@ TEST_CASE("Malformed study files give one-line errors naming the field", "[ident
     CHECK(message.find('\n') == std::string::npos);
 }
 
+TEST_CASE("An interval check is parsed with its defaults and refused out of range naming the field",
+          "[identify][study]") {
+  auto on = test::analytic_study();
+  on["interval_check"] = nlohmann::json::object();
+  const StudySpec spec = parse_study(on, ".");
+  CHECK(spec.interval_check.max_steps == 6);
+  CHECK(spec.interval_check.replicates == 2);
+  CHECK(spec.interval_check.first_step == 0.02);
+  CHECK(parse_study(test::analytic_study(), ".").interval_check.max_steps == 0);  // off unless asked for
+  // Added after the loop, so a finished study can be resumed with it: not part of the hash.
+  CHECK(study_hash(spec) == study_hash(parse_study(test::analytic_study(), ".")));
+  CHECK(to_json(parse_study(to_json(spec), ".")) == to_json(spec));
+  auto steps = test::analytic_study();
+  steps["interval_check"] = {{"max_steps", -1}};
+  CHECK_THAT(parse_error(steps), Catch::Contains("interval_check.max_steps"));
+  auto step = test::analytic_study();
+  step["interval_check"] = {{"first_step", 0.0}};
+  CHECK_THAT(parse_error(step), Catch::Contains("interval_check.first_step"));
+  auto unknown = test::analytic_study();
+  unknown["interval_check"] = {{"replicate", 3}};
+  CHECK_THAT(parse_error(unknown), Catch::Contains("interval_check.replicate") && Catch::Contains("unknown key"));
+}
+
 TEST_CASE("A study file reads its target CSV relative to its own folder", "[identify][study]") {
   const auto dir = test::fresh_dir("study_file");
   std::ofstream(dir / "target.csv") << "volume_cm3,pressure_MPa\n1,0.5\n2,1.5\n3,2.5\n";

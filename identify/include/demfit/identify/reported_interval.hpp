@@ -22,7 +22,8 @@ struct ReportedInterval {
   double lower = std::numeric_limits<double>::quiet_NaN();  // 95 % interval, model units
   double upper = std::numeric_limits<double>::quiet_NaN();
   bool identifiable = true;  // false: the data cannot pin the variable down
-  // "posterior", "posterior, widened to the best run" (the best run lay outside the posterior's
+  // "posterior", "posterior, widened by interval-end runs" (interval_check.hpp), either with
+  // ", widened to the best run" (the best run lay outside the posterior's
   // 95 % interval, which is then stretched to it) or "linearised"
   std::string method;
 };

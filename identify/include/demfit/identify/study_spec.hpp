@@ -87,6 +87,14 @@ enum class ResponseMode {
   principal_components,  // RBF outputs = PCA scores of the stacked curves
 };
 
+// Runs at the posterior intervals' ends after the loop (interval_check.hpp): they
+// widen an interval the local surrogate drew too narrow. Off when max_steps is 0.
+struct IntervalCheckSpec {
+  int max_steps = 0;         // outward steps per interval end (each doubles the distance); 0 = off
+  int replicates = 2;        // nudged re-runs of the best point measuring the run-to-run spread
+  double first_step = 0.02;  // smallest first distance from the best point (fraction of the range)
+};
+
 struct StudySpec {
   int version = kStudyFormatVersion;
   std::string name;
@@ -116,6 +124,7 @@ struct StudySpec {
   int max_iterations = 20;
   double design_tolerance = 0.01;     // change of the optimum, fraction of each range
   double objective_tolerance = 0.01;  // relative change of the optimum's objective
+  IntervalCheckSpec interval_check;
   std::uint64_t seed = 1;
   std::filesystem::path base_dir;  // for relative paths (CSV files, case files)
 };

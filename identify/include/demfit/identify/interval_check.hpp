@@ -1,0 +1,75 @@
+#pragma once
+// Interval-end checks (issue 15 item 3): runs of the model itself where the posterior's 95 %
+// intervals end, to catch intervals that are too narrow.
+//
+// Why: the posterior is a linear surrogate fitted to the runs nearest the best one. When the loop
+// has shrunk onto a thin band of a curved valley (a nuisance parameter poorly pinned, e.g. SHEARK
+// along the NORMK-SHEARK ridge of the pellet study), the interval across the band is an
+// extrapolation of a local, noise-driven slope, and it can exclude values that fit just as well
+// (docs/reproduce.md, "Why that interval is too narrow"). A run can tell: at each interval end,
+// with the other variables at the surrogate's optimum for that value (a profile), the model is
+// run once; if that run fits within the run-to-run spread at the optimum, the data cannot exclude
+// the end, and the check steps outwards (doubling the distance) until a run fits worse than the
+// spread or the bound is reached. The end is then moved to the first point that fits worse (the
+// bound if none does). An end whose first check already fits worse is kept: the check only ever
+// widens.
+//
+// The spread at the optimum is measured, not modelled: `replicates` runs at the best point nudged
+// by 1e-7 (unit coordinates) each, which for a DEM model are other round-off trajectories, plus
+// the study's own runs within 1 % of every range of the best point (a loop's later predicted
+// optima often land there). The threshold is the largest of these objectives and the best run's.
+// Why the largest: the best run is the minimum over many noisy runs, biased low; on the pellet
+// study with a curved valley the objectives at the optimum spread by a factor 3.4 (0.00017 to
+// 0.00058 in seven runs), and two replicates alone gave 0.00017 and 0.00023. A deterministic
+// smooth model has no spread: the threshold is then about the best objective (the nearby runs'
+// slope adds a little, far less than a check 2 % of the range away costs), and no
+// end moves.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/study_spec.hpp"
+
+namespace demfit::identify {
+
+struct IntervalEndCheck {
+  std::vector<double> values;      // the checked variable's value at each step [model units]
+  std::vector<double> objectives;  // the run's composite objective (NaN = failed run)
+  std::vector<bool> fits;          // objective <= threshold
+  double end = 0.0;                // the reported interval end after the check [model units]
+  bool widened = false;
+};
+
+struct IntervalCheckOutcome {
+  std::vector<double> replicate_objectives;
+  std::vector<double> nearby_objectives;  // the study's runs within kNearbyRadius of the best
+  double threshold = 0.0;
+  std::vector<IntervalEndCheck> lower, upper;  // one per variable
+  int runs = 0;
+};
+
+// The unit point to run for variable `variable` at unit value `unit_value`: the other coordinates
+// at the surrogate's optimum with that one held.
+using ProfilePoint = std::function<Eigen::VectorXd(int variable, double unit_value)>;
+// Runs the rows (unit coordinates) as one batch, returns each row's composite objective (NaN when
+// the run failed). `batch` counts from 0; `kinds` names each row ("replicate", "interval_check").
+using EvaluateBatch = std::function<Eigen::VectorXd(int batch, const Eigen::MatrixXd& unit_points,
+                                                    const std::vector<std::string>& kinds)>;
+
+inline constexpr double kNearbyRadius = 0.01;  // unit coordinates, max-norm
+
+// `lower`/`upper`: the posterior's 95 % interval per variable [model units]. Batch 0 holds the
+// replicates and every end's first check; each later batch the ends still stepping outwards.
+IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variables, const Eigen::VectorXd& best_unit,
+                                         double best_objective, const std::vector<double>& nearby_objectives,
+                                         const std::vector<double>& lower, const std::vector<double>& upper,
+                                         const IntervalCheckSpec& settings, const ProfilePoint& profile,
+                                         const EvaluateBatch& evaluate);
+
+// The outcome as stored under uncertainty.posterior.interval_check (values in model units).
+nlohmann::json interval_check_json(const IntervalCheckOutcome& outcome, const std::vector<VariableSpec>& variables);
+
+}  // namespace demfit::identify

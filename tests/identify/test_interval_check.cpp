@@ -1,0 +1,174 @@
+// Interval-end checks (issue 15 item 3, interval_check.hpp): runs at the posterior intervals' ends
+// widen an interval drawn too narrow, and never narrow one.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/interval_check.hpp"
+#include "demfit/identify/study.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "test_helpers.hpp"
+
+using namespace demfit::identify;
+
+namespace {
+
+const std::vector<VariableSpec> kTwo{{"a", 0.0, 1.0, 0.5}, {"b", 0.0, 1.0, 0.5}};
+
+IntervalCheckSpec settings(int max_steps) {
+  IntervalCheckSpec s;
+  s.max_steps = max_steps;
+  s.replicates = 2;
+  s.first_step = 0.02;
+  return s;
+}
+
+// A profile that puts the other coordinate at 0.5.
+ProfilePoint flat_profile() {
+  return [](int variable, double unit) {
+    Eigen::VectorXd p = Eigen::VectorXd::Constant(2, 0.5);
+    p(variable) = unit;
+    return p;
+  };
+}
+
+// Evaluates `objective` on every row; replicates (rows at the best point) get `replicate_value`.
+struct Recorder {
+  std::function<double(const Eigen::VectorXd&)> objective;
+  double replicate_value = 1.0;
+  std::vector<Eigen::VectorXd> checked;
+  EvaluateBatch evaluate() {
+    return [this](int, const Eigen::MatrixXd& points, const std::vector<std::string>& kinds) {
+      Eigen::VectorXd out(points.rows());
+      for (int i = 0; i < points.rows(); ++i) {
+        if (kinds[i] == "replicate") {
+          out(i) = replicate_value;
+          continue;
+        }
+        checked.push_back(points.row(i).transpose());
+        out(i) = objective(points.row(i).transpose());
+      }
+      return out;
+    };
+  }
+};
+
+}  // namespace
+
+TEST_CASE("An interval end that fits within the run-to-run spread is widened to the first run that fits worse",
+          "[identify][interval_check]") {
+  // Flat within 0.2 of 0.5 along a (anything there fits as well as the best run), steep beyond;
+  // the posterior claims [0.49, 0.51]. Replicates at the best point spread up to 1.05.
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::max(0.0, std::abs(u(0) - 0.5) - 0.2); };
+  r.replicate_value = 1.05;
+  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
+  const auto out =
+      check_interval_ends(kTwo, best, 1.0, {}, {0.49, 0.45}, {0.51, 0.55}, settings(6), flat_profile(), r.evaluate());
+  // Distances 0.02, 0.04, 0.08, 0.16 fit, 0.32 does not: the ends move to 0.5 -/+ 0.32.
+  CHECK(out.lower[0].end == Approx(0.18).margin(1e-12));
+  CHECK(out.upper[0].end == Approx(0.82).margin(1e-12));
+  CHECK(out.lower[0].widened);
+  CHECK(out.threshold == 1.05);
+  CHECK(out.replicate_objectives.size() == 2);
+  // b does not change the objective: its ends walk to the bounds.
+  CHECK(out.lower[1].end == 0.0);
+  CHECK(out.upper[1].end == 1.0);
+}
+
+TEST_CASE("An interval end whose first check fits worse than the spread is kept", "[identify][interval_check]") {
+  // A noise-free bowl: no spread, so every run away from the best fits worse.
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) { return 1.0 + (u - Eigen::VectorXd::Constant(2, 0.5)).squaredNorm(); };
+  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
+  const auto out =
+      check_interval_ends(kTwo, best, 1.0, {}, {0.45, 0.4}, {0.55, 0.6}, settings(6), flat_profile(), r.evaluate());
+  CHECK(out.lower[0].end == 0.45);
+  CHECK(out.upper[0].end == 0.55);
+  CHECK(out.lower[1].end == 0.4);
+  CHECK(out.upper[1].end == 0.6);
+  CHECK_FALSE(out.lower[0].widened);
+  CHECK_FALSE(out.upper[1].widened);
+  // Each end: one check at the posterior's end; its retry re-draws the same profile and is not run.
+  CHECK(r.checked.size() == 4);
+}
+
+TEST_CASE("A rejected check is retried once with a re-drawn profile that can find the valley",
+          "[identify][interval_check]") {
+  // A valley b = a: only the profile along it fits. The first profile draw misses it (b = 0.5), the
+  // re-drawn one (after that run) follows it.
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 100.0 * std::pow(u(1) - u(0), 2); };
+  r.replicate_value = 1.01;
+  int draws = 0;
+  const ProfilePoint profile = [&](int variable, double unit) {
+    Eigen::VectorXd p(2);
+    p(variable) = unit;
+    p(1 - variable) = ++draws <= 4 ? 0.5 : unit;  // the first batch's four draws miss the valley
+    return p;
+  };
+  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
+  const auto out =
+      check_interval_ends(kTwo, best, 1.0, {}, {0.45, 0.45}, {0.55, 0.55}, settings(3), profile, r.evaluate());
+  // Along the valley every distance fits: after the retry the walks run to their last step
+  // (distances 0.05, 0.1, 0.2) and, never fitting worse, report the bounds.
+  CHECK(out.lower[0].end == 0.0);
+  CHECK(out.upper[1].end == 1.0);
+  CHECK(out.lower[0].objectives.size() == 4);  // miss, retry, two further distances
+  CHECK_FALSE(out.lower[0].fits[0]);
+  CHECK(out.lower[0].fits[1]);
+}
+
+TEST_CASE("The study's runs next to the best one set the spread threshold", "[identify][interval_check]") {
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::abs(u(0) - 0.5); };
+  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
+  // 1.3 from a nearby run: a check 0.02 away (1.2) fits, 0.04 away (1.4) does not.
+  const auto out = check_interval_ends(kTwo, best, 1.0, {1.3, std::nan("")}, {0.49, 0.4}, {0.51, 0.6}, settings(6),
+                                       flat_profile(), r.evaluate());
+  CHECK(out.threshold == 1.3);
+  CHECK(out.lower[0].end == Approx(0.46).margin(1e-12));
+  CHECK(out.upper[0].end == Approx(0.54).margin(1e-12));
+}
+
+TEST_CASE("A study with interval checks stores them after the verification run and a resume repeats none",
+          "[identify][interval_check]") {
+  auto json = test::analytic_study(0.01, 4);
+  json["interval_check"] = {{"max_steps", 3}, {"replicates", 2}};
+  const auto spec = parse_study(json, ".");
+  CHECK(spec.interval_check.max_steps == 3);
+  const AnalyticCurveModel model;
+  const auto dir = test::fresh_dir("interval_check_study");
+  RunOptions options;
+  options.output_dir = dir;
+  options.plots = false;
+  options.progress = false;
+  const auto result = run_study(spec, model, options);
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  int replicates = 0, checks = 0;
+  for (const auto& e : store.evaluations()) {
+    if (e.kind == "replicate") ++replicates;
+    if (e.kind == "interval_check") ++checks;
+    if (e.kind == "replicate" || e.kind == "interval_check") CHECK(e.iteration > result.iterations);
+  }
+  CHECK(replicates == 2);
+  CHECK(checks >= 2 * static_cast<int>(spec.variables.size()));
+  CHECK(result.runs == static_cast<int>(store.evaluations().size()));
+  const auto stored = store.result();
+  REQUIRE(stored);
+  REQUIRE((*stored)["uncertainty"]["posterior"].contains("interval_check"));
+  // Every reported interval still contains the answer.
+  for (const auto& [name, interval] : result.intervals) {
+    CHECK(interval.lower <= result.best.at(name));
+    CHECK(interval.upper >= result.best.at(name));
+  }
+  RunOptions resume = options;
+  resume.resume = true;
+  int evaluated = 0;
+  resume.after_evaluation = [&](int done) { evaluated = done; };
+  const auto again = run_study(spec, model, resume);
+  CHECK(evaluated == 0);
+  CHECK(again.intervals.at("rate").lower == result.intervals.at("rate").lower);
+  CHECK(again.intervals.at("rate").upper == result.intervals.at("rate").upper);
+}
