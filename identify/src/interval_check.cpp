@@ -25,7 +25,8 @@ struct EndWalk {
   double direction = 1.0;  // +1 upper end, −1 lower end
   double distance = 0.0;   // unit distance from the best point of the next check
   int step = 0;            // distances tried so far
-  bool retrying = false;   // the run at this distance fitted worse; one re-profiled retry follows
+  bool retrying = false;   // the run at this distance fitted worse; one retry with the other attempt follows
+  int preferred = 0;       // the attempt tried first (ProfilePoint); the one that last fitted
   bool active = true;
   Eigen::VectorXd last_point;  // the last run's unit point
   IntervalEndCheck* record = nullptr;
@@ -50,9 +51,8 @@ void close_rejected(EndWalk& walk, double unit, const VariableSpec& v) {
 }
 
 // Decides one end after its check run at `unit` (the checked coordinate) with objective `objective`.
-// A run that fits worse is retried once at the same distance: the profile is re-drawn from a
-// surrogate that now knows that run (far from the loop's runs the first profile can miss the valley
-// floor: the pellet study's first check at SHEARK 0.2385 ran NORMK 1.63, objective 15x the best).
+// A run that fits worse is retried once at the same distance with the other attempt (held point or
+// surrogate profile, interval_check.hpp); the attempt that fitted is tried first at the next distance.
 void decide(EndWalk& walk, double unit, double objective, double threshold, int max_steps, const VariableSpec& v) {
   const bool fits = std::isfinite(objective) && objective <= threshold;
   walk.record->values.push_back(to_model(v, unit));
@@ -63,6 +63,7 @@ void decide(EndWalk& walk, double unit, double objective, double threshold, int 
     walk.retrying = true;
     return;
   }
+  if (walk.retrying) walk.preferred = 1 - walk.preferred;  // a valley: keep following it
   walk.retrying = false;
   const bool at_bound = unit <= 0.0 || unit >= 1.0;
   if (at_bound || walk.step + 1 >= max_steps) {  // never fitted worse: the data do not close this end
@@ -110,7 +111,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
     for (EndWalk& w : walks) {
       if (!w.active) continue;
       const double unit = std::clamp(best_unit(w.variable) + w.direction * w.distance, 0.0, 1.0);
-      Eigen::VectorXd point = profile(w.variable, unit);
+      Eigen::VectorXd point = profile(w.variable, unit, w.retrying ? 1 - w.preferred : w.preferred);
       point(w.variable) = unit;
       if (w.retrying && (point - w.last_point).cwiseAbs().maxCoeff() < kSamePoint) {
         close_rejected(w, unit, variables[w.variable]);  // the re-drawn profile would repeat the run

@@ -26,7 +26,7 @@ IntervalCheckSpec settings(int max_steps) {
 
 // A profile that puts the other coordinate at 0.5.
 ProfilePoint flat_profile() {
-  return [](int variable, double unit) {
+  return [](int variable, double unit, int) {
     Eigen::VectorXd p = Eigen::VectorXd::Constant(2, 0.5);
     p(variable) = unit;
     return p;
@@ -96,16 +96,15 @@ TEST_CASE("An interval end whose first check fits worse than the spread is kept"
 
 TEST_CASE("A rejected check is retried once with a re-drawn profile that can find the valley",
           "[identify][interval_check]") {
-  // A valley b = a: only the profile along it fits. The first profile draw misses it (b = 0.5), the
-  // re-drawn one (after that run) follows it.
+  // A valley b = a: only the profile along it fits. The first attempt (the other held at the best
+  // point, 0.5) misses it, the retry (the profile) follows it.
   Recorder r;
   r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 100.0 * std::pow(u(1) - u(0), 2); };
   r.replicate_value = 1.01;
-  int draws = 0;
-  const ProfilePoint profile = [&](int variable, double unit) {
+  const ProfilePoint profile = [&](int variable, double unit, int attempt) {
     Eigen::VectorXd p(2);
     p(variable) = unit;
-    p(1 - variable) = ++draws <= 4 ? 0.5 : unit;  // the first batch's four draws miss the valley
+    p(1 - variable) = attempt == 0 ? 0.5 : unit;
     return p;
   };
   const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);

@@ -6,11 +6,12 @@
 // has shrunk onto a thin band of a curved valley (a nuisance parameter poorly pinned, e.g. SHEARK
 // along the NORMK-SHEARK ridge of the pellet study), the interval across the band is an
 // extrapolation of a local, noise-driven slope, and it can exclude values that fit just as well
-// (docs/reproduce.md, "Why that interval is too narrow"). A run can tell: at each interval end,
-// with the other variables at the surrogate's optimum for that value (a profile), the model is
-// run once; if that run fits within the run-to-run spread at the optimum, the data cannot exclude
-// the end, and the check steps outwards (doubling the distance) until a run fits worse than the
-// spread or the bound is reached. The end is then moved to the first point that fits worse (the
+// (docs/reproduce.md, "Why that interval is too narrow"). A run can tell: at each interval end the
+// model is run with the other variables held at the best point; if that run fits within the
+// run-to-run spread at the optimum, the data cannot exclude the end, and the check steps outwards
+// (doubling the distance) until a run fits worse than the spread or the bound is reached. A run
+// that fits worse is retried once with the other variables at the surrogate's optimum for that
+// value (a profile through a correlated valley). The end is then moved to the first point that fits worse (the
 // bound if none does). An end whose first check already fits worse is kept: the check only ever
 // widens.
 //
@@ -22,8 +23,7 @@
 // study with a curved valley the objectives at the optimum spread by a factor 3.4 (0.00017 to
 // 0.00058 in seven runs), and two replicates alone gave 0.00017 and 0.00023. A deterministic
 // smooth model has no spread: the threshold is then about the best objective (the nearby runs'
-// slope adds a little, far less than a check 2 % of the range away costs), and no
-// end moves.
+// slope adds a little, far less than a check 2 % of the range away costs), and no end moves.
 #include <functional>
 #include <string>
 #include <vector>
@@ -51,9 +51,9 @@ struct IntervalCheckOutcome {
   int runs = 0;
 };
 
-// The unit point to run for variable `variable` at unit value `unit_value`: the other coordinates
-// at the surrogate's optimum with that one held.
-using ProfilePoint = std::function<Eigen::VectorXd(int variable, double unit_value)>;
+// The unit point to run for variable `variable` at unit value `unit_value`: attempt 0 the other
+// coordinates at the best point, attempt 1 at the surrogate's optimum with that one held.
+using ProfilePoint = std::function<Eigen::VectorXd(int variable, double unit_value, int attempt)>;
 // Runs the rows (unit coordinates) as one batch, returns each row's composite objective (NaN when
 // the run failed). `batch` counts from 0; `kinds` names each row ("replicate", "interval_check").
 using EvaluateBatch = std::function<Eigen::VectorXd(int batch, const Eigen::MatrixXd& unit_points,
