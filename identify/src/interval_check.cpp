@@ -77,23 +77,31 @@ void decide(EndWalk& walk, double unit, double objective, double threshold, int 
 
 }  // namespace
 
-IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variables, const Eigen::VectorXd& best_unit,
-                                         double best_objective, const std::vector<double>& nearby_objectives,
-                                         const std::vector<double>& lower, const std::vector<double>& upper,
+IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variables, const IntervalCheckInput& input,
                                          const IntervalCheckSpec& settings, const ProfilePoint& profile,
                                          const EvaluateBatch& evaluate) {
   const int n = static_cast<int>(variables.size());
-  if (best_unit.size() != n || static_cast<int>(lower.size()) != n || static_cast<int>(upper.size()) != n)
+  const Eigen::VectorXd& best_unit = input.best_unit;
+  const std::vector<double>&lower = input.lower, &upper = input.upper;
+  if (best_unit.size() != n || static_cast<int>(lower.size()) != n || static_cast<int>(upper.size()) != n ||
+      (input.fitted_runs.rows() > 0 && input.fitted_runs.cols() != n))
     throw std::invalid_argument("interval check: variables, best point and intervals have different sizes");
   IntervalCheckOutcome out;
   out.lower.resize(n);
   out.upper.resize(n);
-  out.threshold = best_objective;
-  out.nearby_objectives = nearby_objectives;
-  for (double o : nearby_objectives)
+  out.threshold = input.best_objective;
+  out.nearby_objectives = input.nearby_objectives;
+  for (double o : input.nearby_objectives)
     if (std::isfinite(o)) out.threshold = std::max(out.threshold, o);
   std::vector<EndWalk> walks;
-  for (int j = 0; j < n; ++j)
+  for (int j = 0; j < n; ++j) {
+    out.lower[j].end = lower[j];
+    out.upper[j].end = upper[j];
+    const bool extrapolated = input.fitted_runs.rows() == 0 ||
+                              to_unit(variables[j], lower[j]) < input.fitted_runs.col(j).minCoeff() - 1e-12 ||
+                              to_unit(variables[j], upper[j]) > input.fitted_runs.col(j).maxCoeff() + 1e-12;
+    out.lower[j].checked = out.upper[j].checked = extrapolated;
+    if (!extrapolated) continue;
     for (double direction : {-1.0, 1.0}) {
       IntervalEndCheck& record = direction < 0 ? out.lower[j] : out.upper[j];
       record.end = direction < 0 ? lower[j] : upper[j];
@@ -105,6 +113,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
       walk.record = &record;
       walks.push_back(walk);
     }
+  }
   for (int batch = 0;; ++batch) {
     std::vector<EndWalk*> active;
     std::vector<Eigen::VectorXd> planned;
@@ -156,7 +165,7 @@ nlohmann::json interval_check_json(const IntervalCheckOutcome& outcome, const st
     nlohmann::json checks = nlohmann::json::array();
     for (std::size_t k = 0; k < e.values.size(); ++k)
       checks.push_back({{"value", e.values[k]}, {"objective", finite_or_null(e.objectives[k])}, {"fits", e.fits[k]}});
-    return nlohmann::json{{"checks", checks}, {"end", e.end}, {"widened", e.widened}};
+    return nlohmann::json{{"checked", e.checked}, {"checks", checks}, {"end", e.end}, {"widened", e.widened}};
   };
   nlohmann::json replicates = nlohmann::json::array(), nearby = nlohmann::json::array();
   for (double o : outcome.replicate_objectives) replicates.push_back(finite_or_null(o));
@@ -165,7 +174,8 @@ nlohmann::json interval_check_json(const IntervalCheckOutcome& outcome, const st
   for (std::size_t j = 0; j < variables.size(); ++j)
     per_variable[variables[j].name] = {{"lower", end_json(outcome.lower[j])}, {"upper", end_json(outcome.upper[j])}};
   return {{"method",
-           "a run at each interval end (others at the surrogate's optimum), stepping outwards while the run's "
+           "for each variable with an interval end beyond the runs the posterior was fitted to: a run at each end "
+           "(others held at the best point, retried on the surrogate's profile), stepping outwards while the run's "
            "objective is within the spread of nudged re-runs of the best point and the runs near it"},
           {"replicate_objectives", replicates},
           {"nearby_objectives", nearby},

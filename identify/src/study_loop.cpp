@@ -81,7 +81,9 @@ class StudyLoop {
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
   RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
   // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
-  void check_intervals(const Run& best, int first_iteration, nlohmann::json& uncertainty);
+  void check_intervals(const Run& best, const RunSample& sample, int first_iteration, nlohmann::json& uncertainty);
+  IntervalCheckInput interval_check_input(const Run& best, const RunSample& sample,
+                                          const nlohmann::json& posterior) const;
   VectorXd profile_point(const VectorXd& best_unit, int variable, double unit_value) const;
   void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
 
@@ -360,13 +362,29 @@ VectorXd StudyLoop::profile_point(const VectorXd& best_unit, int variable, doubl
   return full(rbf_surrogate::minimize(function, others_box, options).x);
 }
 
-void StudyLoop::check_intervals(const Run& best, int first_iteration, nlohmann::json& uncertainty) {
-  nlohmann::json& posterior = uncertainty["posterior"];
-  std::vector<double> lower, upper;
+IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSample& sample,
+                                                   const nlohmann::json& posterior) const {
+  IntervalCheckInput input;
+  input.best_unit = best.unit;
+  input.best_objective = best.objective;
+  input.fitted_runs = sample.unit_points;
   for (const auto& v : spec_.variables) {
-    lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
-    upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
+    input.lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
+    input.upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
   }
+  // Other runs at (almost) the best point: the run-to-run spread there.
+  const Run* best_stored = best_run();
+  for (std::size_t i = 0; i < decision_runs_; ++i)
+    if (&runs_[i] != best_stored && (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
+      input.nearby_objectives.push_back(runs_[i].objective);
+  return input;
+}
+
+void StudyLoop::check_intervals(const Run& best, const RunSample& sample, int first_iteration,
+                                nlohmann::json& uncertainty) {
+  nlohmann::json& posterior = uncertainty["posterior"];
+  const IntervalCheckInput input = interval_check_input(best, sample, posterior);
+  const std::vector<double>&lower = input.lower, &upper = input.upper;
   // Each profile is a fresh fit (profile_point), so a retried end's profile knows the run that missed.
   const auto profile = [&](int variable, double unit_value, int attempt) {
     if (attempt > 0) return profile_point(best.unit, variable, unit_value);
@@ -385,13 +403,8 @@ void StudyLoop::check_intervals(const Run& best, int first_iteration, nlohmann::
     }
     return objectives;
   };
-  std::vector<double> nearby;  // other runs at (almost) the best point: the run-to-run spread there
-  const Run* best_stored = best_run();
-  for (std::size_t i = 0; i < decision_runs_; ++i)
-    if (&runs_[i] != best_stored && (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
-      nearby.push_back(runs_[i].objective);
-  const IntervalCheckOutcome outcome = check_interval_ends(spec_.variables, best.unit, best.objective, nearby, lower,
-                                                           upper, spec_.interval_check, profile, evaluate);
+  const IntervalCheckOutcome outcome =
+      check_interval_ends(spec_.variables, input, spec_.interval_check, profile, evaluate);
   for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
     const auto& v = spec_.variables[j];
     nlohmann::json& entry = posterior["variables"][v.name];
@@ -407,11 +420,12 @@ void StudyLoop::check_intervals(const Run& best, int first_iteration, nlohmann::
   posterior["interval_check"] = interval_check_json(outcome, spec_.variables);
   if (options_.progress)
     for (std::size_t j = 0; j < spec_.variables.size(); ++j)
-      std::fprintf(stderr, "demfit: interval check: %s [%s, %s] -> [%s, %s] (spread threshold %s)\n",
-                   spec_.variables[j].name.c_str(), detail::format_number(lower[j]).c_str(),
-                   detail::format_number(upper[j]).c_str(), detail::format_number(outcome.lower[j].end).c_str(),
+      std::fprintf(stderr, "demfit: interval check: %s [%s, %s] -> [%s, %s] (%s)\n", spec_.variables[j].name.c_str(),
+                   detail::format_number(lower[j]).c_str(), detail::format_number(upper[j]).c_str(),
+                   detail::format_number(outcome.lower[j].end).c_str(),
                    detail::format_number(outcome.upper[j].end).c_str(),
-                   detail::format_number(outcome.threshold).c_str());
+                   outcome.lower[j].checked ? ("spread threshold " + detail::format_number(outcome.threshold)).c_str()
+                                            : "not checked: within the runs the posterior was fitted to");
 }
 
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
@@ -438,7 +452,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
     if (options_.progress && !posterior_warning.empty())
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
     if (spec_.interval_check.max_steps > 0 && uncertainty["posterior"].is_object())
-      check_intervals(best, verification_iteration + 1, uncertainty);
+      check_intervals(best, sample, verification_iteration + 1, uncertainty);
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
       result.ci_half_width[name] = estimate.ci_half_width[j];

@@ -16,6 +16,21 @@ namespace {
 
 const std::vector<VariableSpec> kTwo{{"a", 0.0, 1.0, 0.5}, {"b", 0.0, 1.0, 0.5}};
 
+// The best point 0.5, 0.5 with the posterior's runs in a small cloud around it (every end given
+// in these tests lies beyond it, so every variable is checked).
+IntervalCheckInput input(double best_objective, std::vector<double> nearby, std::vector<double> lower,
+                         std::vector<double> upper) {
+  IntervalCheckInput in;
+  in.best_unit = Eigen::VectorXd::Constant(2, 0.5);
+  in.best_objective = best_objective;
+  in.nearby_objectives = std::move(nearby);
+  in.lower = std::move(lower);
+  in.upper = std::move(upper);
+  in.fitted_runs.resize(3, 2);
+  in.fitted_runs << 0.498, 0.5, 0.5, 0.498, 0.502, 0.502;
+  return in;
+}
+
 IntervalCheckSpec settings(int max_steps) {
   IntervalCheckSpec s;
   s.max_steps = max_steps;
@@ -63,9 +78,8 @@ TEST_CASE("An interval end that fits within the run-to-run spread is widened to 
   Recorder r;
   r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::max(0.0, std::abs(u(0) - 0.5) - 0.2); };
   r.replicate_value = 1.05;
-  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
   const auto out =
-      check_interval_ends(kTwo, best, 1.0, {}, {0.49, 0.45}, {0.51, 0.55}, settings(6), flat_profile(), r.evaluate());
+      check_interval_ends(kTwo, input(1.0, {}, {0.49, 0.45}, {0.51, 0.55}), settings(6), flat_profile(), r.evaluate());
   // Distances 0.02, 0.04, 0.08, 0.16 fit, 0.32 does not: the ends move to 0.5 -/+ 0.32.
   CHECK(out.lower[0].end == Approx(0.18).margin(1e-12));
   CHECK(out.upper[0].end == Approx(0.82).margin(1e-12));
@@ -81,9 +95,8 @@ TEST_CASE("An interval end whose first check fits worse than the spread is kept"
   // A noise-free bowl: no spread, so every run away from the best fits worse.
   Recorder r;
   r.objective = [](const Eigen::VectorXd& u) { return 1.0 + (u - Eigen::VectorXd::Constant(2, 0.5)).squaredNorm(); };
-  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
   const auto out =
-      check_interval_ends(kTwo, best, 1.0, {}, {0.45, 0.4}, {0.55, 0.6}, settings(6), flat_profile(), r.evaluate());
+      check_interval_ends(kTwo, input(1.0, {}, {0.45, 0.4}, {0.55, 0.6}), settings(6), flat_profile(), r.evaluate());
   CHECK(out.lower[0].end == 0.45);
   CHECK(out.upper[0].end == 0.55);
   CHECK(out.lower[1].end == 0.4);
@@ -107,9 +120,8 @@ TEST_CASE("A rejected check is retried once with a re-drawn profile that can fin
     p(1 - variable) = attempt == 0 ? 0.5 : unit;
     return p;
   };
-  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
   const auto out =
-      check_interval_ends(kTwo, best, 1.0, {}, {0.45, 0.45}, {0.55, 0.55}, settings(3), profile, r.evaluate());
+      check_interval_ends(kTwo, input(1.0, {}, {0.45, 0.45}, {0.55, 0.55}), settings(3), profile, r.evaluate());
   // Along the valley every distance fits: after the retry the walks run to their last step
   // (distances 0.05, 0.1, 0.2) and, never fitting worse, report the bounds.
   CHECK(out.lower[0].end == 0.0);
@@ -119,12 +131,34 @@ TEST_CASE("A rejected check is retried once with a re-drawn profile that can fin
   CHECK(out.lower[0].fits[1]);
 }
 
+TEST_CASE("An interval that lies within the runs the posterior was fitted to is not checked",
+          "[identify][interval_check]") {
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd&) { return 1.0; };  // flat: any check would widen
+  IntervalCheckInput in = input(1.0, {}, {0.45, 0.3}, {0.55, 0.7});
+  in.fitted_runs.resize(4, 2);
+  in.fitted_runs << 0.4, 0.45, 0.6, 0.55, 0.45, 0.4, 0.55, 0.6;  // a spans [0.4, 0.6], b [0.4, 0.6]
+  const auto out = check_interval_ends(kTwo, in, settings(6), flat_profile(), r.evaluate());
+  CHECK_FALSE(out.lower[0].checked);  // [0.45, 0.55] inside the runs: kept, no run
+  CHECK(out.lower[0].end == 0.45);
+  CHECK(out.upper[0].end == 0.55);
+  CHECK(out.lower[1].checked);  // [0.3, 0.7] reaches beyond them: checked, walks to the bounds
+  CHECK(out.lower[1].end == 0.0);
+  CHECK(out.upper[1].end == 1.0);
+  for (const auto& point : r.checked) CHECK(point(0) == 0.5);
+  IntervalCheckInput inside = input(1.0, {}, {0.45, 0.45}, {0.55, 0.55});
+  inside.fitted_runs = in.fitted_runs;
+  Recorder none;
+  none.objective = r.objective;
+  const auto unchecked = check_interval_ends(kTwo, inside, settings(6), flat_profile(), none.evaluate());
+  CHECK(unchecked.runs == 0);  // nothing to check: not even the replicates run
+}
+
 TEST_CASE("The study's runs next to the best one set the spread threshold", "[identify][interval_check]") {
   Recorder r;
   r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::abs(u(0) - 0.5); };
-  const Eigen::VectorXd best = Eigen::VectorXd::Constant(2, 0.5);
   // 1.3 from a nearby run: a check 0.02 away (1.2) fits, 0.04 away (1.4) does not.
-  const auto out = check_interval_ends(kTwo, best, 1.0, {1.3, std::nan("")}, {0.49, 0.4}, {0.51, 0.6}, settings(6),
+  const auto out = check_interval_ends(kTwo, input(1.0, {1.3, std::nan("")}, {0.49, 0.4}, {0.51, 0.6}), settings(6),
                                        flat_profile(), r.evaluate());
   CHECK(out.threshold == 1.3);
   CHECK(out.lower[0].end == Approx(0.46).margin(1e-12));
@@ -133,7 +167,7 @@ TEST_CASE("The study's runs next to the best one set the spread threshold", "[id
 
 TEST_CASE("A study with interval checks stores them after the verification run and a resume repeats none",
           "[identify][interval_check]") {
-  auto json = test::analytic_study(0.01, 4);
+  auto json = test::analytic_study(0.2, 6);
   json["interval_check"] = {{"max_steps", 3}, {"replicates", 2}};
   const auto spec = parse_study(json, ".");
   CHECK(spec.interval_check.max_steps == 3);
