@@ -22,11 +22,11 @@ double to_model(const VariableSpec& v, double unit) {
 // One interval end walking outwards from the best point.
 struct EndWalk {
   int variable = 0;
-  double direction = 1.0;  // +1 upper end, −1 lower end
-  double distance = 0.0;   // unit distance from the best point of the next check
-  int step = 0;            // distances tried so far
-  bool retrying = false;   // the run at this distance fitted worse; one retry with the other attempt follows
-  int preferred = 0;       // the attempt tried first (ProfilePoint); the one that last fitted
+  double direction = 1.0;    // +1 upper end, −1 lower end
+  double distance = 0.0;     // unit distance from the best point of the next check
+  int step = 0;              // distances tried so far
+  bool retrying = false;     // the run at this distance fitted worse; one retry with the other attempt follows
+  Eigen::VectorXd last_fit;  // the last run of this end that fitted (the best point at first)
   bool active = true;
   Eigen::VectorXd last_point;  // the last run's unit point
   IntervalEndCheck* record = nullptr;
@@ -51,8 +51,7 @@ void close_rejected(EndWalk& walk, double unit, const VariableSpec& v) {
 }
 
 // Decides one end after its check run at `unit` (the checked coordinate) with objective `objective`.
-// A run that fits worse is retried once at the same distance with the other attempt (held point or
-// surrogate profile, interval_check.hpp); the attempt that fitted is tried first at the next distance.
+// A run that fits worse is retried once at the same distance on the surrogate's profile.
 void decide(EndWalk& walk, double unit, double objective, double threshold, int max_steps, const VariableSpec& v) {
   const bool fits = std::isfinite(objective) && objective <= threshold;
   walk.record->values.push_back(to_model(v, unit));
@@ -63,8 +62,8 @@ void decide(EndWalk& walk, double unit, double objective, double threshold, int 
     walk.retrying = true;
     return;
   }
-  if (walk.retrying) walk.preferred = 1 - walk.preferred;  // a valley: keep following it
   walk.retrying = false;
+  walk.last_fit = walk.last_point;  // along a valley: the next distance starts where this one fitted
   const bool at_bound = unit <= 0.0 || unit >= 1.0;
   if (at_bound || walk.step + 1 >= max_steps) {  // never fitted worse: the data do not close this end
     walk.active = false;
@@ -110,6 +109,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
       walk.variable = j;
       walk.direction = direction;
       walk.distance = std::max(direction * (end_unit - best_unit(j)), settings.first_step);
+      walk.last_fit = best_unit;
       walk.record = &record;
       walks.push_back(walk);
     }
@@ -120,7 +120,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
     for (EndWalk& w : walks) {
       if (!w.active) continue;
       const double unit = std::clamp(best_unit(w.variable) + w.direction * w.distance, 0.0, 1.0);
-      Eigen::VectorXd point = profile(w.variable, unit, w.retrying ? 1 - w.preferred : w.preferred);
+      Eigen::VectorXd point = w.retrying ? profile(w.variable, unit) : w.last_fit;
       point(w.variable) = unit;
       if (w.retrying && (point - w.last_point).cwiseAbs().maxCoeff() < kSamePoint) {
         close_rejected(w, unit, variables[w.variable]);  // the re-drawn profile would repeat the run

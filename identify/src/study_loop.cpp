@@ -386,12 +386,7 @@ void StudyLoop::check_intervals(const Run& best, const RunSample& sample, int fi
   const IntervalCheckInput input = interval_check_input(best, sample, posterior);
   const std::vector<double>&lower = input.lower, &upper = input.upper;
   // Each profile is a fresh fit (profile_point), so a retried end's profile knows the run that missed.
-  const auto profile = [&](int variable, double unit_value, int attempt) {
-    if (attempt > 0) return profile_point(best.unit, variable, unit_value);
-    VectorXd held = best.unit;
-    held(variable) = unit_value;
-    return held;
-  };
+  const auto profile = [&](int variable, double unit_value) { return profile_point(best.unit, variable, unit_value); };
   const auto evaluate = [&](int batch, const MatrixXd& points, const std::vector<std::string>& kinds) {
     if (options_.progress)
       std::fprintf(stderr, "demfit: interval check, step %d: %d runs\n", batch + 1, static_cast<int>(points.rows()));
@@ -451,8 +446,10 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
         detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
     if (options_.progress && !posterior_warning.empty())
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
+    const int runs_before_check = total_runs_;
     if (spec_.interval_check.max_steps > 0 && uncertainty["posterior"].is_object())
       check_intervals(best, sample, verification_iteration + 1, uncertainty);
+    result.interval_check_runs = total_runs_ - runs_before_check;
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
       result.ci_half_width[name] = estimate.ci_half_width[j];

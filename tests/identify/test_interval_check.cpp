@@ -41,7 +41,7 @@ IntervalCheckSpec settings(int max_steps) {
 
 // A profile that puts the other coordinate at 0.5.
 ProfilePoint flat_profile() {
-  return [](int variable, double unit, int) {
+  return [](int variable, double unit) {
     Eigen::VectorXd p = Eigen::VectorXd::Constant(2, 0.5);
     p(variable) = unit;
     return p;
@@ -109,15 +109,15 @@ TEST_CASE("An interval end whose first check fits worse than the spread is kept"
 
 TEST_CASE("A rejected check is retried once with a re-drawn profile that can find the valley",
           "[identify][interval_check]") {
-  // A valley b = a: only the profile along it fits. The first attempt (the other held at the best
-  // point, 0.5) misses it, the retry (the profile) follows it.
+  // A valley b = a: only the profile along it fits. Each distance's first attempt (the other where
+  // the last run fitted) misses it, the retry (the profile) follows it.
   Recorder r;
   r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 100.0 * std::pow(u(1) - u(0), 2); };
   r.replicate_value = 1.01;
-  const ProfilePoint profile = [&](int variable, double unit, int attempt) {
+  const ProfilePoint profile = [&](int variable, double unit) {
     Eigen::VectorXd p(2);
     p(variable) = unit;
-    p(1 - variable) = attempt == 0 ? 0.5 : unit;
+    p(1 - variable) = unit;
     return p;
   };
   const auto out =
@@ -126,9 +126,34 @@ TEST_CASE("A rejected check is retried once with a re-drawn profile that can fin
   // (distances 0.05, 0.1, 0.2) and, never fitting worse, report the bounds.
   CHECK(out.lower[0].end == 0.0);
   CHECK(out.upper[1].end == 1.0);
-  CHECK(out.lower[0].objectives.size() == 4);  // miss, retry, two further distances
-  CHECK_FALSE(out.lower[0].fits[0]);
-  CHECK(out.lower[0].fits[1]);
+  CHECK(out.lower[0].objectives.size() == 6);  // a miss and a fitting retry at each of three distances
+  for (int k : {0, 2, 4}) CHECK_FALSE(out.lower[0].fits[k]);
+  for (int k : {1, 3, 5}) CHECK(out.lower[0].fits[k]);
+}
+
+TEST_CASE("Each distance first tries the other variables where the end's last run fitted",
+          "[identify][interval_check]") {
+  // A flat-bottomed valley b in [0.6, 0.7] for a < 0.5 that the surrogate's profile (b = 0.5) finds
+  // only once: after that run fitted, the walk keeps b where it fitted.
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) {
+    const bool in_valley = u(1) >= 0.6 && u(1) <= 0.7;
+    return u(0) >= 0.5 || in_valley ? 1.0 : 2.0;
+  };
+  r.replicate_value = 1.0;
+  int calls = 0;
+  const ProfilePoint profile = [&](int variable, double unit) {
+    Eigen::VectorXd p = Eigen::VectorXd::Constant(2, 0.5);
+    p(variable) = unit;
+    if (variable == 0 && ++calls == 1) p(1) = 0.65;  // only the first profile finds the valley
+    return p;
+  };
+  const auto out =
+      check_interval_ends(kTwo, input(1.0, {}, {0.45, 0.49}, {0.55, 0.51}), settings(3), profile, r.evaluate());
+  // Distance 0.05: held b 0.5 misses, profile b 0.65 fits; 0.1 and 0.2: b 0.65 kept, both fit.
+  CHECK(out.lower[0].objectives.size() == 4);
+  CHECK(out.lower[0].end == 0.0);
+  CHECK(calls == 1);
 }
 
 TEST_CASE("An interval that lies within the runs the posterior was fitted to is not checked",

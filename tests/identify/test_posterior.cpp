@@ -147,10 +147,9 @@ TEST_CASE("Interval-end checks keep the identifiable parameters' coverage within
     const auto objective = [&](const Eigen::Vector3d& u) {
       return (curve(to_physical(u)) + trajectory_noise(rng) - measured).squaredNorm() / kStations;
     };
-    const ProfilePoint profile = [&](int variable, double unit, int attempt) {
+    const ProfilePoint profile = [&](int variable, double unit) {
       Eigen::Vector3d u = sample.best_unit;
       u(variable) = unit;
-      if (attempt == 0) return Eigen::VectorXd(u);
       // y is linear in the unit coordinates: least squares over the other two, clamped to the box.
       const Eigen::VectorXd base = curve(to_physical(u));
       Eigen::MatrixXd columns(kStations, 2);

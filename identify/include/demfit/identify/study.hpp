@@ -50,8 +50,9 @@ struct RunOptions {
 struct StudyResult {
   ParameterSet best;  // all model parameters of the best evaluated run
   double best_objective = 0.0;
-  int runs = 0;  // evaluations in the store (finished + failed)
+  int runs = 0;  // evaluations in the store (finished + failed), the interval check's included
   int failed_runs = 0;
+  int interval_check_runs = 0;  // of `runs`: replicates and interval-end checks after the loop
   int iterations = 0;
   // The interval every output reports (reported_interval.hpp: posterior marginal, else linearised).
   std::map<std::string, ReportedInterval> intervals;
