@@ -92,6 +92,36 @@ std::string number_or_dash(const nlohmann::json& value) {
 
 namespace {
 
+// The interval-end checks (interval_check.hpp) behind the reported intervals, when the study ran them.
+void interval_check_section(std::ostringstream& md, const StudySpec& spec, const nlohmann::json& uncertainty) {
+  const nlohmann::json posterior = uncertainty.value("posterior", nlohmann::json());
+  if (!posterior.is_object() || !posterior.contains("interval_check")) return;
+  const nlohmann::json& check = posterior["interval_check"];
+  md << "\nInterval-end checks (" << check.value("runs", 0)
+     << " runs after the loop; docs/study_format.md): for a variable whose interval reaches beyond the runs the "
+        "posterior was fitted to, a run at each end, stepping outwards while its objective is at most "
+     << number_or_dash(check["threshold"])
+     << " (the largest objective of the best run, its nudged replicates and the runs next to it).\n\n"
+        "| variable | sampled interval | checked interval | check runs (value: objective, fits?) "
+        "|\n|---|---|---|---|\n";
+  for (const auto& v : spec.variables) {
+    const nlohmann::json& ends = check["variables"][v.name];
+    const nlohmann::json& entry = posterior["variables"][v.name];
+    md << "| " << v.name << " | [" << number_or_dash(entry.value("sampled_lower_95", nlohmann::json())) << ", "
+       << number_or_dash(entry.value("sampled_upper_95", nlohmann::json())) << "] | ";
+    if (!ends["lower"].value("checked", false)) {
+      md << "not checked (within the fitted runs) | - |\n";
+      continue;
+    }
+    md << "[" << number_or_dash(ends["lower"]["end"]) << ", " << number_or_dash(ends["upper"]["end"]) << "] |";
+    for (const char* side : {"lower", "upper"})
+      for (const auto& c : ends[side]["checks"])
+        md << " " << number_or_dash(c["value"]) << ": " << number_or_dash(c["objective"])
+           << (c.value("fits", false) ? " yes;" : " no;");
+    md << " |\n";
+  }
+}
+
 void variables_section(std::ostringstream& md, const StudySpec& spec, const EvaluationRecord& best,
                        const nlohmann::json& uncertainty) {
   md << "## Identified variables\n\n"
@@ -112,6 +142,7 @@ void variables_section(std::ostringstream& md, const StudySpec& spec, const Eval
         "the residuals, noise level estimated from the runs), the same in `best_parameters.json` and the LS-DYNA "
         "export; it stays right when another variable is poorly pinned. \"(linearised)\" marks a value ± "
         "half-width, used only when the posterior could not be computed.\n";
+  interval_check_section(md, spec, uncertainty);
   if (uncertainty.value("jacobian", std::string()) == "regression") {
     md << "\nFor comparison, the linearised half-widths (conditional on the other variables; "
           "`linearised_ci95_half_width` in best_parameters.json) use Cov = s² (JᵀJ)⁻¹. J is the slope of a linear "
