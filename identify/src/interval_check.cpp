@@ -96,7 +96,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
   for (int j = 0; j < n; ++j) {
     out.lower[j].end = lower[j];
     out.upper[j].end = upper[j];
-    const bool extrapolated = input.fitted_runs.rows() == 0 ||
+    const bool extrapolated = settings.all_variables || input.fitted_runs.rows() == 0 ||
                               to_unit(variables[j], lower[j]) < input.fitted_runs.col(j).minCoeff() - 1e-12 ||
                               to_unit(variables[j], upper[j]) > input.fitted_runs.col(j).maxCoeff() + 1e-12;
     out.lower[j].checked = out.upper[j].checked = extrapolated;

@@ -268,6 +268,7 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
   check.max_steps = in.integer_or("max_steps", 6);
   check.replicates = in.integer_or("replicates", check.replicates);
   check.first_step = in.number_or("first_step", check.first_step);
+  check.all_variables = in.boolean_or("all_variables", check.all_variables);
   in.finish();
   if (check.max_steps < 0 || check.max_steps > 20) in.fail("max_steps", "must be 0 (no check) to 20");
   if (check.replicates < 1 || check.replicates > 20) in.fail("replicates", "must be 1 to 20");
@@ -416,7 +417,8 @@ nlohmann::json to_json(const StudySpec& spec) {
   if (spec.interval_check.max_steps > 0)  // written only when on: older resolved studies stay unchanged
     json["interval_check"] = {{"max_steps", spec.interval_check.max_steps},
                               {"replicates", spec.interval_check.replicates},
-                              {"first_step", spec.interval_check.first_step}};
+                              {"first_step", spec.interval_check.first_step},
+                              {"all_variables", spec.interval_check.all_variables}};
   json["seed"] = spec.seed;
   return json;
 }

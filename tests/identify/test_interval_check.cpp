@@ -156,14 +156,16 @@ TEST_CASE("Each distance first tries the other variables where the end's last ru
   CHECK(calls == 1);
 }
 
-TEST_CASE("An interval that lies within the runs the posterior was fitted to is not checked",
+TEST_CASE("With all_variables false an interval within the runs the posterior was fitted to is not checked",
           "[identify][interval_check]") {
   Recorder r;
   r.objective = [](const Eigen::VectorXd&) { return 1.0; };  // flat: any check would widen
   IntervalCheckInput in = input(1.0, {}, {0.45, 0.3}, {0.55, 0.7});
   in.fitted_runs.resize(4, 2);
   in.fitted_runs << 0.4, 0.45, 0.6, 0.55, 0.45, 0.4, 0.55, 0.6;  // a spans [0.4, 0.6], b [0.4, 0.6]
-  const auto out = check_interval_ends(kTwo, in, settings(6), flat_profile(), r.evaluate());
+  IntervalCheckSpec beyond_runs = settings(6);
+  beyond_runs.all_variables = false;
+  const auto out = check_interval_ends(kTwo, in, beyond_runs, flat_profile(), r.evaluate());
   CHECK_FALSE(out.lower[0].checked);  // [0.45, 0.55] inside the runs: kept, no run
   CHECK(out.lower[0].end == 0.45);
   CHECK(out.upper[0].end == 0.55);
@@ -175,8 +177,11 @@ TEST_CASE("An interval that lies within the runs the posterior was fitted to is 
   inside.fitted_runs = in.fitted_runs;
   Recorder none;
   none.objective = r.objective;
-  const auto unchecked = check_interval_ends(kTwo, inside, settings(6), flat_profile(), none.evaluate());
+  const auto unchecked = check_interval_ends(kTwo, inside, beyond_runs, flat_profile(), none.evaluate());
   CHECK(unchecked.runs == 0);  // nothing to check: not even the replicates run
+  const auto all = check_interval_ends(kTwo, inside, settings(6), flat_profile(), none.evaluate());
+  CHECK(all.lower[0].checked);  // the default checks every variable
+  CHECK(all.lower[0].end == 0.0);
 }
 
 TEST_CASE("The study's runs next to the best one set the spread threshold", "[identify][interval_check]") {

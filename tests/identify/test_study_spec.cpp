@@ -90,6 +90,7 @@ TEST_CASE("An interval check is parsed with its defaults and refused out of rang
   CHECK(spec.interval_check.max_steps == 6);
   CHECK(spec.interval_check.replicates == 2);
   CHECK(spec.interval_check.first_step == 0.02);
+  CHECK(spec.interval_check.all_variables);
   CHECK(parse_study(test::analytic_study(), ".").interval_check.max_steps == 0);  // off unless asked for
   // Added after the loop, so a finished study can be resumed with it: not part of the hash.
   CHECK(study_hash(spec) == study_hash(parse_study(test::analytic_study(), ".")));

@@ -93,6 +93,8 @@ struct IntervalCheckSpec {
   int max_steps = 0;         // outward steps per interval end (each doubles the distance); 0 = off
   int replicates = 2;        // nudged re-runs of the best point measuring the run-to-run spread
   double first_step = 0.02;  // smallest first distance from the best point (fraction of the range)
+  // false: only variables whose interval reaches beyond the runs the posterior was fitted to
+  bool all_variables = true;
 };
 
 struct StudySpec {
