@@ -325,8 +325,8 @@ VectorXd StudyLoop::profile_point(const VectorXd& best_unit, int variable, doubl
   // A local fit around the best point, twice the check's distance wide (at least 5 % of each
   // range): a fit over the whole box let far-away runs bend the valley (pellet study: NORMK 1.10 at
   // SHEARK 0.3285 against 1.38 at 0.3135), and every run so far, the checks included, is used.
-  // On noisy runs this profile can still miss (NORMK 1.26-1.31 there), which is why it is the
-  // retry and the held point the first attempt.
+  // On noisy runs this profile can still miss (NORMK 1.26-1.31 there), which is why it is only
+  // the retry; each distance first runs the others where the end's last run fitted.
   const double half = std::max(2.0 * std::abs(unit_value - best_unit(variable)), 0.05);
   const Box box{(best_unit.array() - half).cwiseMax(0.0).matrix(), (best_unit.array() + half).cwiseMin(1.0).matrix()};
   const auto surrogate = fit(box);
@@ -430,8 +430,6 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;
   result.best_curves = store_.find_evaluation(best.iteration, best.point)->curves;
-  result.runs = total_runs_;
-  result.failed_runs = failed_runs_;
   result.iterations = verification_iteration;
   result.converged = converged;
   nlohmann::json uncertainty = nullptr;
