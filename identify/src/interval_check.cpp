@@ -6,18 +6,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "study_support.hpp"
+
 namespace demfit::identify {
 namespace {
 
-double to_unit(const VariableSpec& v, double value) {
-  if (v.log_scale) return (std::log(value) - std::log(v.lower)) / (std::log(v.upper) - std::log(v.lower));
-  return (value - v.lower) / (v.upper - v.lower);
-}
+double to_unit(const VariableSpec& v, double value) { return rbf_surrogate::to_unit(detail::rbf_variable(v), value); }
 
-double to_model(const VariableSpec& v, double unit) {
-  if (v.log_scale) return std::exp(std::log(v.lower) + unit * (std::log(v.upper) - std::log(v.lower)));
-  return v.lower + unit * (v.upper - v.lower);
-}
+double to_model(const VariableSpec& v, double unit) { return rbf_surrogate::from_unit(detail::rbf_variable(v), unit); }
 
 // One interval end walking outwards from the best point.
 struct EndWalk {
@@ -67,7 +63,7 @@ void decide(EndWalk& walk, double unit, double objective, double threshold, int 
   const bool at_bound = unit <= 0.0 || unit >= 1.0;
   if (at_bound || walk.step + 1 >= max_steps) {  // never fitted worse: the data do not close this end
     walk.active = false;
-    walk.record->end = to_model(v, walk.direction > 0 ? 1.0 : 0.0);
+    walk.record->end = walk.direction > 0 ? v.upper : v.lower;  // the bound itself, not its round trip
     return;
   }
   ++walk.step;

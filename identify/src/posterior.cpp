@@ -9,6 +9,7 @@
 
 #include "demfit/identify/uncertainty.hpp"
 #include "gnuplot.hpp"
+#include "study_support.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -27,8 +28,7 @@ double truncated_normal_unit(double mean, double sd, std::mt19937_64& rng) {
 }
 
 double unit_to_physical(const VariableSpec& v, double u) {
-  if (v.log_scale) return std::exp(std::log(v.lower) + u * (std::log(v.upper) - std::log(v.lower)));
-  return v.lower + u * (v.upper - v.lower);
+  return rbf_surrogate::from_unit(detail::rbf_variable(v), u);
 }
 
 // The Gaussian part of the log posterior in unit coordinates: −½ (u − u0)ᵀ P (u − u0) up to a

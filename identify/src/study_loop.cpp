@@ -4,109 +4,20 @@
 // refits the RBF networks and minimises the predicted composite objective. Every run is looked
 // up in the store first, so a resumed study regenerates the same points (all randomness is
 // seeded from the study seed and the iteration) and repeats no finished run.
-#include "demfit/identify/study.hpp"
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
-#include <optional>
-#include <set>
 #include <stdexcept>
 
-#include "demfit/identify/evaluator.hpp"
-#include "demfit/identify/experiments.hpp"
-#include "demfit/identify/objective.hpp"
 #include "demfit/identify/report.hpp"
-#include "demfit/identify/study_store.hpp"
-#include "demfit/identify/uncertainty.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/rbf_surrogate/adaptive_infill.hpp"
 #include "demfit/rbf_surrogate/design.hpp"
-#include "demfit/rbf_surrogate/optimize.hpp"
-#include "demfit/rbf_surrogate/srsm.hpp"
-#include "demfit/identify/safe_output.hpp"
-#include "demfit/identify/interval_check.hpp"
-#include "response_surrogate.hpp"
-#include "study_strategy.hpp"
-#include "study_support.hpp"
+#include "study_loop.hpp"
 
 namespace demfit::identify {
-namespace {
-
-using Eigen::MatrixXd;
-using Eigen::VectorXd;
-using rbf_surrogate::Box;
-
-struct Run {
-  int iteration = 0, point = 0;
-  VectorXd unit;
-  VectorXd responses;
-  double objective = 0.0;
-  bool replicate = false;  // an interval check's nudged re-run: kept out of surrogate fits (a near-duplicate)
-};
-
-class StudyLoop {
- public:
-  StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
-      : spec_(spec),
-        model_(model),
-        options_(options),
-        objective_(spec.targets),
-        variables_(detail::rbf_variables(spec)),
-        dims_(static_cast<int>(spec.variables.size())),
-        pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
-        evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
-        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)),
-        ask_tell_(detail::make_study_strategy(spec)) {}
-
-  StudyResult run();
-
- private:
-  void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
-  void collect(int iteration, const MatrixXd& points);
-  // Stores one finished run, prints its progress line, calls the test hook.
-  void record_evaluation(const EvaluationRecord& record, int point, int points, const char* note);
-  EvaluationRecord make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
-                               const ParameterSet& parameters, const EvaluationOutcome& outcome) const;
-  std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
-  Box fit_box(const Box& region) const;
-  const Run* best_run() const;
-  MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
-                  std::vector<std::string>& kinds) const;
-  IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
-                           std::uint64_t seed) const;
-  MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
-  StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
-  RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
-  // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
-  void check_intervals(const Run& best, const RunSample& sample, int first_iteration, nlohmann::json& uncertainty);
-  IntervalCheckInput interval_check_input(const Run& best, const RunSample& sample,
-                                          const nlohmann::json& posterior) const;
-  VectorXd profile_point(const VectorXd& best_unit, int variable, double unit_value) const;
-  void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
-
-  const StudySpec& spec_;
-  const Model& model_;
-  const RunOptions& options_;
-  CompositeObjective objective_;
-  std::vector<rbf_surrogate::Variable> variables_;
-  int dims_;
-  ThreadPoolEvaluator pool_;
-  Evaluator& evaluator_;
-  StudyStore store_;
-  std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
-  std::vector<Run> runs_;                            // successful runs, in (iteration, point) order
-  // The first runs_ that decide the answer and its posterior; the interval check's runs come after
-  // and only measure the interval.
-  std::size_t decision_runs_ = std::numeric_limits<std::size_t>::max();
-  std::vector<VectorXd> all_points_;  // every run (failed ones too), in order
-  int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
-  double evaluated_wall_ = 0.0;
-  std::string first_error_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
+namespace detail {
 
 EvaluationRecord StudyLoop::make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
                                         const ParameterSet& parameters, const EvaluationOutcome& outcome) const {
@@ -296,133 +207,6 @@ MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region
   return rbf_surrogate::adaptive_infill(model, existing_rows, count, region, seed, iteration);
 }
 
-RunSample StudyLoop::uncertainty_sample(const Run& best, const Box& final_region) const {
-  // The 3P distinct runs nearest the best run (at least 2n + 3; distance in final-subregion
-  // widths): the last subregion alone is often so small that the simulation noise swamps every
-  // slope, the last few iterations' runs give the regression leverage while staying local.
-  const int maximum = std::max(2 * dims_ + 3, 3 * spec_.points_per_iteration);
-  const int minimum = maximum;
-  std::vector<VectorXd> units;
-  for (std::size_t i = 0; i < std::min(decision_runs_, runs_.size()); ++i) units.push_back(runs_[i].unit);
-  const std::vector<int> chosen = detail::nearest_distinct(units, best.unit, final_region.width(), minimum, maximum);
-  RunSample sample;
-  sample.unit_points.resize(chosen.size(), dims_);
-  sample.residuals.resize(chosen.size(), objective_.residual_size());
-  for (std::size_t r = 0; r < chosen.size(); ++r) {
-    sample.unit_points.row(r) = runs_[chosen[r]].unit.transpose();
-    sample.residuals.row(r) = objective_.residuals(runs_[chosen[r]].responses).transpose();
-  }
-  sample.best_unit = best.unit;
-  sample.best_residuals = objective_.residuals(best.responses);
-  sample.unit_per_physical = detail::unit_per_physical(spec_, variables_, best.unit);
-  return sample;
-}
-
-VectorXd StudyLoop::profile_point(const VectorXd& best_unit, int variable, double unit_value) const {
-  VectorXd point = best_unit;
-  point(variable) = unit_value;
-  if (dims_ == 1) return point;
-  // A local fit around the best point, twice the check's distance wide (at least 5 % of each
-  // range): a fit over the whole box let far-away runs bend the valley (pellet study: NORMK 1.10 at
-  // SHEARK 0.3285 against 1.38 at 0.3135), and every run so far, the checks included, is used.
-  // On noisy runs this profile can still miss (NORMK 1.26-1.31 there), which is why it is only
-  // the retry; each distance first runs the others where the end's last run fitted.
-  const double half = std::max(2.0 * std::abs(unit_value - best_unit(variable)), 0.05);
-  const Box box{(best_unit.array() - half).cwiseMax(0.0).matrix(), (best_unit.array() + half).cwiseMin(1.0).matrix()};
-  const auto surrogate = fit(box);
-  if (!surrogate) return point;
-  // The surrogate's optimum over the other coordinates (inside the box) with this one held.
-  Box others_box = Box::unit(dims_ - 1);
-  for (int j = 0, k = 0; j < dims_; ++j)
-    if (j != variable) {
-      others_box.lower(k) = box.lower(j);
-      others_box.upper(k++) = box.upper(j);
-    }
-  const auto full = [&](const VectorXd& others) {
-    VectorXd x(dims_);
-    for (int j = 0, k = 0; j < dims_; ++j) x(j) = j == variable ? unit_value : others(k++);
-    return x;
-  };
-  const auto function = [&](const VectorXd& others, VectorXd* gradient) {
-    const VectorXd x = full(others);
-    if (gradient) {
-      const VectorXd g = surrogate->objective_gradient(x, objective_);
-      gradient->resize(dims_ - 1);
-      for (int j = 0, k = 0; j < dims_; ++j)
-        if (j != variable) (*gradient)(k++) = g(j);
-    }
-    return surrogate->predicted_objective(x, objective_);
-  };
-  rbf_surrogate::MinimizeOptions options;
-  options.global_evaluations = 300 + 100 * (dims_ - 1);
-  options.local_starts = 3;
-  options.seed = detail::iteration_seed(spec_.seed, 1000 + variable);
-  options.use_gradient = true;
-  options.local_evaluations = 200;
-  return full(rbf_surrogate::minimize(function, others_box, options).x);
-}
-
-IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSample& sample,
-                                                   const nlohmann::json& posterior) const {
-  IntervalCheckInput input;
-  input.best_unit = best.unit;
-  input.best_objective = best.objective;
-  input.fitted_runs = sample.unit_points;
-  for (const auto& v : spec_.variables) {
-    input.lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
-    input.upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
-  }
-  // Other runs at (almost) the best point: the run-to-run spread there.
-  const Run* best_stored = best_run();
-  for (std::size_t i = 0; i < decision_runs_; ++i)
-    if (&runs_[i] != best_stored && (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
-      input.nearby_objectives.push_back(runs_[i].objective);
-  return input;
-}
-
-void StudyLoop::check_intervals(const Run& best, const RunSample& sample, int first_iteration,
-                                nlohmann::json& uncertainty) {
-  nlohmann::json& posterior = uncertainty["posterior"];
-  const IntervalCheckInput input = interval_check_input(best, sample, posterior);
-  const std::vector<double>&lower = input.lower, &upper = input.upper;
-  // Each profile is a fresh fit (profile_point), so a retried end's profile knows the run that missed.
-  const auto profile = [&](int variable, double unit_value) { return profile_point(best.unit, variable, unit_value); };
-  const auto evaluate = [&](int batch, const MatrixXd& points, const std::vector<std::string>& kinds) {
-    if (options_.progress)
-      std::fprintf(stderr, "demfit: interval check, step %d: %d runs\n", batch + 1, static_cast<int>(points.rows()));
-    evaluate_points(first_iteration + batch, points, kinds);
-    VectorXd objectives(points.rows());
-    for (int i = 0; i < points.rows(); ++i) {
-      const EvaluationRecord* r = store_.find_evaluation(first_iteration + batch, i);
-      objectives(i) = r->ok ? r->objective : std::numeric_limits<double>::quiet_NaN();
-    }
-    return objectives;
-  };
-  const IntervalCheckOutcome outcome =
-      check_interval_ends(spec_.variables, input, spec_.interval_check, profile, evaluate);
-  for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
-    const auto& v = spec_.variables[j];
-    nlohmann::json& entry = posterior["variables"][v.name];
-    entry["sampled_lower_95"] = lower[j];
-    entry["sampled_upper_95"] = upper[j];
-    entry["lower_95"] = outcome.lower[j].end;
-    entry["upper_95"] = outcome.upper[j].end;
-    entry["widened_by_interval_check"] = outcome.lower[j].widened || outcome.upper[j].widened;
-    const double lower_unit = rbf_surrogate::to_unit({variables_[j]}, VectorXd::Constant(1, outcome.lower[j].end))(0);
-    const double upper_unit = rbf_surrogate::to_unit({variables_[j]}, VectorXd::Constant(1, outcome.upper[j].end))(0);
-    if (upper_unit - lower_unit > 0.5) entry["unidentifiable"] = true;  // the posterior's own rule
-  }
-  posterior["interval_check"] = interval_check_json(outcome, spec_.variables);
-  if (options_.progress)
-    for (std::size_t j = 0; j < spec_.variables.size(); ++j)
-      std::fprintf(stderr, "demfit: interval check: %s [%s, %s] -> [%s, %s] (%s)\n", spec_.variables[j].name.c_str(),
-                   detail::format_number(lower[j]).c_str(), detail::format_number(upper[j]).c_str(),
-                   detail::format_number(outcome.lower[j].end).c_str(),
-                   detail::format_number(outcome.upper[j].end).c_str(),
-                   outcome.lower[j].checked ? ("spread threshold " + detail::format_number(outcome.threshold)).c_str()
-                                            : "not checked: within the runs the posterior was fitted to");
-}
-
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
   decision_runs_ = runs_.size();
   const Run best = *best_run();  // a copy: the interval check appends runs
@@ -566,13 +350,13 @@ StudyResult StudyLoop::run() {
   return finish(iteration + 1, converged, state.region.box());
 }
 
-}  // namespace
+}  // namespace detail
 
 StudyResult run_study(const StudySpec& spec, const Model& model, const RunOptions& options) {
   detail::check_parameter_names(spec, model);
   detail::check_declared_curves(spec, model);
   detail::check_experiments(spec, model);
-  StudyLoop loop(spec, model, options);
+  detail::StudyLoop loop(spec, model, options);
   // The resolved input beside the results (targets inline, defaults filled in).
   write_file_atomically(options.output_dir / "study_resolved.json", to_json(spec).dump(2) + "\n");
   return loop.run();

@@ -10,9 +10,11 @@
 
 namespace demfit::identify::detail {
 
+rbf_surrogate::Variable rbf_variable(const VariableSpec& v) { return {v.name, v.lower, v.upper, v.log_scale}; }
+
 std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec) {
   std::vector<rbf_surrogate::Variable> out;
-  for (const auto& v : spec.variables) out.push_back({v.name, v.lower, v.upper, v.log_scale});
+  for (const auto& v : spec.variables) out.push_back(rbf_variable(v));
   return out;
 }
 
@@ -175,18 +177,39 @@ std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration) {
 
 rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate,
                                                   const CompositeObjective& objective, const rbf_surrogate::Box& region,
-                                                  std::uint64_t seed) {
-  const auto function = [&](const Eigen::VectorXd& x, Eigen::VectorXd* gradient) {
-    if (gradient) *gradient = surrogate.objective_gradient(x, objective);
+                                                  std::uint64_t seed, std::optional<HeldCoordinate> held) {
+  const int dims = static_cast<int>(region.dims());
+  const int skipped = held ? held->index : dims;  // no coordinate skipped without `held`
+  rbf_surrogate::Box free_region = rbf_surrogate::Box::unit(held ? dims - 1 : dims);
+  for (int j = 0, k = 0; j < dims; ++j)
+    if (j != skipped) {
+      free_region.lower(k) = region.lower(j);
+      free_region.upper(k++) = region.upper(j);
+    }
+  const auto full = [&](const Eigen::VectorXd& free) {
+    Eigen::VectorXd x(dims);
+    for (int j = 0, k = 0; j < dims; ++j) x(j) = j == skipped ? held->unit_value : free(k++);
+    return x;
+  };
+  const auto function = [&](const Eigen::VectorXd& free, Eigen::VectorXd* gradient) {
+    const Eigen::VectorXd x = full(free);
+    if (gradient) {
+      const Eigen::VectorXd g = surrogate.objective_gradient(x, objective);
+      gradient->resize(free.size());
+      for (int j = 0, k = 0; j < dims; ++j)
+        if (j != skipped) (*gradient)(k++) = g(j);
+    }
     return surrogate.predicted_objective(x, objective);
   };
   rbf_surrogate::MinimizeOptions options;
-  options.global_evaluations = 400 + 100 * static_cast<int>(region.dims());
+  options.global_evaluations = 400 + 100 * static_cast<int>(free_region.dims());
   options.local_starts = 3;
   options.seed = seed;
   options.use_gradient = true;
   options.local_evaluations = 200;
-  return rbf_surrogate::minimize(function, region, options);
+  rbf_surrogate::MinimizeResult result = rbf_surrogate::minimize(function, free_region, options);
+  result.x = full(result.x);
+  return result;
 }
 
 std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, const Eigen::VectorXd& center,

@@ -2,6 +2,7 @@
 // Internal helpers of the study loop: variable mapping between study, model and unit cube,
 // seeds, the predicted-objective minimisation, and text formatting for progress lines.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 
 namespace demfit::identify::detail {
 
+rbf_surrogate::Variable rbf_variable(const VariableSpec& variable);  // the unit-cube mapping's view of it
 std::vector<rbf_surrogate::Variable> rbf_variables(const StudySpec& spec);
 Eigen::VectorXd initial_values(const StudySpec& spec);  // physical
 // Iteration-0 region: initial_range around the initial point, shifted to stay in [0, 1].
@@ -47,9 +49,16 @@ void check_experiments(const StudySpec& spec, const Model& model);
 // {""} in the single-model form, else the experiment names in order.
 std::vector<std::string> experiment_names(const StudySpec& spec);
 std::uint64_t iteration_seed(std::uint64_t study_seed, int iteration);
+// One coordinate held at a value while the others are minimised (a profile of the prediction).
+struct HeldCoordinate {
+  int index = 0;
+  double unit_value = 0.0;
+};
+// The predicted composite objective's minimum over `region` (global search, then gradient-based
+// local starts). With `held`, over the other coordinates only; the result's x is the full point.
 rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surrogate,
                                                   const CompositeObjective& objective, const rbf_surrogate::Box& region,
-                                                  std::uint64_t seed);
+                                                  std::uint64_t seed, std::optional<HeldCoordinate> held = {});
 
 // Indices (ascending) of the distinct points (repeated points count once) within one `width` of
 // `center` (distance max_j |x_j - c_j| / width_j <= 1), nearest first, topped up with the next

@@ -23,31 +23,29 @@ static void check_size(const std::vector<Variable>& variables, const VectorXd& x
                                 std::to_string(variables.size()) + " variables");
 }
 
+double to_unit(const Variable& v, double physical) {
+  if (v.log_scale) return std::log(physical / v.lower) / std::log(v.upper / v.lower);
+  return (physical - v.lower) / (v.upper - v.lower);
+}
+
+double from_unit(const Variable& v, double unit) {
+  if (v.log_scale) return v.lower * std::exp(unit * std::log(v.upper / v.lower));
+  return v.lower + unit * (v.upper - v.lower);
+}
+
 VectorXd to_unit(const std::vector<Variable>& variables, const VectorXd& physical) {
   check_size(variables, physical);
   VectorXd u(physical.size());
-  for (std::size_t i = 0; i < variables.size(); ++i) {
-    const auto& v = variables[i];
-    const auto k = static_cast<Eigen::Index>(i);
-    if (v.log_scale)
-      u[k] = std::log(physical[k] / v.lower) / std::log(v.upper / v.lower);
-    else
-      u[k] = (physical[k] - v.lower) / (v.upper - v.lower);
-  }
+  for (std::size_t i = 0; i < variables.size(); ++i)
+    u[static_cast<Eigen::Index>(i)] = to_unit(variables[i], physical[static_cast<Eigen::Index>(i)]);
   return u;
 }
 
 VectorXd from_unit(const std::vector<Variable>& variables, const VectorXd& unit) {
   check_size(variables, unit);
   VectorXd x(unit.size());
-  for (std::size_t i = 0; i < variables.size(); ++i) {
-    const auto& v = variables[i];
-    const auto k = static_cast<Eigen::Index>(i);
-    if (v.log_scale)
-      x[k] = v.lower * std::exp(unit[k] * std::log(v.upper / v.lower));
-    else
-      x[k] = v.lower + unit[k] * (v.upper - v.lower);
-  }
+  for (std::size_t i = 0; i < variables.size(); ++i)
+    x[static_cast<Eigen::Index>(i)] = from_unit(variables[i], unit[static_cast<Eigen::Index>(i)]);
   return x;
 }
 

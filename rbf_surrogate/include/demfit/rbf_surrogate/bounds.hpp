@@ -25,6 +25,9 @@ void validate(const std::vector<Variable>& variables);
 
 VectorXd to_unit(const std::vector<Variable>& variables, const VectorXd& physical);  // -> [0,1]^n
 VectorXd from_unit(const std::vector<Variable>& variables, const VectorXd& unit);
+// The same mapping for one variable (the vector forms apply it coordinate by coordinate).
+double to_unit(const Variable& variable, double physical);
+double from_unit(const Variable& variable, double unit);
 
 // Axis-aligned box, in unit coordinates everywhere in this library.
 struct Box {

@@ -1,0 +1,100 @@
+#pragma once
+// The study loop's state (study_loop.cpp: the iterations; study_loop_uncertainty.cpp: the
+// uncertainty sample and the interval-end checks after the loop). Private to identify.
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/evaluator.hpp"
+#include "demfit/identify/interval_check.hpp"
+#include "demfit/identify/objective.hpp"
+#include "demfit/identify/study.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "demfit/identify/uncertainty.hpp"
+#include "demfit/rbf_surrogate/srsm.hpp"
+#include "response_surrogate.hpp"
+#include "study_strategy.hpp"
+#include "study_support.hpp"
+
+namespace demfit::identify::detail {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using rbf_surrogate::Box;
+
+struct Run {
+  int iteration = 0, point = 0;
+  VectorXd unit;
+  VectorXd responses;
+  double objective = 0.0;
+  bool replicate = false;  // an interval check's nudged re-run: kept out of surrogate fits (a near-duplicate)
+};
+
+class StudyLoop {
+ public:
+  StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
+      : spec_(spec),
+        model_(model),
+        options_(options),
+        objective_(spec.targets),
+        variables_(detail::rbf_variables(spec)),
+        dims_(static_cast<int>(spec.variables.size())),
+        pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
+        evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
+        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)),
+        ask_tell_(detail::make_study_strategy(spec)) {}
+
+  StudyResult run();
+
+ private:
+  void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
+  void collect(int iteration, const MatrixXd& points);
+  // Stores one finished run, prints its progress line, calls the test hook.
+  void record_evaluation(const EvaluationRecord& record, int point, int points, const char* note);
+  EvaluationRecord make_record(int iteration, int point, const std::string& kind, const VectorXd& unit,
+                               const ParameterSet& parameters, const EvaluationOutcome& outcome) const;
+  std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
+  Box fit_box(const Box& region) const;
+  const Run* best_run() const;
+  MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
+                  std::vector<std::string>& kinds) const;
+  IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
+                           std::uint64_t seed) const;
+  MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
+  StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
+  RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
+  // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
+  void check_intervals(const Run& best, const RunSample& sample, int first_iteration, nlohmann::json& uncertainty);
+  IntervalCheckInput interval_check_input(const Run& best, const RunSample& sample,
+                                          const nlohmann::json& posterior) const;
+  VectorXd profile_point(const VectorXd& best_unit, int variable, double unit_value) const;
+  void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;
+
+  const StudySpec& spec_;
+  const Model& model_;
+  const RunOptions& options_;
+  CompositeObjective objective_;
+  std::vector<rbf_surrogate::Variable> variables_;
+  int dims_;
+  ThreadPoolEvaluator pool_;
+  Evaluator& evaluator_;
+  StudyStore store_;
+  std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
+  std::vector<Run> runs_;                            // successful runs, in (iteration, point) order
+  // The first runs_ that decide the answer and its posterior; the interval check's runs come after
+  // and only measure the interval.
+  std::size_t decision_runs_ = std::numeric_limits<std::size_t>::max();
+  std::vector<VectorXd> all_points_;  // every run (failed ones too), in order
+  int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
+  double evaluated_wall_ = 0.0;
+  std::string first_error_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace demfit::identify::detail
