@@ -12,7 +12,7 @@
 // Environment (development only; the reported table uses none): DEMFIT_BENCH_CLIP=1 turns on
 // clip_above_median; DEMFIT_BENCH_ONLY=<method substring>, DEMFIT_BENCH_PROBLEM=<name> restrict the
 // demfit runs; DEMFIT_BENCH_VERBOSE=1 prints each run; DEMFIT_BENCH_{EXPLOIT,MAXLEN,WARP,KERNEL,
-// SELECT,STALL,RADIUS,CAND,STARTS} override the expected_improvement options of the same meaning.
+// SELECT,STALL,RADIUS,CAND,STARTS,BATCH_EXPLOIT,LIAR,TRUST,TRUST_WIDTH} override the expected_improvement options of the same meaning.
 // Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3,
 // Hartmann-6 within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative
 // Gaussian noise) f* + 1e-2.
@@ -106,6 +106,8 @@ std::pair<int, double> run_demfit(const Problem& p, InfillStrategy strategy, std
   if (const char* e = std::getenv("DEMFIT_BENCH_STARTS")) o.acquisition.local_starts = std::atoi(e);
   if (const char* e = std::getenv("DEMFIT_BENCH_BATCH_EXPLOIT")) o.batch_exploit = std::atoi(e) != 0;
   if (const char* e = std::getenv("DEMFIT_BENCH_LIAR")) o.constant_liar = std::atoi(e) != 0;
+  if (const char* e = std::getenv("DEMFIT_BENCH_TRUST")) o.batch_trust_regions = std::atoi(e);
+  if (const char* e = std::getenv("DEMFIT_BENCH_TRUST_WIDTH")) o.trust_region_half_width = std::atof(e);
   if (const char* e = std::getenv("DEMFIT_BENCH_RADIUS")) o.stall_exclusion_radius = std::atof(e);
   const auto t0 = std::chrono::steady_clock::now();
   if (batch > 1) {

@@ -85,6 +85,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
   out.lower.resize(n);
   out.upper.resize(n);
   out.threshold = input.best_objective;
+  out.all_variables = settings.all_variables;
   out.nearby_objectives = input.nearby_objectives;
   for (double o : input.nearby_objectives)
     if (std::isfinite(o)) out.threshold = std::max(out.threshold, o);
@@ -169,15 +170,19 @@ nlohmann::json interval_check_json(const IntervalCheckOutcome& outcome, const st
   nlohmann::json per_variable = nlohmann::json::object();
   for (std::size_t j = 0; j < variables.size(); ++j)
     per_variable[variables[j].name] = {{"lower", end_json(outcome.lower[j])}, {"upper", end_json(outcome.upper[j])}};
-  return {{"method",
-           "for each variable with an interval end beyond the runs the posterior was fitted to: a run at each end "
-           "(others held at the best point, retried on the surrogate's profile), stepping outwards while the run's "
-           "objective is within the spread of nudged re-runs of the best point and the runs near it"},
-          {"replicate_objectives", replicates},
-          {"nearby_objectives", nearby},
-          {"threshold", outcome.threshold},
-          {"runs", outcome.runs},
-          {"variables", per_variable}};
+  const std::string scope = outcome.all_variables
+                                ? "for each variable"
+                                : "for each variable with an interval end beyond the runs the posterior was fitted to";
+  return {
+      {"method", scope + ": a run at each end (the other variables where that end's last fitting run had them, the "
+                         "best point at first; retried once on the local surrogate's profile), stepping outwards "
+                         "while the run's objective is within the spread of nudged re-runs of the best point and the "
+                         "runs near it"},
+      {"replicate_objectives", replicates},
+      {"nearby_objectives", nearby},
+      {"threshold", outcome.threshold},
+      {"runs", outcome.runs},
+      {"variables", per_variable}};
 }
 
 }  // namespace demfit::identify

@@ -97,11 +97,9 @@ void interval_check_section(std::ostringstream& md, const StudySpec& spec, const
   const nlohmann::json posterior = uncertainty.value("posterior", nlohmann::json());
   if (!posterior.is_object() || !posterior.contains("interval_check")) return;
   const nlohmann::json& check = posterior["interval_check"];
-  md << "\nInterval-end checks (" << check.value("runs", 0)
-     << " runs after the loop; docs/study_format.md): for a variable whose interval reaches beyond the runs the "
-        "posterior was fitted to, a run at each end, stepping outwards while its objective is at most "
-     << number_or_dash(check["threshold"])
-     << " (the largest objective of the best run, its nudged replicates and the runs next to it).\n\n"
+  md << "\nInterval-end checks (" << check.value("runs", 0) << " runs after the loop; docs/study_format.md), "
+     << check.value("method", std::string("method not stored")) << ". Threshold " << number_or_dash(check["threshold"])
+     << ": the largest objective of the best run, its nudged replicates and the runs next to it.\n\n"
         "| variable | sampled interval | checked interval | check runs (value: objective, fits?) "
         "|\n|---|---|---|---|\n";
   for (const auto& v : spec.variables) {

@@ -108,6 +108,13 @@ class ModelSelector {
   std::vector<std::pair<bool, KrigingSchedule>> candidates_;
 };
 
+// True when `p` is at least 1e-5 (the repeat distance of every strategy) from each row of `rows`.
+bool distinct_from(const MatrixXd& rows, const Eigen::RowVectorXd& p) {
+  for (Eigen::Index r = 0; r < rows.rows(); ++r)
+    if ((rows.row(r) - p).norm() < 1e-5) return false;
+  return true;
+}
+
 // Index of the incumbent: the lowest value run, or with noise the lowest predicted mean at a run
 // point (a lucky noisy draw is not trusted as the best).
 // With `keep`, only points for which keep(x) is true count (-1: none).
@@ -206,6 +213,7 @@ class ExpectedImprovementStrategy final : public AskTellStrategy {
  private:
   MatrixXd believer_batch(const WarpedModel& warped, MatrixXd rows, double best, const VectorXd& incumbent,
                           const AcquisitionOptions& acquisition, int batch, std::uint64_t seed) const;
+  Box slot_region(const VectorXd& incumbent, Eigen::Index chosen, int batch) const;
 
   ExpensiveOptions options_;
   ModelSelector schedule_;
@@ -292,25 +300,43 @@ MatrixXd ExpectedImprovementStrategy::believer_batch(const WarpedModel& warped, 
     }
     model = KrigingModel::fit(x, y, fixed);
     const std::uint64_t point_seed = seed + 104729ULL * static_cast<std::uint64_t>(k);
+    const Box region = slot_region(incumbent, rows.rows(), batch);
     MatrixXd next;
-    if (options_.batch_exploit && rows.rows() == batch - 1) {
+    if (options_.batch_trust_regions <= 0 && options_.batch_exploit && rows.rows() == batch - 1) {
       MinimizeOptions mo = options_.minimize;
       mo.seed = point_seed;
       const Objective mean = [&model](const VectorXd& p, VectorXd* g) { return model.mean(p, g); };
       next = keep_new(minimize(mean, bounds, mo).x.transpose());
     }
-    if (next.rows() == 0)
+    // An exploitation point that repeats a run or batch point leaves its slot to EI (q points per batch).
+    if (next.rows() == 0 || !distinct_from(rows, next.row(0)))
       next = keep_new(
-          maximise_expected_improvement(model, best, incumbent, bounds, point_seed, acquisition).x.transpose());
-    for (Eigen::Index j = 0; j < next.rows(); ++j) {
-      bool fresh = true;
-      for (Eigen::Index r = 0; r < rows.rows() && fresh; ++r) fresh = (rows.row(r) - next.row(j)).norm() >= 1e-5;
-      if (!fresh) continue;
+          maximise_expected_improvement(model, best, incumbent, region, point_seed, acquisition).x.transpose());
+    if (next.rows() > 0 && distinct_from(rows, next.row(0))) {
       rows.conservativeResize(rows.rows() + 1, Eigen::NoChange);
-      rows.bottomRows(1) = next.row(j);
+      rows.bottomRows(1) = next.row(0);
     }
   }
   return rows;
+}
+
+// Search region of batch slot `chosen` (0-based). With batch_trust_regions = m the last min(q − 1, m)
+// slots maximise EI inside boxes around the incumbent of half-widths w, 2w, 4w, …: the step lengths a
+// trust-region method would try one after another (Conn, Gould & Toint 2000, ch. 6), tried at once
+// since the batch runs in parallel. The believer alone spends the batch near the global EI maximiser
+// while the descent is still far from the minimum (Hartmann-6, q = 4: 2-3 believer points per round
+// gain about what one sequential EI step gains). Other slots search the whole box.
+Box ExpectedImprovementStrategy::slot_region(const VectorXd& incumbent, Eigen::Index chosen, int batch) const {
+  const int dims = history_.dims();
+  Box region = Box::unit(dims);
+  const int trust = std::min(batch - 1, options_.batch_trust_regions);
+  if (trust <= 0 || chosen < batch - trust) return region;
+  const double half = options_.trust_region_half_width * std::pow(2.0, static_cast<double>(chosen - (batch - trust)));
+  for (int i = 0; i < dims; ++i) {
+    region.lower[i] = std::max(0.0, incumbent[i] - half);
+    region.upper[i] = std::min(1.0, incumbent[i] + half);
+  }
+  return region;
 }
 
 }  // namespace

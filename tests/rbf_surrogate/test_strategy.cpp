@@ -123,6 +123,49 @@ TEST_CASE("Batch expected improvement asks for q distinct new points per iterati
   }
 }
 
+TEST_CASE("Batch trust-region points lie in nested boxes around the best run", "[rbf_surrogate][strategy][ei]") {
+  const auto strategy = make_strategy(2, options_for(InfillStrategy::expected_improvement));
+  drive(*strategy, 4, 3, branin_unit);
+  for (int round = 0; round < 6; ++round) {
+    const EvaluationHistory& h = strategy->history();
+    int best = 0;
+    for (int i = 1; i < h.size(); ++i)
+      if (h.values()[static_cast<std::size_t>(i)] < h.values()[static_cast<std::size_t>(best)]) best = i;
+    const MatrixXd asked = strategy->ask(4);
+    REQUIRE(asked.rows() == 4);
+    // Slots 1-3 minimise the believer mean within half-widths 0.05, 0.1 and 0.2 of the incumbent.
+    for (Eigen::Index j = 1; j < 4; ++j) {
+      const double half = 0.05 * std::pow(2.0, static_cast<double>(j - 1));
+      CHECK((asked.row(j).transpose() - h.point(best)).cwiseAbs().maxCoeff() <= half + 1e-12);
+    }
+    VectorXd values(4);
+    for (Eigen::Index i = 0; i < 4; ++i) values[i] = branin_unit(asked.row(i).transpose());
+    strategy->tell(asked, values);
+  }
+}
+
+TEST_CASE("Batches of four expected-improvement points reach Branin's minimum within 40 runs and repeat for a seed",
+          "[rbf_surrogate][strategy][ei]") {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    ExpensiveOptions o = options_for(InfillStrategy::expected_improvement);
+    o.seed = seed;
+    const auto first = make_strategy(2, o);
+    const auto again = make_strategy(2, o);
+    double best = std::numeric_limits<double>::infinity();
+    while (first->history().size() < 40 && best > testfn::kBraninMinimum + 1e-3) {
+      const MatrixXd a = first->ask(4);
+      const MatrixXd b = again->ask(4);
+      REQUIRE(a == b);
+      VectorXd values(a.rows());
+      for (Eigen::Index i = 0; i < a.rows(); ++i) values[i] = branin_unit(a.row(i).transpose());
+      best = std::min(best, values.minCoeff());
+      first->tell(a, values);
+      again->tell(b, values);
+    }
+    CHECK(best <= testfn::kBraninMinimum + 1e-3);
+  }
+}
+
 TEST_CASE("The stopping rule reports the target before the budget", "[rbf_surrogate][strategy]") {
   EvaluationHistory h(1);
   StoppingRule rule{3, 0.5};

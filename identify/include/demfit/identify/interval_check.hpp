@@ -66,6 +66,7 @@ struct IntervalCheckOutcome {
   double threshold = 0.0;
   std::vector<IntervalEndCheck> lower, upper;  // one per variable
   int runs = 0;
+  bool all_variables = true;  // the setting the ends were chosen by (IntervalCheckSpec::all_variables)
 };
 
 // The unit point to run for variable `variable` at unit value `unit_value` when the first attempt
