@@ -12,10 +12,9 @@
 // Environment (development only; the reported table uses none): DEMFIT_BENCH_CLIP=1 turns on
 // clip_above_median; DEMFIT_BENCH_ONLY=<method substring>, DEMFIT_BENCH_PROBLEM=<name> restrict the
 // demfit runs; DEMFIT_BENCH_VERBOSE=1 prints each run; DEMFIT_BENCH_{EXPLOIT,MAXLEN,WARP,KERNEL,
-// SELECT,STALL,RADIUS,CAND,STARTS,BATCH_EXPLOIT,LIAR,TRUST,TRUST_WIDTH} override the expected_improvement options of the same meaning.
-// Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3,
-// Hartmann-6 within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative
-// Gaussian noise) f* + 1e-2.
+// SELECT,STALL,RADIUS,CAND,STARTS,BATCH_EXPLOIT,LIAR,TRUST,TRUST_WIDTH} override the expected_improvement options of
+// the same meaning. Targets (on the TRUE value of the incumbent = best observed point): Branin f* + 1e-3, Hartmann-6
+// within 1 %, Rosenbrock-4 on [-2,2]^4 f <= 0.1, noisy Branin (1 % multiplicative Gaussian noise) f* + 1e-2.
 #include "demfit/rbf_surrogate/design.hpp"
 #include "demfit/rbf_surrogate/expensive.hpp"
 #include "demfit/rbf_surrogate/strategy.hpp"

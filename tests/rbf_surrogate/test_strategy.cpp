@@ -111,8 +111,8 @@ TEST_CASE("Batch expected improvement asks for q distinct new points per iterati
   for (int round = 0; round < 5; ++round) {
     const MatrixXd asked = strategy->ask(4);
     REQUIRE(asked.rows() == 4);
-    // Distinct as documented (>= 1e-5 apart, and from every told point); the exploitation point
-    // may sit close to an EI point near the optimum (measured 1.3e-4 apart), which is intended.
+    // Distinct as documented (>= 1e-5 apart, and from every told point); the trust-region points
+    // may sit close to each other near the optimum, which is intended.
     for (Eigen::Index i = 0; i < 4; ++i) {
       for (Eigen::Index j = 0; j < i; ++j) CHECK((asked.row(i) - asked.row(j)).norm() >= 1e-5);
       CHECK(min_distance_to_history(asked.row(i).transpose(), strategy->history()) >= 1e-5);

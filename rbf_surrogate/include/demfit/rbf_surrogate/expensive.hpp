@@ -71,7 +71,7 @@ struct ExpensiveOptions {
   // Batches: the last min(q − 1, batch_trust_regions) points maximise the believer-updated EI inside
   // boxes around the incumbent of half-width trust_region_half_width·2^j, j = 0, 1, … (unit coordinates;
   // batch_exploit is then unused): several step lengths of the local descent tried at once (bench,
-  // q = 4, 20 seeds: Hartmann-6 median 39 instead of 51). 0: off.
+  // q = 4, 20 seeds: Hartmann-6 median 39 instead of 51 with batch_exploit). 0: off.
   int batch_trust_regions = 3;
   double trust_region_half_width = 0.05;
 };
