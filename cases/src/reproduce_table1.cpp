@@ -76,8 +76,8 @@ std::string reproduce_table1(const ReproduceOptions& o) {
        "paper's NORMK and SHEARK plus 1 % Gaussian noise, seed 2026; the experimental curve of Fig. 2 is not\n"
        "published). Start: LS-DYNA defaults NORMK = 0.01, SHEARK = 2/7. Bold: the best run, as in\n"
        "best_parameters.json; 95 %: its reported interval (posterior on the runs near the optimum, checked by\n"
-       "runs at its ends where it reaches beyond them; docs/study_format.md \"Uncertainty\"); percentages are\n"
-       "the error against the generating values.\n";
+       "runs at its ends; docs/study_format.md \"Interval-end checks\"); percentages are the error against the\n"
+       "generating values.\n";
   t += "Runs used: " + std::to_string(r.runs - r.interval_check_runs) + " to the answer, " +
        std::to_string(r.interval_check_runs) + " more to check the intervals (" + std::to_string(r.failed_runs) +
        " failed), " + std::to_string(r.iterations) + " iterations, " + (r.converged ? "converged" : "iteration limit") +
