@@ -2,7 +2,7 @@
 // kriging expected improvement, and
 // baselines from scipy (differential evolution, Nelder-Mead) and scikit-learn (GP expected improvement)
 // run by baselines.py. Prints one table with ratios. Usage:
-//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 3, 0 = skip python)] [results file] [batch]
+//   bench_rbf_surrogate [seeds (default 5)] [baseline seeds (default 5, 0 = skip python)] [results file] [batch]
 // batch (default 1): 1 = sequential runs through minimise_expensive (the loop stops at the run that
 // meets the target); q > 1 = the ask/tell strategies asked for q points at a time, every asked point
 // evaluated (as q parallel workers would) and counted: evaluations to target = runs up to the end of
@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
@@ -130,24 +131,34 @@ double median_evals(std::vector<int> v) {
   return m >= (1 << 29) ? -1.0 : m;
 }
 
-std::map<std::pair<std::string, std::string>, std::vector<int>> run_baselines(int seeds, const char* saved) {
-  std::map<std::pair<std::string, std::string>, std::vector<int>> out;
-  const std::string cmd =
-      saved ? std::string("cat ") + saved
-            : std::string("/usr/bin/python3 ") + DEMFIT_BASELINES_SCRIPT + " " + std::to_string(seeds);
+using BaselineResults = std::map<std::pair<std::string, std::string>, std::vector<int>>;
+
+// One "RESULT <method> <problem> <seed> <evaluations>" line of baselines.py's output into `out`.
+void add_baseline_line(const std::string& line, BaselineResults& out) {
+  std::istringstream is(line);
+  std::string tag, method, problem;
+  int seed = 0, evals = -1;
+  is >> tag;
+  if (tag == "SKIPPED") std::cout << "python baselines skipped: " << line << "\n";
+  if (tag != "RESULT") return;
+  is >> method >> problem >> seed >> evals;
+  out[{method, problem}].push_back(evals);
+}
+
+BaselineResults run_baselines(int seeds, const char* saved) {
+  BaselineResults out;
+  if (saved) {  // read directly: a saved file's path never reaches a shell
+    std::ifstream in(saved);
+    if (!in) std::cout << "cannot read saved baselines " << saved << "\n";
+    for (std::string line; std::getline(in, line);) add_baseline_line(line, out);
+    return out;
+  }
+  // A fixed command line (interpreter, script path from the build, an integer): nothing from the user.
+  const std::string cmd = std::string("/usr/bin/python3 ") + DEMFIT_BASELINES_SCRIPT + " " + std::to_string(seeds);
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return out;
   char line[512];
-  while (fgets(line, sizeof line, pipe)) {
-    std::istringstream is(line);
-    std::string tag, method, problem;
-    int seed = 0, evals = -1;
-    is >> tag;
-    if (tag == "SKIPPED") std::cout << "python baselines skipped: " << line;
-    if (tag != "RESULT") continue;
-    is >> method >> problem >> seed >> evals;
-    out[{method, problem}].push_back(evals);
-  }
+  while (fgets(line, sizeof line, pipe)) add_baseline_line(std::string(line), out);
   pclose(pipe);
   return out;
 }
@@ -156,7 +167,7 @@ std::map<std::pair<std::string, std::string>, std::vector<int>> run_baselines(in
 
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 5;
-  const int baseline_seeds = argc > 2 ? std::atoi(argv[2]) : 3;
+  const int baseline_seeds = argc > 2 ? std::atoi(argv[2]) : 5;  // as many seeds as demfit by default
   std::map<std::pair<std::string, std::string>, std::vector<int>> results;
   std::map<std::pair<std::string, std::string>, double> seconds;
   const int batch = argc > 4 ? std::atoi(argv[4]) : 1;
