@@ -310,8 +310,11 @@ MatrixXd ExpectedImprovementStrategy::believer_batch(const WarpedModel& warped, 
     }
     // A point that repeats a run or batch point leaves its slot to EI in the slot's region, then in the
     // whole box (the batch stays q points long).
+    // (A slot without a trust region searches the whole box once: a second identical search would
+    // return the same point.)
+    const bool own_region = region.lower != bounds.lower || region.upper != bounds.upper;
     for (const Box* search : {&region, &bounds})
-      if (next.rows() == 0 || !distinct_from(rows, next.row(0)))
+      if ((search == &region || own_region) && (next.rows() == 0 || !distinct_from(rows, next.row(0))))
         next = keep_new(
             maximise_expected_improvement(model, best, incumbent, *search, point_seed, acquisition).x.transpose());
     if (next.rows() > 0 && distinct_from(rows, next.row(0))) {
