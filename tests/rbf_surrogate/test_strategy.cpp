@@ -133,7 +133,7 @@ TEST_CASE("Batch trust-region points lie in nested boxes around the best run", "
       if (h.values()[static_cast<std::size_t>(i)] < h.values()[static_cast<std::size_t>(best)]) best = i;
     const MatrixXd asked = strategy->ask(4);
     REQUIRE(asked.rows() == 4);
-    // Slots 1-3 minimise the believer mean within half-widths 0.05, 0.1 and 0.2 of the incumbent.
+    // Slots 1-3 maximise the believer's EI within half-widths 0.05, 0.1 and 0.2 of the incumbent.
     for (Eigen::Index j = 1; j < 4; ++j) {
       const double half = 0.05 * std::pow(2.0, static_cast<double>(j - 1));
       CHECK((asked.row(j).transpose() - h.point(best)).cwiseAbs().maxCoeff() <= half + 1e-12);
