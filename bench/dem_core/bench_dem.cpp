@@ -80,9 +80,9 @@ int usage() {
 
 int main(int argc, char** argv) {
   dem_core::use_bounded_spin_waiting(argv);  // as the demfit CLI waits
-  if (argc == 6 && std::string(argv[1]) == "--scaling-child")
+  if (argc == 7 && std::string(argv[1]) == "--scaling-child")
     return bench::run_scaling_child(std::stoul(argv[2]), std::stol(argv[3]), std::stoi(argv[4]),
-                                    std::string(argv[5]) == "shuffled");
+                                    std::string(argv[5]) == "shuffled", argv[6]);
   bool quick = false;
   std::string only;
   bench::DrumComparisonOptions drum;

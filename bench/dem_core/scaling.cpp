@@ -1,9 +1,10 @@
 // The box: a face-centred cubic lattice of touching spheres (the drum's material, R = 1 mm,
 // Hertz–Mindlin), 10 layers high on a floor between four side planes, gravity -z; the base grows
 // with N so every size has the same contacts per particle (6 pairs in the half list). 10..50
-// warm-up steps (lists built, first transients) precede the timed steps. Peak memory is the
-// child's ru_maxrss after the warm-up and one forced list rebuild (before it copies the state
-// for the reordering A/B).
+// warm-up steps (lists built, first transients) precede the timed steps. Each size runs once per
+// PairLoadOrder, in its own child; peak memory is the child's ru_maxrss after the warm-up (2
+// threads, Morton order: dem_core's defaults) and one forced list rebuild, before the box of
+// the stored-order A/B is built.
 #include "scaling.hpp"
 
 #include <sys/resource.h>
@@ -26,9 +27,11 @@ namespace demfit::bench {
 namespace {
 using namespace dem_core;
 
-Simulation make_box(std::size_t target, bool shuffled) {
+Simulation make_box(std::size_t target, bool shuffled, PairLoadOrder order) {
   const HertzDrumSpec spec;  // same material, law, step and skin as the drum
-  Simulation sim(hertz_settings(spec, SimulationSettings{}.threads));
+  SimulationSettings settings = hertz_settings(spec, SimulationSettings{}.threads);
+  settings.pair_load_order = order;
+  Simulation sim(settings);
   add_hertz_material(sim, spec);
   const double r = spec.radius, a = 2.0 * std::sqrt(2.0) * r;  // fcc cell: nearest distance 2R
   const long cells_z = 5,
@@ -85,19 +88,60 @@ double peak_rss_bytes() {
   return static_cast<double>(usage.ru_maxrss) * 1024.0;
 }
 
+// Warm-up on 2 threads (lists, first transients), then one forced list rebuild: the peak
+// memory includes one.
+void warm_up(Simulation& sim, long steps) {
+  sim.set_threads(2);
+  sim.run_steps(static_cast<std::uint64_t>(std::clamp(steps, 10L, 50L)));
+  sim.set_wall_motion(0, FixedMotion{});  // requests a list rebuild
+  sim.run_steps(1);
+}
+
+const char* order_name(PairLoadOrder order) {
+  return order == PairLoadOrder::own_row_first ? "own_row_first" : "ascending_first_member";
+}
+
+void print_scaling_rows(const ScalingOptions& o, const std::string& self, const std::filesystem::path& out,
+                        PairLoadOrder order) {
+  double previous_rss = 0.0, previous_n = 0.0;
+  for (const std::size_t n : o.sizes) {
+    const long steps = std::max(10L, std::lround(o.work / static_cast<double>(n)));
+    const ChildResult child =
+        run_child({self, "--scaling-child", std::to_string(n), std::to_string(steps), std::to_string(o.repeats),
+                   o.shuffled ? "shuffled" : "lattice", order_name(order)},
+                  {}, out);
+    const ChildLine c = parse_child(out);
+    if (!c.ok) {
+      std::printf("%9zu child failed (exit %d), output in %s\n", n, child.exit_code, out.c_str());
+      continue;
+    }
+    const double pn = static_cast<double>(c.particles);
+    char marginal[32] = "-";
+    if (previous_n > 0.0)
+      std::snprintf(marginal, sizeof marginal, "%.0f", (c.peak_bytes - previous_rss) / (pn - previous_n));
+    std::printf("%9zu %-22s %7.2f %6ld %7.3g / %5.3g %7.3g / %5.3g %3.2f/%3.2f %11.0f %9s  [%s]\n", c.particles,
+                order_name(order), static_cast<double>(c.pairs) / pn, c.steps, c.rate[0][0] / 1e6, c.rate[1][0] / 1e6,
+                c.rate[0][1] / 1e6, c.rate[1][1] / 1e6, c.rate[0][1] / c.rate[0][0], c.rate[1][1] / c.rate[1][0],
+                c.peak_bytes / pn, marginal, load_average().c_str());
+    previous_rss = c.peak_bytes;
+    previous_n = pn;
+  }
+}
+
 }  // namespace
 
-int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled) {
-  Simulation plain = make_box(particles, shuffled);
-  plain.set_reorder_particles(false);  // stored order: the A/B's reference (reordering is the default)
-  plain.set_threads(2);
-  plain.run_steps(static_cast<std::uint64_t>(std::clamp(steps, 10L, 50L)));  // warm-up: lists, first transients
-  plain.set_wall_motion(0, FixedMotion{});  // requests a list rebuild: the peak includes one
-  plain.run_steps(1);
-  const double peak = peak_rss_bytes();  // before the second copy below
-  // Lever A/B in this process: the same state with Morton reordering at list rebuilds (issue 16).
-  Simulation reordered = plain;
-  reordered.set_reorder_particles(true);
+int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled, const std::string& order_text) {
+  const PairLoadOrder order = order_text == order_name(PairLoadOrder::own_row_first)
+                                  ? PairLoadOrder::own_row_first
+                                  : PairLoadOrder::ascending_first_member;
+  // The peak is taken with the kernel's default Morton order (few pairs cross the threads'
+  // chunks), before the stored-order box of the A/B is built.
+  Simulation reordered = make_box(particles, shuffled, order);
+  warm_up(reordered, steps);
+  const double peak = peak_rss_bytes();
+  Simulation plain = make_box(particles, shuffled, order);
+  plain.set_reorder_particles(false);
+  warm_up(plain, steps);
   std::vector<double> rate[2][2];
   for (int r = 0; r < repeats; ++r)
     for (int threads = 1; threads <= 2; ++threads)
@@ -122,31 +166,13 @@ void print_scaling_table(const ScalingOptions& o) {
       "scaling: fcc box of touching spheres (drum material), 10 layers, %s order, median of %d; each size in a "
       "child process\n",
       o.shuffled ? "shuffled" : "lattice", o.repeats);
-  std::printf("M particle-steps/s as stored / with reorder_particles (Morton order at list rebuilds, same run)\n");
-  std::printf("%9s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pairs/N", "steps", "1 thread", "2 threads", "speedup",
-              "peak B/part", "marg B/p", "load");
-  double previous_rss = 0.0, previous_n = 0.0;
-  for (const std::size_t n : o.sizes) {
-    const long steps = std::max(10L, std::lround(o.work / static_cast<double>(n)));
-    const ChildResult child = run_child({self, "--scaling-child", std::to_string(n), std::to_string(steps),
-                                         std::to_string(o.repeats), o.shuffled ? "shuffled" : "lattice"},
-                                        {}, out);
-    const ChildLine c = parse_child(out);
-    if (!c.ok) {
-      std::printf("%9zu child failed (exit %d), output in %s\n", n, child.exit_code, out.c_str());
-      continue;
-    }
-    const double pn = static_cast<double>(c.particles);
-    char marginal[32] = "-";
-    if (previous_n > 0.0)
-      std::snprintf(marginal, sizeof marginal, "%.0f", (c.peak_bytes - previous_rss) / (pn - previous_n));
-    std::printf("%9zu %7.2f %6ld %7.3g / %5.3g %7.3g / %5.3g %3.2f/%3.2f %11.0f %9s  [%s]\n", c.particles,
-                static_cast<double>(c.pairs) / pn, c.steps, c.rate[0][0] / 1e6, c.rate[1][0] / 1e6, c.rate[0][1] / 1e6,
-                c.rate[1][1] / 1e6, c.rate[0][1] / c.rate[0][0], c.rate[1][1] / c.rate[1][0], c.peak_bytes / pn,
-                marginal, load_average().c_str());
-    previous_rss = c.peak_bytes;
-    previous_n = pn;
-  }
+  std::printf(
+      "M particle-steps/s as stored / with reorder_particles (Morton order at list rebuilds, same run); peak memory\n"
+      "with reordering, after a warm-up on 2 threads and one list rebuild; marginal = between successive sizes\n");
+  std::printf("%9s %-22s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pair_load_order", "pairs/N", "steps", "1 thread",
+              "2 threads", "speedup", "peak B/part", "marg B/p", "load");
+  for (const PairLoadOrder order : {PairLoadOrder::ascending_first_member, PairLoadOrder::own_row_first})
+    print_scaling_rows(o, self, out, order);
   std::filesystem::remove(out);
 }
 

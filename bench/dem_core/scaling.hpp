@@ -3,6 +3,7 @@
 // ~10^3 .. 10^6 spheres. Each size runs in a fresh child process (this benchmark re-executed with
 // --scaling-child), so its peak resident set (wait4's ru_maxrss) belongs to that size alone.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace demfit::bench {
@@ -17,6 +18,6 @@ struct ScalingOptions {
 void print_scaling_table(const ScalingOptions& options);
 
 /// Body of the child process: builds the box, times it, prints one "scaling-result ..." line.
-int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled);
+int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuffled, const std::string& order);
 
 }  // namespace demfit::bench

@@ -56,6 +56,7 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
   settings.reorder_particles = spec.numerics.reorder_particles;
+  settings.pair_load_order = spec.numerics.pair_load_order;
   settings.contact.normk = spec.pellet.fill_normk;
   settings.threads = options.threads;
   settings.time_step_factor = kFillTimeStepFactor;
@@ -196,6 +197,7 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   dem_core::SimulationSettings settings;
   settings.contact = spec.contact;
   settings.reorder_particles = spec.numerics.reorder_particles;
+  settings.pair_load_order = spec.numerics.pair_load_order;
   settings.threads = options.threads;
   settings.time_step = spec.time_step.value;
   settings.time_step_factor = spec.time_step.factor;

@@ -96,8 +96,16 @@ TimeStepSpec parse_time_step(const json& j, TimeStepSpec t) {
 }
 
 NumericsSpec parse_numerics(const json& j, NumericsSpec n) {
-  require_known_keys(j, "numerics", {"reorder_particles"});
+  require_known_keys(j, "numerics", {"reorder_particles", "pair_load_order"});
   n.reorder_particles = read_bool(j, "numerics", "reorder_particles", n.reorder_particles);
+  const std::string order = read_string(j, "numerics", "pair_load_order", to_string(n.pair_load_order));
+  if (order == to_string(dem_core::PairLoadOrder::own_row_first))
+    n.pair_load_order = dem_core::PairLoadOrder::own_row_first;
+  else if (order == to_string(dem_core::PairLoadOrder::ascending_first_member))
+    n.pair_load_order = dem_core::PairLoadOrder::ascending_first_member;
+  else
+    throw std::runtime_error(
+        "'numerics.pair_load_order' must be \"own_row_first\" or \"ascending_first_member\" (got \"" + order + "\")");
   return n;
 }
 
@@ -124,6 +132,16 @@ OutputSpec parse_output(const json& j, OutputSpec o) {
 double MaterialSpec::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
 
 std::string to_string(dem_core::ContactLawKind law) { return std::string(dem_core::contact_law_name(law)); }
+
+std::string to_string(dem_core::PairLoadOrder order) {
+  switch (order) {
+    case dem_core::PairLoadOrder::own_row_first:
+      return "own_row_first";
+    case dem_core::PairLoadOrder::ascending_first_member:
+      return "ascending_first_member";
+  }
+  return "own_row_first";
+}
 
 namespace {
 
@@ -241,7 +259,8 @@ json to_json(const CaseSpec& s) {
   }
   j["time_step"] = {{"value", s.time_step.value}, {"factor", s.time_step.factor}};
   j["output"] = {{"snapshot_times", s.output.snapshot_times}, {"progress_interval", s.output.progress_interval}};
-  j["numerics"] = {{"reorder_particles", s.numerics.reorder_particles}};
+  j["numerics"] = {{"reorder_particles", s.numerics.reorder_particles},
+                   {"pair_load_order", to_string(s.numerics.pair_load_order)}};
   switch (s.kind) {
     case CaseKind::pellet_compression:
       j["pellet"] = detail::pellet_section_json(s.pellet);
@@ -264,7 +283,10 @@ json to_key_json(const CaseSpec& s) {
     if (j.contains(section)) j[section].erase(path.substr(dot + 1));
   }
   // Insertion order (the default) leaves the keys, and so the cached fills and results, as before.
-  if (!s.numerics.reorder_particles) j.erase("numerics");
+  const NumericsSpec defaults;
+  if (s.numerics.reorder_particles == defaults.reorder_particles) j["numerics"].erase("reorder_particles");
+  if (s.numerics.pair_load_order == defaults.pair_load_order) j["numerics"].erase("pair_load_order");
+  if (j["numerics"].empty()) j.erase("numerics");
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());

@@ -17,6 +17,7 @@ dem_core::SimulationSettings simulation_settings(const CaseSpec& spec) {
   settings.law = spec.law;
   settings.contact = spec.contact;
   settings.reorder_particles = spec.numerics.reorder_particles;
+  settings.pair_load_order = spec.numerics.pair_load_order;
   return settings;
 }
 

@@ -77,32 +77,53 @@ inline bool pair_geometry(const ParticleState& p, std::size_t i, std::size_t j, 
   return true;
 }
 
-/// Loads of one pair k = (i, j), i < j: stores what j gathers later and returns i's force and
-/// torque contributions (zero for a pair out of contact, added like the stored zeros were).
+/// Contact of pair k = (i, j), i < j: false (history cleared) when the spheres are apart, else
+/// the law's loads with its history advanced by dt. The one place a pair's loads are computed,
+/// for both PairLoadOrder variants.
 template <class Law>
-void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
-                  const StepInputs& step, Vec3& force_i, Vec3& torque_i) {
+bool pair_loads(const Law& law, typename Law::History* history, std::uint8_t* touching, const ParticleState& p,
+                std::size_t k, std::size_t i, std::size_t j, const StepInputs& step, PairLoads& out) {
   ContactGeometry g;
   double branch_i = 0.0, branch_j = 0.0;
   if (!pair_geometry(p, i, j, step.rotation, g, branch_i, branch_j)) {
+    if (touching[k]) {
+      history[k] = {};
+      touching[k] = 0;
+    }
+    return false;
+  }
+  const ContactForce f = law.force(g, history[k], step.dt);
+  out.force = f.force;
+  out.torque_first = {};
+  out.torque_second = {};
+  if (step.rotation) {
+    out.torque_first = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
+    out.torque_second = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
+  }
+  touching[k] = 1;
+  return true;
+}
+
+/// Loads of one pair k = (i, j), i < j, in PairLoadOrder::own_row_first: stores what j gathers
+/// later and returns i's force and torque contributions (zero for a pair out of contact, added
+/// like the stored zeros were).
+template <class Law>
+void pair_contact(const PairSide<Law>& pairs, const ParticleState& p, std::size_t k, std::size_t i, std::size_t j,
+                  const StepInputs& step, Vec3& force_i, Vec3& torque_i) {
+  const bool was_touching = pairs.touching[k] != 0;
+  PairLoads loads;
+  if (!pair_loads(pairs.law, pairs.history, pairs.touching, p, k, i, j, step, loads)) {
     force_i = {};
     torque_i = {};
-    if (!pairs.touching[k]) return;  // already cleared
-    pairs.history[k] = {};
+    if (!was_touching) return;  // already cleared
     pairs.force[k] = {};
     pairs.torque_second[k] = {};
-    pairs.touching[k] = 0;
     return;
   }
-  const ContactForce f = pairs.law.force(g, pairs.history[k], step.dt);
-  pairs.force[k] = f.force;
-  force_i = f.force;
-  torque_i = {};
-  if (step.rotation) {
-    torque_i = cross(branch_i * g.normal, f.tangential_force) + f.rolling_torque;
-    pairs.torque_second[k] = cross(branch_j * g.normal, f.tangential_force) - f.rolling_torque;
-  }
-  pairs.touching[k] = 1;
+  pairs.force[k] = loads.force;
+  force_i = loads.force;
+  torque_i = loads.torque_first;
+  if (step.rotation) pairs.torque_second[k] = loads.torque_second;
 }
 
 /// Elastic energy [J] of the pairs in contact, in pair order, computed only when asked for (a
@@ -187,9 +208,18 @@ void wall_contacts_of(std::size_t i, const WallSide<Law>& walls, ParticleState& 
   }
 }
 
-/// All loads and the closing half kick. Fixed order per particle: gravity and pairs where i is
-/// first (ascending j, summed by pair_rows), pairs where i is second (ascending first member),
-/// then walls in index order.
+/// The walls' loads on particle i (after all its pair loads) and the second velocity-Verlet half
+/// kick with the complete new loads (fused: one pass).
+template <class Law>
+void finish_particle(std::size_t i, const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
+  wall_contacts_of(i, walls, p, step);
+  p.velocity[i] += (step.closing_kick * p.inverse_mass[i]) * p.force[i];
+  if (step.rotation) p.angular_velocity[i] += (step.closing_kick * p.inverse_inertia[i]) * p.torque[i];
+}
+
+/// All loads and the closing half kick in PairLoadOrder::own_row_first. Fixed order per particle: gravity and pairs
+/// where i is first (ascending j, summed by pair_rows), pairs where i is second (ascending first member), then walls in
+/// index order.
 template <class Law>
 void all_forces(const PairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
   pair_rows(pairs, p, step);
@@ -208,10 +238,7 @@ void all_forces(const PairSide<Law>& pairs, const WallSide<Law>& walls, Particle
     }
     p.force[i] = f;
     p.torque[i] = t;
-    wall_contacts_of(i, walls, p, step);
-    // Second velocity-Verlet half kick with the complete new loads (fused: one pass).
-    p.velocity[i] += (step.closing_kick * p.inverse_mass[i]) * p.force[i];
-    if (step.rotation) p.angular_velocity[i] += (step.closing_kick * p.inverse_inertia[i]) * p.torque[i];
+    finish_particle(i, walls, p, step);
   }
 }
 

@@ -84,7 +84,8 @@ void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<cons
 
 }  // namespace
 
-void NeighborList::build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads) {
+void NeighborList::build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads,
+                         bool transposed) {
   if (!(skin > 0.0)) throw std::runtime_error("neighbour list skin must be > 0");
   const std::size_t n = positions.size();
   skin_ = skin;
@@ -92,8 +93,9 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   reference_positions_.assign(positions.begin(), positions.end());
   row_offsets_.assign(n + 1, 0);
   second_.clear();
-  column_offsets_.assign(n + 1, 0);
-  column_pairs_.clear();
+  column_offsets_ = decltype(column_offsets_)();  // frees the storage (`= {}` would keep it)
+  column_pairs_ = decltype(column_pairs_)();
+  if (transposed) column_offsets_.assign(n + 1, 0);
   if (n == 0) return;
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
@@ -114,6 +116,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
     for_each_partner(grid, positions, radii, skin, ii, [&](std::uint32_t j) { second_[k++] = j; });
     std::sort(second_.begin() + row_offsets_[ii], second_.begin() + row_offsets_[ii + 1]);
   }
+  if (!transposed) return;
   // Transposed index; pairs are visited in ascending first member, so columns come out sorted.
   for (std::size_t p = 0; p < pairs; ++p) ++column_offsets_[second_[p] + 1];
   for (std::size_t j = 0; j < n; ++j) column_offsets_[j + 1] += column_offsets_[j];
@@ -123,8 +126,8 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
 }
 
 void NeighborList::keep_rows_only() {
-  column_offsets_ = decltype(column_offsets_)();  // frees the storage (`= {}` would keep it)
-  column_pairs_ = decltype(column_pairs_)();  // frees the storage (`= {}` would keep it)
+  column_offsets_ = decltype(column_offsets_)();            // frees the storage (`= {}` would keep it)
+  column_pairs_ = decltype(column_pairs_)();                // frees the storage (`= {}` would keep it)
   reference_positions_ = decltype(reference_positions_)();  // frees the storage (`= {}` would keep it)
 }
 

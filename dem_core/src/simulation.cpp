@@ -166,6 +166,11 @@ void Simulation::set_threads(int threads) {
   settings_.threads = threads;
 }
 
+void Simulation::set_pair_load_order(PairLoadOrder order) {
+  if (order != settings_.pair_load_order) rebuild_requested_ = true;
+  settings_.pair_load_order = order;
+}
+
 void Simulation::set_reorder_particles(bool reorder) {
   if (reorder && !settings_.reorder_particles) rebuild_requested_ = true;
   settings_.reorder_particles = reorder;

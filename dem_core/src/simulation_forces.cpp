@@ -1,5 +1,5 @@
-// Force evaluation: neighbours -> pair loads (per pair, parallel) -> per-particle gather in fixed
-// CSR order -> wall loads (per particle, parallel) -> serial wall reduction. The loops
+// Force evaluation: neighbours -> pair loads in one of the two fixed orders of PairLoadOrder
+// (parallel) -> wall loads (per particle, parallel) -> serial wall reduction. The loops
 // (contact_loops.hpp) are templated on the contact law; the law type is chosen by one switch per
 // evaluation (with_contact_law, contact_laws.hpp).
 #include <algorithm>
@@ -9,6 +9,7 @@
 
 #include "contact_history.hpp"
 #include "contact_loops.hpp"
+#include "contact_loops_streamed.hpp"
 #include "demfit/dem_core/simulation.hpp"
 
 namespace demfit::dem_core {
@@ -42,7 +43,8 @@ void Simulation::ensure_neighbors(double moved) {
   old.keep_rows_only();
   pair_force_ = decltype(pair_force_)();                  // frees the storage (`= {}` would keep it)
   pair_torque_second_ = decltype(pair_torque_second_)();  // frees the storage (`= {}` would keep it)
-  neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads);
+  neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads,
+                   settings_.pair_load_order == PairLoadOrder::own_row_first);
   rebuild_pair_arrays(old, order);
 }
 
@@ -90,12 +92,6 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
   }
   const Law pair_law = Law::for_pairs(c);
   WallSlots& slots = wall_slots_;
-  const PairSide<Law> pairs{pair_law,
-                            neighbors_,
-                            state.pair_history.data(),
-                            pair_force_.data(),
-                            pair_torque_second_.data(),
-                            pair_touching_.data()};
   const WallSide<Law> walls{state.wall_laws,
                             walls_,
                             slots.rows.data(),
@@ -107,7 +103,23 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
                             slots.energy.data(),
                             slots.touching.data()};
   const StepInputs step{settings_.gravity, dt, closing_kick, c.rotation_enabled(), settings_.threads};
-  all_forces(pairs, walls, particles_, step);
+  switch (settings_.pair_load_order) {
+    case PairLoadOrder::own_row_first: {
+      const PairSide<Law> pairs{pair_law,
+                                neighbors_,
+                                state.pair_history.data(),
+                                pair_force_.data(),
+                                pair_torque_second_.data(),
+                                pair_touching_.data()};
+      all_forces(pairs, walls, particles_, step);
+      return;
+    }
+    case PairLoadOrder::ascending_first_member: {
+      const StreamedPairSide<Law> pairs{pair_law, neighbors_, state.pair_history.data(), pair_touching_.data()};
+      all_forces_streamed(pairs, walls, particles_, step, crossing_pair_loads_);
+      return;
+    }
+  }
 }
 
 void Simulation::reduce_diagnostics() const {

@@ -30,7 +30,8 @@ void Simulation::rebuild_pair_arrays(const NeighborList& old, const std::vector<
   }
   // Allocated once the old histories are gone (ensure_neighbors freed the old loads before the
   // build): the peak of a rebuild stays below the steady per-pair storage.
-  old_touching = decltype(old_touching)();  // frees the storage (`= {}` would keep it)
+  old_touching = decltype(old_touching)();                                // frees the storage (`= {}` would keep it)
+  if (settings_.pair_load_order != PairLoadOrder::own_row_first) return;  // nothing stored per pair
   pair_force_.assign(pairs, Vec3{});
   pair_torque_second_.assign(pairs, Vec3{});
 }

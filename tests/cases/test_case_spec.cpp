@@ -64,6 +64,20 @@ TEST_CASE("numerics.reorder_particles is off unless the case asks, and only a ca
             .find("numerics.reorder_particles") != std::string::npos);
 }
 
+TEST_CASE("numerics.pair_load_order keeps the published order unless the case asks, with its own cache key") {
+  const CaseSpec plain = parse_case(json{{"case", "rotary_drum"}});
+  CHECK(plain.numerics.pair_load_order == demfit::dem_core::PairLoadOrder::own_row_first);
+  const CaseSpec lean =
+      parse_case(json{{"case", "rotary_drum"}, {"numerics", {{"pair_load_order", "ascending_first_member"}}}});
+  CHECK(lean.numerics.pair_load_order == demfit::dem_core::PairLoadOrder::ascending_first_member);
+  CHECK(to_key_json(lean) != to_key_json(plain));  // another round-off realisation: other fills
+  CHECK_FALSE(to_key_json(lean)["numerics"].contains("reorder_particles"));
+  CHECK(to_json(parse_case(to_json(lean))) == to_json(lean));
+  const std::string message = message_of(json{{"case", "rotary_drum"}, {"numerics", {{"pair_load_order", "fastest"}}}});
+  CHECK(message.find("numerics.pair_load_order") != std::string::npos);
+  CHECK(message.find("ascending_first_member") != std::string::npos);
+}
+
 TEST_CASE("FRICD defaults to FRICS when the file leaves it out (LS-DYNA default)") {
   const CaseSpec spec = parse_case(json{{"case", "pellet_compression"}, {"contact", {{"frics", 0.4}}}});
   CHECK(spec.contact.fricd == 0.4);

@@ -12,6 +12,7 @@
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/size_distribution.hpp"
 #include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/simulation.hpp"
 
 namespace demfit::cases {
 
@@ -109,8 +110,12 @@ struct OutputSpec {
 // at 1e5-1e6 particles, bench_dem --only scaling). Off in cases by default: a reordered run is
 // another round-off realisation of the flow, and the shipped figures (Tables 1 and 3) were made
 // in insertion order.
+// "numerics.pair_load_order": "own_row_first" (default: the order the shipped figures were made
+// in) or "ascending_first_member" (dem_core's default: 53 bytes per pair less, another round-off
+// realisation; dem_core/README.md).
 struct NumericsSpec {
   bool reorder_particles = false;
+  dem_core::PairLoadOrder pair_load_order = dem_core::PairLoadOrder::own_row_first;
 };
 
 enum class CaseKind { pellet_compression, rotary_drum };
@@ -166,5 +171,7 @@ const std::vector<std::string>& parameter_names();
 
 // "lsdyna_linear" / "hertz_mindlin".
 std::string to_string(dem_core::ContactLawKind law);
+// "own_row_first" / "ascending_first_member" (the spellings of "numerics.pair_load_order").
+std::string to_string(dem_core::PairLoadOrder order);
 
 }  // namespace demfit::cases

@@ -1,6 +1,8 @@
 #pragma once
 // What a contact law sees of one contact, computed once per pair (or particle–wall pair) by the
 // loops, and the history a law may carry from step to step.
+#include <cstdint>
+
 #include "demfit/dem_core/vec3.hpp"
 
 namespace demfit::dem_core {
@@ -42,6 +44,22 @@ struct ContactForce {
   Vec3 tangential_force{};      ///< tangential part of `force`, acting at the contact point [N]
   Vec3 rolling_torque{};        ///< rolling-resistance torque on i [N·m] (j receives -rolling_torque)
   double elastic_energy = 0.0;  ///< energy stored in the normal and tangential springs [J]
+};
+
+/// What one touching pair exerts: the force on the first member [N] (the second receives
+/// -force) and each member's torque about its own centre [N·m] (the loops' per-pair result).
+struct PairLoads {
+  Vec3 force{};
+  Vec3 torque_first{};
+  Vec3 torque_second{};
+};
+
+/// A touching pair whose members lie in different threads' chunks, computed before the chunks'
+/// rows (PairLoadOrder::ascending_first_member, src/contact_loops_streamed.hpp).
+struct CrossingPairLoads {
+  std::uint32_t pair = 0;    ///< index in the half list
+  std::uint32_t second = 0;  ///< second member (in a later chunk than the first)
+  PairLoads loads{};
 };
 
 }  // namespace demfit::dem_core

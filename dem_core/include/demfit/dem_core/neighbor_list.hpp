@@ -18,7 +18,10 @@ class NeighborList {
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
   /// All pairs (i < j) with |x_i - x_j| < R_i + R_j + skin. positions [m], radii [m], skin [m] > 0.
-  void build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads);
+  /// `transposed`: also build the transposed index (column_offsets/column_pairs, 4 bytes per pair
+  /// and per particle), which only a gather of stored per-pair loads needs.
+  void build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads,
+             bool transposed = true);
   /// True when some particle moved more than skin/2 since the last build (or never built, or the
   /// particle count changed).
   [[nodiscard]] bool needs_rebuild(std::span<const Vec3> positions, int threads) const;

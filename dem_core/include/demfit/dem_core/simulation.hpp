@@ -3,10 +3,10 @@
 // velocity-Verlet step: half kick -> drift -> walls move -> neighbours -> pair forces -> wall
 // forces -> half kick. Units SI throughout; one global inertial frame.
 //
-// Determinism: pair loads are computed per pair into a pair array (in parallel), then gathered
-// per particle in the fixed CSR order; wall loads are reduced serially in particle order. The
-// result is therefore bit-identical for repeated runs AND for any thread count (measured in
-// tests/dem_core/test_determinism.cpp: 1 and 2 threads agree bitwise).
+// Determinism: every particle sums its loads in a fixed order that does not depend on the
+// thread count (PairLoadOrder); wall loads are reduced serially in particle order. The result is
+// therefore bit-identical for repeated runs AND for any thread count (measured in
+// tests/dem_core/test_determinism.cpp and test_pair_load_order.cpp: 1, 2 and 3 threads agree bitwise).
 //
 // FRICS = 0 (ContactParameters::frics) disables rotation entirely, as in LS-DYNA: angular
 // velocities stay zero, tangential forces (walls may still have friction) act on the centres only.
@@ -26,6 +26,18 @@
 #include "demfit/dem_core/wall_slots.hpp"
 
 namespace demfit::dem_core {
+
+/// The order in which each particle sums its pair loads. Both are deterministic and the same for
+/// any thread count; they are two round-off realisations of the same physics.
+enum class PairLoadOrder {
+  /// Gravity, the pairs where the particle is first (ascending partner), then those where it is
+  /// second, gathered from per-pair stored loads through a transposed index (53 bytes per pair
+  /// more). Every shipped case result was made in this order.
+  own_row_first,
+  /// Gravity, then every pair in ascending first member, summed as the rows are computed
+  /// (src/contact_loops_streamed.hpp): nothing stored per pair (issue 16's memory target).
+  ascending_first_member,
+};
 
 struct SimulationSettings {
   ContactLawKind law = ContactLawKind::lsdyna_linear;
@@ -54,6 +66,9 @@ struct SimulationSettings {
   /// drum_2026-12-02_reorder_default.txt), 3.3x less cost growth from 1e4 to 1e6 particles;
   /// switch it off to follow a particle by its index.
   bool reorder_particles = true;
+  /// dem_core's default is the leaner order; cases keep own_row_first unless they ask
+  /// (cases' "numerics.pair_load_order"), so their results stay as published.
+  PairLoadOrder pair_load_order = PairLoadOrder::ascending_first_member;
 };
 
 class Simulation;
@@ -87,6 +102,8 @@ class Simulation {
   void set_threads(int threads);
   /// Switch SimulationSettings::reorder_particles; switching it on reorders at the next step.
   void set_reorder_particles(bool reorder);
+  /// Switch SimulationSettings::pair_load_order (the neighbour list is rebuilt at the next step).
+  void set_pair_load_order(PairLoadOrder order);
   void set_wall_motion(std::size_t wall, const WallMotion& motion);
   /// Velocity of a translating wall [m/s] (makes the wall translating if it was fixed).
   void set_wall_velocity(std::size_t wall, const Vec3& velocity);
@@ -174,8 +191,11 @@ class Simulation {
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices (their histories: contact_state_).
-  std::vector<Vec3> pair_force_, pair_torque_second_;  // the first member sums its share directly
+  // own_row_first only: the second member's share, gathered after the rows.
+  std::vector<Vec3> pair_force_, pair_torque_second_;
   std::vector<std::uint8_t> pair_touching_{};
+  // ascending_first_member with threads > 1: per thread, the touching pairs crossing its chunk.
+  std::vector<std::vector<CrossingPairLoads>> crossing_pair_loads_{};
   WallSlots wall_slots_{};  // particle–wall candidates and their last loads
   // The active law's contact histories (pairs and wall slots, of its history type) and wall laws.
   ContactLawStates contact_state_{};
