@@ -1,11 +1,11 @@
 #pragma once
-// Contact histories across neighbour-list and wall-slot rebuilds and across a change of law,
-// written once for every law's history type (an aggregate whose first member is the tangential
-// spring; contact_laws.hpp). Internal to Simulation.
+// Contact histories across wall-slot rebuilds and across a change of law, written once for every
+// law's history type (an aggregate whose first member is the tangential spring;
+// contact_laws.hpp); pair histories across list rebuilds: pair_history_carry.hpp. Internal to
+// Simulation.
 #include <cstdint>
 #include <vector>
 
-#include "demfit/dem_core/neighbor_list.hpp"
 #include "demfit/dem_core/wall_slots.hpp"
 
 namespace demfit::dem_core {
@@ -17,52 +17,6 @@ std::vector<To> keep_tangential_springs(const std::vector<From>& from) {
   std::vector<To> to(from.size());
   for (std::size_t k = 0; k < from.size(); ++k) to[k].tangential_displacement = from[k].tangential_displacement;
   return to;
-}
-
-/// A neighbour-list rebuild: the old and the new list, order[new] = old particle index (empty
-/// when the particles were not reordered), the old pairs' touching flags and the new ones (all 0).
-struct PairRebuild {
-  const NeighborList& old;
-  const NeighborList& list;
-  const std::vector<std::uint32_t>& order;
-  const std::vector<std::uint8_t>& old_touching;
-  std::vector<std::uint8_t>& touching;
-  int threads;
-};
-
-/// Replaces `history` (aligned with r.old) by one aligned with r.list: each new pair takes the
-/// history and the touching flag of the same pair in the old list, new pairs start afresh.
-template <class History>
-void carry_pair_histories(const PairRebuild& r, std::vector<History>& history) {
-  std::vector<History> old_history;
-  old_history.swap(history);  // moved, not copied (peak memory at rebuilds)
-  const std::size_t pairs = r.list.pair_count();
-  history.assign(pairs, History{});
-  if (old_history.empty() || r.old.particle_count() != r.list.particle_count()) return;
-  // Look each new pair up in the old list (by old indices when the particles were reordered).
-  const auto rows = r.list.row_offsets();
-  const auto second = r.list.second();
-  const bool reordered = !r.order.empty();
-  const auto count = static_cast<std::int64_t>(r.list.particle_count());
-#pragma omp parallel for schedule(static) num_threads(r.threads) if (r.threads > 1)
-  for (std::int64_t ii = 0; ii < count; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
-      std::size_t a = i, b = second[k];
-      if (reordered) {
-        a = r.order[a];
-        b = r.order[b];
-      }
-      // The tangential elongation is that of the first particle relative to the second: a pair
-      // whose members swapped roles carries it negated (exact); the rest of the history is scalar.
-      const bool swapped = a > b;
-      const std::size_t old_k = swapped ? r.old.find(b, a) : r.old.find(a, b);
-      if (old_k == NeighborList::npos) continue;
-      history[k] = old_history[old_k];
-      if (swapped) history[k].tangential_displacement = -history[k].tangential_displacement;
-      r.touching[k] = r.old_touching[old_k];  // so the pair loop clears it if it has ended
-    }
-  }
 }
 
 /// Replaces `history` (aligned with the slots of `old`) by one aligned with `slots` (rows and

@@ -12,7 +12,9 @@
 // buffers hold only the crossing pairs (few when particles are in spatial order).
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "contact_loops.hpp"
@@ -92,6 +94,25 @@ void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls
   for (std::size_t i = begin; i < end; ++i) finish_particle(i, walls, p, step);
 }
 
+/// The first particle of each chunk (chunks + 1 entries). Any split gives the same results; this
+/// one balances the work. A chunk's thread computes its crossing pairs before the barrier while
+/// the last chunk's thread has none, so with two chunks the first one gets fewer pairs: its rows'
+/// pairs minus its crossing pairs (last step's count, `crossing`) match the second's rows. More
+/// chunks split the pairs evenly.
+inline std::vector<std::size_t> chunk_starts(std::span<const std::uint32_t> rows, std::size_t chunks,
+                                             std::size_t crossing) {
+  const std::size_t n = rows.size() - 1, pairs = rows[n];
+  std::vector<std::size_t> start(chunks + 1, n);
+  start[0] = 0;
+  for (std::size_t c = 1; c < chunks; ++c) {
+    std::size_t target = pairs * c / chunks;
+    if (chunks == 2) target = (pairs + std::min(crossing, pairs)) / 2;
+    start[c] = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), target) - rows.begin());
+    start[c] = std::clamp(start[c], start[c - 1], n);
+  }
+  return start;
+}
+
 /// All loads and the closing half kick in PairLoadOrder::ascending_first_member; `crossing`
 /// keeps its capacity between steps (one buffer per thread).
 template <class Law>
@@ -104,16 +125,18 @@ void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>
     stream_chunk(pairs, walls, p, step, 0, n, crossing, 0);
     return;
   }
+  std::size_t crossed_last_step = 0;
+  for (const auto& buffer : crossing) crossed_last_step += buffer.size();
   crossing.resize(static_cast<std::size_t>(step.threads));
 #pragma omp parallel num_threads(step.threads)
   {
-    // The chunks follow the threads actually granted; the results do not depend on their number.
+    // The chunks follow the threads actually granted; the results do not depend on them.
     const auto chunks = static_cast<std::size_t>(omp_get_num_threads());
     const auto chunk = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t begin = n * chunk / chunks, end = n * (chunk + 1) / chunks;
-    crossing_pairs(pairs, p, step, begin, end, crossing[chunk]);
+    const std::vector<std::size_t> start = chunk_starts(pairs.list.row_offsets(), chunks, crossed_last_step);
+    crossing_pairs(pairs, p, step, start[chunk], start[chunk + 1], crossing[chunk]);
 #pragma omp barrier
-    stream_chunk(pairs, walls, p, step, begin, end, crossing, chunk);
+    stream_chunk(pairs, walls, p, step, start[chunk], start[chunk + 1], crossing, chunk);
   }
 }
 

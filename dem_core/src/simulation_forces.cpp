@@ -45,7 +45,7 @@ void Simulation::ensure_neighbors(double moved) {
   pair_torque_second_ = decltype(pair_torque_second_)();  // frees the storage (`= {}` would keep it)
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads,
                    settings_.pair_load_order == PairLoadOrder::own_row_first);
-  rebuild_pair_arrays(old, order);
+  rebuild_pair_arrays(std::move(old), order);
 }
 
 void Simulation::compute_forces(double dt, double closing_kick, double moved) {

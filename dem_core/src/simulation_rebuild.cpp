@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "contact_history.hpp"
+#include "pair_history_carry.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "particle_order.hpp"
 
@@ -19,18 +20,21 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
   return order;  // the wall slots are rebuilt next, through `order`
 }
 
-void Simulation::rebuild_pair_arrays(const NeighborList& old, const std::vector<std::uint32_t>& order) {
+void Simulation::rebuild_pair_arrays(NeighborList&& old, const std::vector<std::uint32_t>& order) {
   const std::size_t pairs = neighbors_.pair_count();
   std::vector<std::uint8_t> old_touching;
   old_touching.swap(pair_touching_);
   pair_touching_.assign(pairs, 0);
-  {
-    const PairRebuild rebuild{old, neighbors_, order, old_touching, pair_touching_, settings_.threads};
-    std::visit([&](auto& state) { carry_pair_histories(rebuild, state.pair_history); }, contact_state_);
-  }
+  const bool histories_kept = std::visit([](const auto& state) { return !state.pair_history.empty(); }, contact_state_);
+  const std::vector<std::uint32_t> source =
+      histories_kept ? pair_sources({old, neighbors_, order, old_touching, pair_touching_, settings_.threads})
+                     : std::vector<std::uint32_t>{};
+  // Freed before the histories move (peak memory at rebuilds; `= {}` would keep the storage).
+  old = NeighborList();
+  old_touching = decltype(old_touching)();
+  std::visit([&](auto& state) { apply_pair_sources(source, pairs, state.pair_history); }, contact_state_);
   // Allocated once the old histories are gone (ensure_neighbors freed the old loads before the
   // build): the peak of a rebuild stays below the steady per-pair storage.
-  old_touching = decltype(old_touching)();                                // frees the storage (`= {}` would keep it)
   if (settings_.pair_load_order != PairLoadOrder::own_row_first) return;  // nothing stored per pair
   pair_force_.assign(pairs, Vec3{});
   pair_torque_second_.assign(pairs, Vec3{});

@@ -176,8 +176,9 @@ class Simulation {
   /// With settings_.reorder_particles: permute every per-particle array into Morton order and
   /// return order[new] = old (empty when nothing moved). Pair arrays are rebuilt by the caller.
   std::vector<std::uint32_t> apply_spatial_order();
-  /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`).
-  void rebuild_pair_arrays(const NeighborList& old, const std::vector<std::uint32_t>& order);
+  /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`;
+  /// `old` is freed before the histories move).
+  void rebuild_pair_arrays(NeighborList&& old, const std::vector<std::uint32_t>& order);
   double kick_and_drift(double dt);
   void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
   [[nodiscard]] double resolved_step() const;

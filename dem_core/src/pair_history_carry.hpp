@@ -1,0 +1,148 @@
+#pragma once
+// Pair contact histories across a neighbour-list rebuild, carried in place (issue 16: a rebuild
+// used to hold the old and the new history arrays at once, 24 bytes per pair twice, the peak of a
+// dense bed's memory). First each new pair finds its old pair (`pair_sources`, parallel, while the
+// old list still exists); the old list is then freed and the history array is permuted in place
+// (`apply_pair_sources`): 4 bytes per pair for the sources and two bits instead of a second array.
+// The values are the same as a copy into a new array would give, bit for bit. Internal to
+// Simulation.
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "demfit/dem_core/neighbor_list.hpp"
+
+namespace demfit::dem_core {
+
+/// Where a new pair's history comes from: an old pair index, with kSwappedPair set when the
+/// members swapped roles (the tangential spring is then negated), or kNewPair.
+inline constexpr std::uint32_t kNewPair = 0xFFFFFFFFu;
+inline constexpr std::uint32_t kSwappedPair = 0x80000000u;
+
+/// Capacity for `pairs` histories with room for a list that grows a little at the next rebuild
+/// (a reallocation would hold both arrays at once).
+inline std::size_t with_slack(std::size_t pairs) { return pairs + pairs / 16 + 64; }
+
+/// A neighbour-list rebuild: the old and the new list, order[new] = old particle index (empty
+/// when the particles were not reordered), the old pairs' touching flags and the new ones (all 0).
+struct PairRebuild {
+  const NeighborList& old;
+  const NeighborList& list;
+  const std::vector<std::uint32_t>& order;
+  const std::vector<std::uint8_t>& old_touching;
+  std::vector<std::uint8_t>& touching;
+  int threads;
+};
+
+/// Each new pair's source in the old list (empty when nothing can be carried: first build or
+/// another particle count); the touching flags are carried at once.
+inline std::vector<std::uint32_t> pair_sources(const PairRebuild& r) {
+  if (r.old.pair_count() == 0 || r.old.particle_count() != r.list.particle_count()) return {};
+  if (r.old.pair_count() >= kSwappedPair) throw std::runtime_error("neighbour list: more than 2^31 pairs");
+  std::vector<std::uint32_t> source(r.list.pair_count(), kNewPair);
+  const auto rows = r.list.row_offsets();
+  const auto second = r.list.second();
+  const bool reordered = !r.order.empty();
+  const auto count = static_cast<std::int64_t>(r.list.particle_count());
+#pragma omp parallel for schedule(static) num_threads(r.threads) if (r.threads > 1)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      std::size_t a = i, b = second[k];
+      if (reordered) {
+        a = r.order[a];
+        b = r.order[b];
+      }
+      // The tangential elongation is that of the first particle relative to the second: a pair
+      // whose members swapped roles carries it negated (exact); the rest of the history is scalar.
+      const bool swapped = a > b;
+      const std::size_t old_k = swapped ? r.old.find(b, a) : r.old.find(a, b);
+      if (old_k == NeighborList::npos) continue;
+      source[k] = static_cast<std::uint32_t>(old_k) | (swapped ? kSwappedPair : 0u);
+      r.touching[k] = r.old_touching[old_k];  // so the pair loop clears it if it has ended
+    }
+  }
+  return source;
+}
+
+namespace detail {
+
+/// history[to] = the old content of `from` (negated spring when swapped).
+template <class History>
+void move_history(std::vector<History>& history, std::size_t to, std::uint32_t source) {
+  const std::size_t from = source & ~kSwappedPair;
+  history[to] = history[from];
+  if (source & kSwappedPair) history[to].tangential_displacement = -history[to].tangential_displacement;
+}
+
+}  // namespace detail
+
+/// history (aligned with the old list) becomes aligned with the new one: new pair k takes the
+/// old history of source[k], a new pair (or an empty `source`) starts afresh. In place: a chain of
+/// moves starts at a slot whose content no new pair needs and follows the sources (each old slot
+/// feeds at most one new pair, so a slot is free once it has been read); what remains are cycles,
+/// done with one saved value each.
+template <class History>
+void apply_pair_sources(const std::vector<std::uint32_t>& source, std::size_t pairs, std::vector<History>& history) {
+  if (source.empty() || history.empty()) {
+    history = std::vector<History>();
+    history.reserve(with_slack(pairs));
+    history.assign(pairs, History{});
+    return;
+  }
+  if (pairs > history.capacity()) {  // no room to grow in place: copy (the old peak, rare)
+    std::vector<History> next;
+    next.reserve(with_slack(pairs));
+    next.assign(pairs, History{});
+    for (std::size_t k = 0; k < pairs; ++k)
+      if (source[k] != kNewPair) {
+        next[k] = history[source[k] & ~kSwappedPair];
+        if (source[k] & kSwappedPair) next[k].tangential_displacement = -next[k].tangential_displacement;
+      }
+    history.swap(next);
+    return;
+  }
+  std::vector<bool> needed(history.size(), false), done(pairs, false);
+  for (std::size_t k = 0; k < pairs; ++k)
+    if (source[k] != kNewPair) needed[source[k] & ~kSwappedPair] = true;
+  if (pairs > history.size()) history.resize(pairs);  // within capacity: no reallocation
+  auto follow = [&](std::size_t to) {
+    while (!done[to]) {
+      done[to] = true;
+      const std::uint32_t s = source[to];
+      if (s == kNewPair) {
+        history[to] = History{};
+        return;
+      }
+      detail::move_history(history, to, s);
+      const std::size_t from = s & ~kSwappedPair;
+      needed[from] = false;
+      if (from >= pairs) return;  // an old slot past the new end: nobody writes it
+      to = from;                  // read, so free: its own new content comes next
+    }
+  };
+  for (std::size_t k = 0; k < pairs; ++k)
+    if (!done[k] && !(k < needed.size() && needed[k])) follow(k);
+  for (std::size_t start = 0; start < pairs; ++start) {  // cycles: every slot needed by the next
+    if (done[start]) continue;
+    const History saved = history[start];
+    std::size_t to = start;
+    while (true) {
+      done[to] = true;
+      const std::uint32_t s = source[to];
+      const std::size_t from = s & ~kSwappedPair;
+      if (s == kNewPair || from >= pairs || (from != start && done[from]))
+        throw std::logic_error("pair history carry: a cycle that does not close");
+      if (from == start) {
+        history[to] = saved;
+        if (s & kSwappedPair) history[to].tangential_displacement = -history[to].tangential_displacement;
+        break;
+      }
+      detail::move_history(history, to, s);
+      to = from;
+    }
+  }
+  history.resize(pairs);  // shrinking keeps the capacity for the next rebuild
+}
+
+}  // namespace demfit::dem_core
