@@ -137,6 +137,7 @@ int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuff
   // The peak is taken with the kernel's default Morton order (few pairs cross the threads'
   // chunks), before the stored-order box of the A/B is built.
   Simulation reordered = make_box(particles, shuffled, order);
+  reordered.set_reorder_particles(true);  // hertz_settings keeps insertion order
   warm_up(reordered, steps);
   const double peak = peak_rss_bytes();
   Simulation plain = make_box(particles, shuffled, order);

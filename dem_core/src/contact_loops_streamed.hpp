@@ -5,9 +5,9 @@
 // the gather). One thread computes the rows in ascending order and adds each touching pair's
 // loads to both members at once, which is that order. T threads split the particles into T
 // contiguous chunks; a pair whose second member lies in a later chunk ("crossing") is computed
-// first, by its row's thread, into that thread's buffer; after one barrier each thread adds the
-// crossing pairs aimed at its chunk (ascending first member: earlier chunks in order) and then
-// computes its own rows exactly as one thread would. Every particle therefore receives the same
+// first (the threads share this work evenly) into per-thread buffers; after one barrier each
+// thread adds the crossing pairs aimed at its chunk (ascending first member: buffers in order)
+// and then computes its own rows exactly as one thread would. Every particle therefore receives the same
 // values in the same order for any T: results are bit-identical between 1 and 2 threads, and the
 // buffers hold only the crossing pairs (few when particles are in spatial order).
 #include <omp.h>
@@ -30,54 +30,117 @@ struct StreamedPairSide {
   std::uint8_t* touching;
 };
 
-/// The crossing pairs of rows [begin, end) (second member >= end), in pair order, into `out`.
-/// Rows are sorted by second member, so a row's crossing pairs are its tail.
+/// The split of one step: chunk c owns particles [chunk[c], chunk[c + 1]); before the barrier,
+/// thread w computes the crossing pairs of rows [work[w], work[w + 1]) into its buffer. Buffers
+/// in thread order hold all crossing pairs in pair order. Any split gives the same results.
+struct StreamSplit {
+  std::vector<std::size_t> chunk, work;
+};
+
+/// A split that balances the work: the crossing pairs (only rows of chunks before the last one
+/// have any) are shared evenly by pair count, and a chunk's rows count without its crossing
+/// pairs, estimated from last step's total (`crossed`); with two chunks the first one therefore
+/// gets (pairs + crossed) / 2 pairs. More chunks split the pairs evenly.
+inline StreamSplit stream_split(std::span<const std::uint32_t> rows, std::size_t threads, std::size_t crossed) {
+  const std::size_t n = rows.size() - 1, pairs = rows[n];
+  auto row_at = [&](std::size_t pair_target, std::size_t lowest) {
+    const auto at = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), pair_target) - rows.begin());
+    return std::clamp(at, lowest, n);
+  };
+  StreamSplit split{std::vector<std::size_t>(threads + 1, n), std::vector<std::size_t>(threads + 1, 0)};
+  split.chunk[0] = 0;
+  for (std::size_t c = 1; c < threads; ++c)
+    split.chunk[c] =
+        row_at(threads == 2 ? (pairs + std::min(crossed, pairs)) / 2 : pairs * c / threads, split.chunk[c - 1]);
+  const std::size_t last = split.chunk[threads - 1];  // rows with crossing pairs: [0, last)
+  for (std::size_t w = 1; w <= threads; ++w)
+    split.work[w] = w == threads ? last : row_at(rows[last] * w / threads, split.work[w - 1]);
+  split.work[threads] = last;
+  return split;
+}
+
+/// The crossing pairs of rows [begin, end) (second member in a later chunk than the row), in pair
+/// order, into `out`. Rows are sorted by second member, so a row's crossing pairs are its tail.
 template <class Law>
 void crossing_pairs(const StreamedPairSide<Law>& pairs, const ParticleState& p, const StepInputs& step,
-                    std::size_t begin, std::size_t end, std::vector<CrossingPairLoads>& out) {
+                    const std::vector<std::size_t>& chunk, std::size_t begin, std::size_t end,
+                    std::vector<CrossingPairLoads>& out) {
   const auto rows = pairs.list.row_offsets();
   const auto second = pairs.list.second();
   out.clear();
+  std::size_t c = 0;
   for (std::size_t i = begin; i < end; ++i) {
+    while (chunk[c + 1] <= i) ++c;
+    const std::size_t chunk_end = chunk[c + 1];
     std::uint32_t k = rows[i + 1];
-    while (k > rows[i] && second[k - 1] >= end) --k;
+    while (k > rows[i] && second[k - 1] >= chunk_end) --k;
     for (; k < rows[i + 1]; ++k) {
-      CrossingPairLoads c{k, second[k], {}};
-      if (pair_loads(pairs.law, pairs.history, pairs.touching, p, k, i, second[k], step, c.loads)) out.push_back(c);
+      CrossingPairLoads x{k, second[k], {}};
+      if (pair_loads(pairs.law, pairs.history, pairs.touching, p, k, i, second[k], step, x.loads)) out.push_back(x);
     }
   }
 }
 
-/// Loads of chunk `chunk` = particles [begin, end): gravity, the crossing pairs of earlier chunks
-/// aimed at it, then its rows in ascending order (crossing pairs of its own rows from its buffer),
-/// then walls and the closing half kick.
+/// Walks the crossing buffers in pair order from the first entry of pair `from` on.
+class CrossingCursor {
+ public:
+  CrossingCursor(const std::vector<std::vector<CrossingPairLoads>>& buffers, std::size_t count, std::uint32_t from)
+      : buffers_(buffers), count_(count) {
+    while (buffer_ < count_ && (buffers_[buffer_].empty() || buffers_[buffer_].back().pair < from)) ++buffer_;
+    if (buffer_ == count_) return;
+    const auto& b = buffers_[buffer_];
+    index_ = static_cast<std::size_t>(
+        std::lower_bound(b.begin(), b.end(), from,
+                         [](const CrossingPairLoads& x, std::uint32_t k) { return x.pair < k; }) -
+        b.begin());
+  }
+  /// The entry of pair k if it is the next one (then the cursor moves on), else nullptr.
+  const CrossingPairLoads* take(std::uint32_t k) {
+    if (buffer_ == count_ || buffers_[buffer_][index_].pair != k) return nullptr;
+    const CrossingPairLoads* entry = &buffers_[buffer_][index_];
+    if (++index_ == buffers_[buffer_].size()) {
+      index_ = 0;
+      do ++buffer_;
+      while (buffer_ < count_ && buffers_[buffer_].empty());
+    }
+    return entry;
+  }
+
+ private:
+  const std::vector<std::vector<CrossingPairLoads>>& buffers_;
+  std::size_t count_, buffer_ = 0, index_ = 0;
+};
+
+/// Loads of chunk [begin, end): gravity, the crossing pairs of earlier rows aimed at it (in pair
+/// order), then its rows in ascending order (their crossing pairs from the buffers), then walls
+/// and the closing half kick.
 template <class Law>
 void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p,
                   const StepInputs& step, std::size_t begin, std::size_t end,
-                  const std::vector<std::vector<CrossingPairLoads>>& crossing, std::size_t chunk) {
+                  const std::vector<std::vector<CrossingPairLoads>>& crossing, std::size_t buffers) {
   for (std::size_t i = begin; i < end; ++i) {
     p.force[i] = p.mass[i] * step.gravity;
     p.torque[i] = {};
   }
-  for (std::size_t earlier = 0; earlier < chunk; ++earlier)
-    for (const CrossingPairLoads& c : crossing[earlier])
+  const auto rows = pairs.list.row_offsets();
+  for (std::size_t w = 0; w < buffers; ++w)
+    for (const CrossingPairLoads& c : crossing[w]) {
+      if (c.pair >= rows[begin]) break;  // from here on: this chunk's rows and later ones
       if (c.second >= begin && c.second < end) {
         p.force[c.second] -= c.loads.force;
         p.torque[c.second] += c.loads.torque_second;
       }
-  const auto rows = pairs.list.row_offsets();
+    }
   const auto second = pairs.list.second();
-  const std::vector<CrossingPairLoads>& own = crossing[chunk];
-  std::size_t next_crossing = 0;
+  CrossingCursor own(crossing, buffers, rows[begin]);
   for (std::size_t i = begin; i < end; ++i) {
     Vec3 f = p.force[i], t = p.torque[i];
     for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
       const std::uint32_t j = second[k];
-      if (j >= end) {  // computed by crossing_pairs (only the touching ones are in the buffer)
-        if (next_crossing < own.size() && own[next_crossing].pair == k) {
-          f += own[next_crossing].loads.force;
-          t += own[next_crossing].loads.torque_first;
-          ++next_crossing;
+      if (j >= end) {  // computed before the barrier (only the touching ones are in the buffers)
+        if (const CrossingPairLoads* c = own.take(k)) {
+          f += c->loads.force;
+          t += c->loads.torque_first;
         }
         continue;
       }
@@ -92,25 +155,6 @@ void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls
     p.torque[i] = t;
   }
   for (std::size_t i = begin; i < end; ++i) finish_particle(i, walls, p, step);
-}
-
-/// The first particle of each chunk (chunks + 1 entries). Any split gives the same results; this
-/// one balances the work. A chunk's thread computes its crossing pairs before the barrier while
-/// the last chunk's thread has none, so with two chunks the first one gets fewer pairs: its rows'
-/// pairs minus its crossing pairs (last step's count, `crossing`) match the second's rows. More
-/// chunks split the pairs evenly.
-inline std::vector<std::size_t> chunk_starts(std::span<const std::uint32_t> rows, std::size_t chunks,
-                                             std::size_t crossing) {
-  const std::size_t n = rows.size() - 1, pairs = rows[n];
-  std::vector<std::size_t> start(chunks + 1, n);
-  start[0] = 0;
-  for (std::size_t c = 1; c < chunks; ++c) {
-    std::size_t target = pairs * c / chunks;
-    if (chunks == 2) target = (pairs + std::min(crossing, pairs)) / 2;
-    start[c] = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), target) - rows.begin());
-    start[c] = std::clamp(start[c], start[c - 1], n);
-  }
-  return start;
 }
 
 /// All loads and the closing half kick in PairLoadOrder::ascending_first_member; `crossing`
@@ -130,13 +174,13 @@ void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>
   crossing.resize(static_cast<std::size_t>(step.threads));
 #pragma omp parallel num_threads(step.threads)
   {
-    // The chunks follow the threads actually granted; the results do not depend on them.
-    const auto chunks = static_cast<std::size_t>(omp_get_num_threads());
-    const auto chunk = static_cast<std::size_t>(omp_get_thread_num());
-    const std::vector<std::size_t> start = chunk_starts(pairs.list.row_offsets(), chunks, crossed_last_step);
-    crossing_pairs(pairs, p, step, start[chunk], start[chunk + 1], crossing[chunk]);
+    // The split follows the threads actually granted; the results do not depend on it.
+    const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+    const StreamSplit split = stream_split(pairs.list.row_offsets(), threads, crossed_last_step);
+    crossing_pairs(pairs, p, step, split.chunk, split.work[thread], split.work[thread + 1], crossing[thread]);
 #pragma omp barrier
-    stream_chunk(pairs, walls, p, step, start[chunk], start[chunk + 1], crossing, chunk);
+    stream_chunk(pairs, walls, p, step, split.chunk[thread], split.chunk[thread + 1], crossing, threads);
   }
 }
 
