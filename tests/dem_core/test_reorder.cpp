@@ -7,40 +7,18 @@
 #include <cstring>
 #include <vector>
 
-#include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "turning_drum.hpp"
 
 using namespace demfit::dem_core;
 
 namespace {
 
-/// A frictional, rolling, damped bed poured into a small drum that turns, with a thin skin so the
-/// list is rebuilt (and the particles reordered) often while contacts persist across rebuilds.
 Simulation turning_drum(int threads, bool reorder) {
   SimulationSettings settings;
   settings.threads = threads;
-  settings.contact = {0.01, 2.0 / 7.0, 0.3, 0.3, 0.4, 0.3, 1.0, 0.05, 1.0};
-  settings.skin = 0.1e-3;
   settings.reorder_particles = reorder;
-  Simulation sim(settings);
-  sim.add_material({1.0e9, 2500.0, 0.3});
-  const double radius = 0.012, length = 0.008;
-  const RotatingMotion turning{{0, 0, 0}, {0, 0, 1}, 3.0};
-  const WallContactParameters wall{0.4, 0.05, 0.3, 1.0};
-  sim.add_wall({CylinderGeometry{{0, 0, 0}, {0, 0, 1}, radius, length}, turning, wall});
-  sim.add_wall({DiskGeometry{{0, 0, 0}, {0, 0, 1}, radius}, turning, wall});
-  sim.add_wall({DiskGeometry{{0, 0, length}, {0, 0, -1}, radius}, turning, wall});
-  sim.set_gravity({0, -9.81, 0});
-  PackingRequest request;
-  request.region = DrumSegmentRegion{{0, 0, 0}, {0, 0, 1}, radius, length, {0, 1, 0}, 0.0};
-  request.up = {0, 1, 0};
-  request.gap = 0.02;
-  request.radius_min = 0.6e-3;
-  request.radius_max = 0.8e-3;
-  request.count = 200;
-  request.seed = 5;
-  add_packing(sim, generate_packing(request));
-  return sim;
+  return testing::turning_drum(settings);
 }
 
 /// Positions and velocities indexed by particle id (the order the caller added them).
