@@ -53,8 +53,7 @@ inline StreamSplit stream_split(std::span<const std::uint32_t> rows, std::size_t
     split.chunk[c] =
         row_at(threads == 2 ? (pairs + std::min(crossed, pairs)) / 2 : pairs * c / threads, split.chunk[c - 1]);
   const std::size_t last = split.chunk[threads - 1];  // rows with crossing pairs: [0, last)
-  for (std::size_t w = 1; w <= threads; ++w)
-    split.work[w] = w == threads ? last : row_at(rows[last] * w / threads, split.work[w - 1]);
+  for (std::size_t w = 1; w < threads; ++w) split.work[w] = row_at(rows[last] * w / threads, split.work[w - 1]);
   split.work[threads] = last;
   return split;
 }
@@ -171,13 +170,18 @@ void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>
   }
   std::size_t crossed_last_step = 0;
   for (const auto& buffer : crossing) crossed_last_step += buffer.size();
-  crossing.resize(static_cast<std::size_t>(step.threads));
+  const auto requested = static_cast<std::size_t>(step.threads);
+  crossing.resize(requested);
+  const StreamSplit planned = stream_split(pairs.list.row_offsets(), requested, crossed_last_step);
 #pragma omp parallel num_threads(step.threads)
   {
-    // The split follows the threads actually granted; the results do not depend on it.
+    // The split follows the threads actually granted (fewer only when OpenMP limits them); the
+    // results do not depend on it.
     const auto threads = static_cast<std::size_t>(omp_get_num_threads());
     const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-    const StreamSplit split = stream_split(pairs.list.row_offsets(), threads, crossed_last_step);
+    StreamSplit granted;
+    if (threads != requested) granted = stream_split(pairs.list.row_offsets(), threads, crossed_last_step);
+    const StreamSplit& split = threads == requested ? planned : granted;
     crossing_pairs(pairs, p, step, split.chunk, split.work[thread], split.work[thread + 1], crossing[thread]);
 #pragma omp barrier
     stream_chunk(pairs, walls, p, step, split.chunk[thread], split.chunk[thread + 1], crossing, threads);
