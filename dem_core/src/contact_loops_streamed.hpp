@@ -4,12 +4,14 @@
 // (own_row_first keeps each pair's force and second torque, 48 bytes, plus a transposed index for
 // the gather). One thread computes the rows in ascending order and adds each touching pair's
 // loads to both members at once, which is that order. T threads split the particles into T
-// contiguous chunks; a pair whose second member lies in a later chunk ("crossing") is computed
-// first (the threads share this work evenly) into per-thread buffers; after one barrier each
-// thread adds the crossing pairs aimed at its chunk (ascending first member: buffers in order)
-// and then computes its own rows exactly as one thread would. Every particle therefore receives the same
-// values in the same order for any T: results are bit-identical between 1 and 2 threads, and the
-// buffers hold only the crossing pairs (few when particles are in spatial order).
+// contiguous chunks (ChunkBalance places the boundaries from the chunks' measured times); a pair
+// whose second member lies in a later chunk ("crossing") is computed first, the threads taking
+// blocks of rows as they come, into one buffer per block; after the blocks are done each thread
+// adds the crossing pairs aimed at its chunk (ascending first member: buffers in block order)
+// and then computes its own rows exactly as one thread would. Every particle therefore receives
+// the same values in the same order for any T and any split: results are bit-identical between
+// 1 and 2 threads, and the buffers hold only the crossing pairs (few when particles are in
+// spatial order).
 #include <omp.h>
 
 #include <algorithm>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "contact_loops.hpp"
+#include "demfit/dem_core/chunk_balance.hpp"
 
 namespace demfit::dem_core {
 
@@ -30,32 +33,15 @@ struct StreamedPairSide {
   std::uint8_t* touching;
 };
 
-/// The split of one step: chunk c owns particles [chunk[c], chunk[c + 1]); before the barrier,
-/// thread w computes the crossing pairs of rows [work[w], work[w + 1]) into its buffer. Buffers
-/// in thread order hold all crossing pairs in pair order. Any split gives the same results.
-struct StreamSplit {
-  std::vector<std::size_t> chunk, work;
-};
+/// Rows [0, rows_with_crossing) in blocks of `kCrossingBlockRows`: block b is rows
+/// [b kCrossingBlockRows, ...). The threads take blocks as they come (the crossing pairs gather
+/// near the chunk boundaries, so a fixed share would leave one thread with most of them); block
+/// b's touching crossing pairs go to buffer b, so the buffers in block order hold them in pair
+/// order whichever thread computed which block.
+inline constexpr std::size_t kCrossingBlockRows = 64;
 
-/// A split that balances the work: the crossing pairs (only rows of chunks before the last one
-/// have any) are shared evenly by pair count, and a chunk's rows count without its crossing
-/// pairs, estimated from last step's total (`crossed`); with two chunks the first one therefore
-/// gets (pairs + crossed) / 2 pairs. More chunks split the pairs evenly.
-inline StreamSplit stream_split(std::span<const std::uint32_t> rows, std::size_t threads, std::size_t crossed) {
-  const std::size_t n = rows.size() - 1, pairs = rows[n];
-  auto row_at = [&](std::size_t pair_target, std::size_t lowest) {
-    const auto at = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), pair_target) - rows.begin());
-    return std::clamp(at, lowest, n);
-  };
-  StreamSplit split{std::vector<std::size_t>(threads + 1, n), std::vector<std::size_t>(threads + 1, 0)};
-  split.chunk[0] = 0;
-  for (std::size_t c = 1; c < threads; ++c)
-    split.chunk[c] =
-        row_at(threads == 2 ? (pairs + std::min(crossed, pairs)) / 2 : pairs * c / threads, split.chunk[c - 1]);
-  const std::size_t last = split.chunk[threads - 1];  // rows with crossing pairs: [0, last)
-  for (std::size_t w = 1; w < threads; ++w) split.work[w] = row_at(rows[last] * w / threads, split.work[w - 1]);
-  split.work[threads] = last;
-  return split;
+inline std::size_t crossing_blocks(std::size_t rows_with_crossing) {
+  return (rows_with_crossing + kCrossingBlockRows - 1) / kCrossingBlockRows;
 }
 
 /// The crossing pairs of rows [begin, end) (second member in a later chunk than the row), in pair
@@ -67,7 +53,7 @@ void crossing_pairs(const StreamedPairSide<Law>& pairs, const ParticleState& p, 
   const auto rows = pairs.list.row_offsets();
   const auto second = pairs.list.second();
   out.clear();
-  std::size_t c = 0;
+  auto c = static_cast<std::size_t>(std::upper_bound(chunk.begin(), chunk.end(), begin) - chunk.begin()) - 1;
   for (std::size_t i = begin; i < end; ++i) {
     while (chunk[c + 1] <= i) ++c;
     const std::size_t chunk_end = chunk[c + 1];
@@ -156,11 +142,13 @@ void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls
   for (std::size_t i = begin; i < end; ++i) finish_particle(i, walls, p, step);
 }
 
-/// All loads and the closing half kick in PairLoadOrder::ascending_first_member; `crossing`
-/// keeps its capacity between steps (one buffer per thread).
+/// All loads and the closing half kick in PairLoadOrder::ascending_first_member. `crossing`
+/// keeps its buffers' capacity between steps; `balance` places the chunk boundaries and learns
+/// from each step's chunk times (results do not depend on it).
 template <class Law>
 void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p,
-                         const StepInputs& step, std::vector<std::vector<CrossingPairLoads>>& crossing) {
+                         const StepInputs& step, std::vector<std::vector<CrossingPairLoads>>& crossing,
+                         ChunkBalance& balance) {
   const std::size_t n = p.size();
   if (step.threads <= 1 || n < 2) {
     crossing.resize(1);
@@ -168,24 +156,32 @@ void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>
     stream_chunk(pairs, walls, p, step, 0, n, crossing, 0);
     return;
   }
-  std::size_t crossed_last_step = 0;
-  for (const auto& buffer : crossing) crossed_last_step += buffer.size();
+  const auto rows = pairs.list.row_offsets();
   const auto requested = static_cast<std::size_t>(step.threads);
-  crossing.resize(requested);
-  const StreamSplit planned = stream_split(pairs.list.row_offsets(), requested, crossed_last_step);
+  const std::vector<std::size_t> planned = balance.chunks(rows, requested);
+  std::vector<double> seconds(requested, 0.0);
+  crossing.resize(std::max(crossing.size(), crossing_blocks(n)));  // enough for any split
+  bool as_planned = true;
 #pragma omp parallel num_threads(step.threads)
   {
-    // The split follows the threads actually granted (fewer only when OpenMP limits them); the
-    // results do not depend on it.
+    // Fewer threads than requested only when OpenMP limits them: an even split then, unmeasured.
     const auto threads = static_cast<std::size_t>(omp_get_num_threads());
     const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-    StreamSplit granted;
-    if (threads != requested) granted = stream_split(pairs.list.row_offsets(), threads, crossed_last_step);
-    const StreamSplit& split = threads == requested ? planned : granted;
-    crossing_pairs(pairs, p, step, split.chunk, split.work[thread], split.work[thread + 1], crossing[thread]);
-#pragma omp barrier
-    stream_chunk(pairs, walls, p, step, split.chunk[thread], split.chunk[thread + 1], crossing, threads);
+    std::vector<std::size_t> even;
+    if (threads != requested) even = ChunkBalance{}.chunks(rows, threads);
+    const std::vector<std::size_t>& chunk = threads == requested ? planned : even;
+    const std::size_t blocks = crossing_blocks(chunk[threads - 1]);  // later rows have no crossing pairs
+    if (thread == 0) as_planned = threads == requested;
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t b = 0; b < blocks; ++b)
+      crossing_pairs(pairs, p, step, chunk, b * kCrossingBlockRows,
+                     std::min((b + 1) * kCrossingBlockRows, chunk[threads - 1]), crossing[b]);
+    // (the loop's implied barrier: every crossing pair is computed before any chunk sums)
+    const double start = omp_get_wtime();
+    stream_chunk(pairs, walls, p, step, chunk[thread], chunk[thread + 1], crossing, blocks);
+    seconds[thread] = omp_get_wtime() - start;
   }
+  if (as_planned) balance.observe(rows, planned, seconds);
 }
 
 }  // namespace demfit::dem_core

@@ -14,17 +14,22 @@ namespace demfit::dem_core {
 /// Permutation order[new] = old that sorts the particles by the Morton code of their cell (edge
 /// `cell` [m] > 0, grid anchored at the lowest corner); particles of one cell keep ascending old
 /// index, so the result depends on the positions only (deterministic, any thread count).
-/// Returns an empty vector when the current order already is that order.
-std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double cell);
+/// Returns an empty vector when the current order already is that order. `threads` share the
+/// work; the result does not depend on them.
+std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double cell, int threads = 1);
 
 /// v[new] = old v[order[new]], applied to blocks of `block` consecutive elements
 /// (per-(particle, wall) arrays have `walls` elements per particle). Empty vectors stay empty.
 template <class T>
-void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::size_t block = 1) {
+void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::size_t block = 1, int threads = 1) {
   if (v.empty() || block == 0) return;
   std::vector<T> moved(v.size());
-  for (std::size_t s = 0; s < order.size(); ++s)
+  const auto count = static_cast<std::int64_t>(order.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t k = 0; k < count; ++k) {
+    const auto s = static_cast<std::size_t>(k);
     for (std::size_t b = 0; b < block; ++b) moved[s * block + b] = v[order[s] * block + b];
+  }
   v.swap(moved);
 }
 

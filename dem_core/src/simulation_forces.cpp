@@ -116,7 +116,7 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
     }
     case PairLoadOrder::ascending_first_member: {
       const StreamedPairSide<Law> pairs{pair_law, neighbors_, state.pair_history.data(), pair_touching_.data()};
-      all_forces_streamed(pairs, walls, particles_, step, crossing_pair_loads_);
+      all_forces_streamed(pairs, walls, particles_, step, crossing_pair_loads_, chunk_balance_);
       return;
     }
   }

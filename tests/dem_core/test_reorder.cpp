@@ -104,3 +104,31 @@ TEST_CASE("Removing particles compacts every per-particle array in order and kee
   CHECK(p.shear_compliance.size() == 3);
   CHECK(p.material.size() == 3);
 }
+
+TEST_CASE("A bed of more than 4096 spheres is put in the same Morton order by 1 and 2 threads", "[dem_core][reorder]") {
+  // Above 4096 particles two threads sort halves of the Morton keys at once and merge them.
+  auto falling_box = [](int threads) {
+    SimulationSettings settings;
+    settings.threads = threads;
+    settings.reorder_particles = true;
+    settings.contact = {0.01, 2.0 / 7.0, 0.3, 0.3, 0.4, 0.3, 1.0, 0.05, 1.0};
+    Simulation sim(settings);
+    sim.add_material({1.0e9, 2500.0, 0.3});
+    PackingRequest request;
+    request.region = BoxRegion{{0, 0, 0}, {0.04, 0.04, 0.02}};
+    request.radius_min = 0.4e-3;
+    request.radius_max = 0.5e-3;
+    request.count = 5000;
+    request.seed = 9;
+    add_packing(sim, generate_packing(request));
+    sim.run_steps(50);
+    return sim;
+  };
+  const Simulation one = falling_box(1), two = falling_box(2);
+  REQUIRE(one.particle_count() == 5000);
+  bool reordered = false;
+  for (std::size_t i = 0; i < one.particle_count(); ++i) reordered = reordered || one.particles().id[i] != i;
+  REQUIRE(reordered);
+  CHECK(std::memcmp(one.particles().id.data(), two.particles().id.data(), 5000 * sizeof(std::uint32_t)) == 0);
+  CHECK(std::memcmp(one.positions().data(), two.positions().data(), 5000 * sizeof(Vec3)) == 0);
+}

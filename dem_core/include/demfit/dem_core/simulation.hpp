@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "demfit/dem_core/chunk_balance.hpp"
 #include "demfit/dem_core/contact_geometry.hpp"
 #include "demfit/dem_core/contact_laws.hpp"
 #include "demfit/dem_core/neighbor_list.hpp"
@@ -195,8 +196,10 @@ class Simulation {
   // own_row_first only: the second member's share, gathered after the rows.
   std::vector<Vec3> pair_force_, pair_torque_second_;
   std::vector<std::uint8_t> pair_touching_{};
-  // ascending_first_member with threads > 1: per thread, the touching pairs crossing its chunk.
+  // ascending_first_member with threads > 1: per block of rows, the touching pairs crossing
+  // into a later thread's chunk; and where the chunks split (learnt from their times).
   std::vector<std::vector<CrossingPairLoads>> crossing_pair_loads_{};
+  ChunkBalance chunk_balance_{};
   WallSlots wall_slots_{};  // particle–wall candidates and their last loads
   // The active law's contact histories (pairs and wall slots, of its history type) and wall laws.
   ContactLawStates contact_state_{};
