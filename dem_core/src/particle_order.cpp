@@ -56,8 +56,7 @@ std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double 
   }
   const double inverse = 1.0 / cell;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
-  bool sorted = true;
-#pragma omp parallel for schedule(static) reduction(&& : sorted) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(k);
     const Vec3& p = positions[i];
@@ -66,8 +65,7 @@ std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double 
                    spread_bits(cell_coordinate(p.z, lo_z, inverse)) << 2,
                static_cast<std::uint32_t>(i)};
   }
-  for (std::size_t i = 1; i < n && sorted; ++i) sorted = keys[i - 1] < keys[i];
-  if (sorted) return {};
+  if (std::is_sorted(keys.begin(), keys.end())) return {};
   sort_unique_keys(keys, threads);
   std::vector<std::uint32_t> order(n);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)

@@ -2,9 +2,9 @@
 // Where T threads split the particles for the pair loads in PairLoadOrder::ascending_first_member
 // (src/contact_loops_streamed.hpp). The results do not depend on the split, only the waiting
 // does: each thread's measured time for its chunk moves the boundaries toward equal times. A
-// fixed cost model (pairs per chunk) left one thread waiting ~10 % of every step on the issue-16
-// drum, because the per-particle work (walls, the closing kick) and the crossing pairs are not
-// spread like the pairs.
+// fixed cost model (pairs per chunk) left one thread waiting on the issue-16 drum, because the
+// per-particle work (walls, the closing kick) and the crossing pairs are not spread like the
+// pairs.
 #include <cstddef>
 #include <cstdint>
 #include <span>
