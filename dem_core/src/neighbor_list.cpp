@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include <omp.h>
 #include <stdexcept>
 
 namespace demfit::dem_core {
@@ -82,10 +84,58 @@ void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<cons
       }
 }
 
+constexpr std::size_t kBuildBlockRows = 256;
+
+// One walk over the candidates: blocks of rows, taken by the threads as they come, append their
+// sorted rows to the taking thread's buffer; after the prefix sum of the row counts each block is
+// copied to its place. (Counting first and walking again to fill checked every candidate's
+// distance twice; the buffers cost 4 bytes per pair while the list is built, reserved from
+// `expected_pairs` so that they rarely grow.) A row's partners are a set and each row is sorted, so
+// the list is the same for any thread count and any assignment of blocks to threads.
+void collect_partners(const CellGrid& grid, std::span<const Vec3> positions, std::span<const double> radii, double skin,
+                      int threads, std::size_t expected_pairs, std::vector<std::uint32_t>& row_offsets,
+                      std::vector<std::uint32_t>& second) {
+  const std::size_t n = positions.size();
+  const std::size_t blocks = (n + kBuildBlockRows - 1) / kBuildBlockRows;
+  std::vector<std::uint32_t> block_thread(blocks);
+  std::vector<std::size_t> block_start(blocks);  // where the block begins in its thread's buffer
+  std::vector<std::vector<std::uint32_t>> partners(static_cast<std::size_t>(threads));
+  const std::size_t share = expected_pairs / static_cast<std::size_t>(threads);
+  const auto block_count = static_cast<std::int64_t>(blocks);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const auto thread = static_cast<std::uint32_t>(omp_get_thread_num());
+    std::vector<std::uint32_t>& mine = partners[thread];
+    mine.reserve(share + share / 8 + 64);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < block_count; ++b) {
+      const auto block = static_cast<std::size_t>(b);
+      block_thread[block] = thread;
+      block_start[block] = mine.size();
+      for (std::size_t i = block * kBuildBlockRows; i < std::min(n, (block + 1) * kBuildBlockRows); ++i) {
+        const std::size_t row_start = mine.size();
+        for_each_partner(grid, positions, radii, skin, i, [&](std::uint32_t j) { mine.push_back(j); });
+        std::sort(mine.begin() + static_cast<std::ptrdiff_t>(row_start), mine.end());
+        row_offsets[i + 1] = static_cast<std::uint32_t>(mine.size() - row_start);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) row_offsets[i + 1] += row_offsets[i];
+  second.resize(row_offsets[n]);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (std::int64_t b = 0; b < block_count; ++b) {
+    const auto block = static_cast<std::size_t>(b);
+    const std::uint32_t first = row_offsets[block * kBuildBlockRows];
+    const std::uint32_t last = row_offsets[std::min(n, (block + 1) * kBuildBlockRows)];
+    const auto from = partners[block_thread[block]].begin() + static_cast<std::ptrdiff_t>(block_start[block]);
+    std::copy(from, from + (last - first), second.begin() + first);
+  }
+}
+
 }  // namespace
 
 void NeighborList::build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads,
-                         bool transposed) {
+                         bool transposed, std::size_t expected_pairs) {
   if (!(skin > 0.0)) throw std::runtime_error("neighbour list skin must be > 0");
   const std::size_t n = positions.size();
   skin_ = skin;
@@ -99,23 +149,8 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   if (n == 0) return;
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
-  const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < count; ++i) {
-    std::uint32_t c = 0;
-    for_each_partner(grid, positions, radii, skin, static_cast<std::size_t>(i), [&](std::uint32_t) { ++c; });
-    row_offsets_[static_cast<std::size_t>(i) + 1] = c;
-  }
-  for (std::size_t i = 0; i < n; ++i) row_offsets_[i + 1] += row_offsets_[i];
-  const std::size_t pairs = row_offsets_[n];
-  second_.resize(pairs);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if (threads > 1)
-  for (std::int64_t i = 0; i < count; ++i) {
-    const auto ii = static_cast<std::size_t>(i);
-    std::uint32_t k = row_offsets_[ii];
-    for_each_partner(grid, positions, radii, skin, ii, [&](std::uint32_t j) { second_[k++] = j; });
-    std::sort(second_.begin() + row_offsets_[ii], second_.begin() + row_offsets_[ii + 1]);
-  }
+  collect_partners(grid, positions, radii, skin, std::max(threads, 1), expected_pairs, row_offsets_, second_);
+  const std::size_t pairs = second_.size();
   if (!transposed) return;
   // Transposed index; pairs are visited in ascending first member, so columns come out sorted.
   for (std::size_t p = 0; p < pairs; ++p) ++column_offsets_[second_[p] + 1];

@@ -44,7 +44,7 @@ void Simulation::ensure_neighbors(double moved) {
   pair_force_ = decltype(pair_force_)();                  // frees the storage (`= {}` would keep it)
   pair_torque_second_ = decltype(pair_torque_second_)();  // frees the storage (`= {}` would keep it)
   neighbors_.build(particles_.position, particles_.radius, skin_now, settings_.threads,
-                   settings_.pair_load_order == PairLoadOrder::own_row_first);
+                   settings_.pair_load_order == PairLoadOrder::own_row_first, old.pair_count());
   rebuild_pair_arrays(std::move(old), order);
 }
 

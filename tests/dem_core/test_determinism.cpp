@@ -50,6 +50,34 @@ bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 }  // namespace
 
+TEST_CASE("The neighbour list is the same on 1 2 and 3 threads whatever buffer size it is told to expect",
+          "[dem_core][neighbors]") {
+  // 3000 spheres: 12 blocks of rows, taken by the threads as they come and copied back in order.
+  std::mt19937_64 rng(5);
+  auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  const std::size_t n = 3000;
+  std::vector<Vec3> x(n);
+  std::vector<double> r(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = {0.06 * u(), 0.03 * u(), 0.02 * u()};
+    r[i] = 0.5e-3 + 1.0e-3 * u();
+  }
+  NeighborList reference;
+  reference.build(x, r, 0.4e-3, 1, false);
+  const std::vector<std::uint32_t> rows(reference.row_offsets().begin(), reference.row_offsets().end());
+  const std::vector<std::uint32_t> second(reference.second().begin(), reference.second().end());
+  REQUIRE(second.size() > 2 * n);  // dense enough that every block holds pairs
+  for (std::size_t i = 0; i < n; ++i) CHECK(std::is_sorted(second.begin() + rows[i], second.begin() + rows[i + 1]));
+  for (int threads : {1, 2, 3})
+    for (std::size_t expected : {std::size_t{0}, second.size() / 7, second.size(), 10 * second.size()}) {
+      NeighborList list;
+      list.build(x, r, 0.4e-3, threads, false, expected);
+      INFO("threads " << threads << ", expected pairs " << expected);
+      CHECK(std::equal(rows.begin(), rows.end(), list.row_offsets().begin(), list.row_offsets().end()));
+      CHECK(std::equal(second.begin(), second.end(), list.second().begin(), list.second().end()));
+    }
+}
+
 TEST_CASE("Runs are bit-identical: repeated with 2 threads, and between 1 and 2 threads", "[dem_core][determinism]") {
   const std::vector<Vec3> two_a = run_bed(2);
   const std::vector<Vec3> two_b = run_bed(2);

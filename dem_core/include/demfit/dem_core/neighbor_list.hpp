@@ -19,9 +19,10 @@ class NeighborList {
 
   /// All pairs (i < j) with |x_i - x_j| < R_i + R_j + skin. positions [m], radii [m], skin [m] > 0.
   /// `transposed`: also build the transposed index (column_offsets/column_pairs, 4 bytes per pair
-  /// and per particle), which only a gather of stored per-pair loads needs.
+  /// and per particle), which only a gather of stored per-pair loads needs. `expected_pairs` (e.g.
+  /// the previous list's count) sizes the build's buffers; the list does not depend on it.
   void build(std::span<const Vec3> positions, std::span<const double> radii, double skin, int threads,
-             bool transposed = true);
+             bool transposed = true, std::size_t expected_pairs = 0);
   /// True when some particle moved more than skin/2 since the last build (or never built, or the
   /// particle count changed).
   [[nodiscard]] bool needs_rebuild(std::span<const Vec3> positions, int threads) const;
