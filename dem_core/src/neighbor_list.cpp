@@ -85,33 +85,34 @@ void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<cons
 }
 
 constexpr std::size_t kBuildBlockRows = 256;
+constexpr std::size_t kBuildWaves = 8;             // of blocks; the buffers hold one wave's pairs
+constexpr std::size_t kBlocksPerWaveAtLeast = 16;  // fewer blocks: one wave
 
-// One walk over the candidates: blocks of rows, taken by the threads as they come, append their
-// sorted rows to the taking thread's buffer; after the prefix sum of the row counts each block is
-// copied to its place. (Counting first and walking again to fill checked every candidate's
-// distance twice; the buffers cost 4 bytes per pair while the list is built, reserved from
-// `expected_pairs` so that they rarely grow.) A row's partners are a set and each row is sorted, so
-// the list is the same for any thread count and any assignment of blocks to threads.
-void collect_partners(const CellGrid& grid, std::span<const Vec3> positions, std::span<const double> radii, double skin,
-                      int threads, std::size_t expected_pairs, std::vector<std::uint32_t>& row_offsets,
-                      std::vector<std::uint32_t>& second) {
+/// Where each block of a wave begins in the buffer of the thread that took it.
+struct BlockPlace {
+  std::uint32_t thread = 0;
+  std::size_t start = 0;
+};
+
+// One walk over the candidates of blocks [first_block, last_block): the threads take blocks as they
+// come and append their sorted rows to their own buffer; then the wave's row counts are summed and
+// each block is copied after the list so far.
+void collect_wave(const CellGrid& grid, std::span<const Vec3> positions, std::span<const double> radii, double skin,
+                  std::size_t first_block, std::size_t last_block, std::vector<std::vector<std::uint32_t>>& partners,
+                  std::vector<BlockPlace>& place, std::vector<std::uint32_t>& row_offsets,
+                  std::vector<std::uint32_t>& second) {
   const std::size_t n = positions.size();
-  const std::size_t blocks = (n + kBuildBlockRows - 1) / kBuildBlockRows;
-  std::vector<std::uint32_t> block_thread(blocks);
-  std::vector<std::size_t> block_start(blocks);  // where the block begins in its thread's buffer
-  std::vector<std::vector<std::uint32_t>> partners(static_cast<std::size_t>(threads));
-  const std::size_t share = expected_pairs / static_cast<std::size_t>(threads);
-  const auto block_count = static_cast<std::int64_t>(blocks);
+  const auto threads = static_cast<int>(partners.size());
+  const auto first = static_cast<std::int64_t>(first_block), last = static_cast<std::int64_t>(last_block);
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const auto thread = static_cast<std::uint32_t>(omp_get_thread_num());
     std::vector<std::uint32_t>& mine = partners[thread];
-    mine.reserve(share + share / 8 + 64);
+    mine.clear();
 #pragma omp for schedule(dynamic, 1)
-    for (std::int64_t b = 0; b < block_count; ++b) {
+    for (std::int64_t b = first; b < last; ++b) {
       const auto block = static_cast<std::size_t>(b);
-      block_thread[block] = thread;
-      block_start[block] = mine.size();
+      place[block - first_block] = {thread, mine.size()};
       for (std::size_t i = block * kBuildBlockRows; i < std::min(n, (block + 1) * kBuildBlockRows); ++i) {
         const std::size_t row_start = mine.size();
         for_each_partner(grid, positions, radii, skin, i, [&](std::uint32_t j) { mine.push_back(j); });
@@ -120,15 +121,42 @@ void collect_partners(const CellGrid& grid, std::span<const Vec3> positions, std
       }
     }
   }
-  for (std::size_t i = 0; i < n; ++i) row_offsets[i + 1] += row_offsets[i];
-  second.resize(row_offsets[n]);
+  const std::size_t row_end = std::min(n, last_block * kBuildBlockRows);
+  for (std::size_t i = first_block * kBuildBlockRows; i < row_end; ++i) row_offsets[i + 1] += row_offsets[i];
+  second.resize(row_offsets[row_end]);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::int64_t b = 0; b < block_count; ++b) {
+  for (std::int64_t b = first; b < last; ++b) {
     const auto block = static_cast<std::size_t>(b);
-    const std::uint32_t first = row_offsets[block * kBuildBlockRows];
-    const std::uint32_t last = row_offsets[std::min(n, (block + 1) * kBuildBlockRows)];
-    const auto from = partners[block_thread[block]].begin() + static_cast<std::ptrdiff_t>(block_start[block]);
-    std::copy(from, from + (last - first), second.begin() + first);
+    const std::uint32_t begin = row_offsets[block * kBuildBlockRows];
+    const std::uint32_t end = row_offsets[std::min(n, (block + 1) * kBuildBlockRows)];
+    const BlockPlace& at = place[block - first_block];
+    const auto from = partners[at.thread].begin() + static_cast<std::ptrdiff_t>(at.start);
+    std::copy(from, from + (end - begin), second.begin() + begin);
+  }
+}
+
+// The half list in one walk over the candidates, in waves of blocks of rows (collect_wave).
+// Counting first and walking again to fill checked every candidate's distance twice; the buffers
+// of one wave cost 4 bytes per pair of that wave (about 1/8 of the list on large beds). `second`
+// is reserved from `expected_pairs` (the previous list's count) or, when that is 0, from the first
+// wave, so that it rarely grows. A row's partners are a set and each row is sorted, so the list is
+// the same for any thread count, any assignment of blocks to threads and any `expected_pairs`.
+void collect_partners(const CellGrid& grid, std::span<const Vec3> positions, std::span<const double> radii, double skin,
+                      int threads, std::size_t expected_pairs, std::vector<std::uint32_t>& row_offsets,
+                      std::vector<std::uint32_t>& second) {
+  const std::size_t blocks = (positions.size() + kBuildBlockRows - 1) / kBuildBlockRows;
+  const std::size_t waves = blocks >= kBuildWaves * kBlocksPerWaveAtLeast ? kBuildWaves : 1;
+  const std::size_t per_wave = (blocks + waves - 1) / waves;
+  if (expected_pairs > 0) second.reserve(expected_pairs + expected_pairs / 16 + 64);
+  std::vector<std::vector<std::uint32_t>> partners(static_cast<std::size_t>(threads));
+  std::vector<BlockPlace> place(per_wave);
+  for (std::size_t first = 0; first < blocks; first += per_wave) {
+    const std::size_t last = std::min(blocks, first + per_wave);
+    collect_wave(grid, positions, radii, skin, first, last, partners, place, row_offsets, second);
+    if (first == 0 && expected_pairs == 0 && waves > 1) {
+      const std::size_t estimate = second.size() * blocks / last;
+      second.reserve(estimate + estimate / 8 + 64);
+    }
   }
 }
 
