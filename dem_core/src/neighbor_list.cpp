@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <omp.h>
-#include <stdexcept>
 
 namespace demfit::dem_core {
 namespace {
