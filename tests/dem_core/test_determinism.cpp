@@ -48,20 +48,29 @@ bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 
+/// n spheres of radius 0.5-1.5 mm at uniformly random places in [0, length] x [0, 0.03] x [0, 0.02] m.
+struct RandomSpheres {
+  std::vector<Vec3> x;
+  std::vector<double> r;
+};
+RandomSpheres random_spheres(std::uint64_t seed, std::size_t n, double length) {
+  std::mt19937_64 rng(seed);
+  auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  RandomSpheres s{std::vector<Vec3>(n), std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    s.x[i] = {length * u(), 0.03 * u(), 0.02 * u()};
+    s.r[i] = 0.5e-3 + 1.0e-3 * u();
+  }
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("The neighbour list is the same on 1 2 and 3 threads whatever buffer size it is told to expect",
           "[dem_core][neighbors]") {
   // 3000 spheres: 12 blocks of rows, taken by the threads as they come and copied back in order.
-  std::mt19937_64 rng(5);
-  auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   const std::size_t n = 3000;
-  std::vector<Vec3> x(n);
-  std::vector<double> r(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = {0.06 * u(), 0.03 * u(), 0.02 * u()};
-    r[i] = 0.5e-3 + 1.0e-3 * u();
-  }
+  const auto [x, r] = random_spheres(5, n, 0.06);
   NeighborList reference;
   reference.build(x, r, 0.4e-3, 1, false);
   const std::vector<std::uint32_t> rows(reference.row_offsets().begin(), reference.row_offsets().end());
@@ -81,15 +90,8 @@ TEST_CASE("The neighbour list is the same on 1 2 and 3 threads whatever buffer s
 TEST_CASE("A neighbour list of 40000 spheres built in waves equals a sweep along x", "[dem_core][neighbors]") {
   // Over 128 blocks of 256 rows the build runs in 8 waves; the reference is another algorithm:
   // sort by x and check every pair closer than the largest cutoff in x.
-  std::mt19937_64 rng(8);
-  auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   const std::size_t n = 40000;
-  std::vector<Vec3> x(n);
-  std::vector<double> r(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = {0.6 * u(), 0.03 * u(), 0.02 * u()};
-    r[i] = 0.5e-3 + 1.0e-3 * u();
-  }
+  const auto [x, r] = random_spheres(8, n, 0.6);
   const double skin = 0.4e-3, reach = 2 * 1.5e-3 + skin;
   std::vector<std::uint32_t> by_x(n);
   for (std::uint32_t i = 0; i < n; ++i) by_x[i] = i;
@@ -127,15 +129,8 @@ TEST_CASE("Runs are bit-identical: repeated with 2 threads, and between 1 and 2 
 }
 
 TEST_CASE("The Verlet neighbour list equals a brute-force pair search on a random box", "[dem_core][neighbors]") {
-  std::mt19937_64 rng(3);
-  auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   const std::size_t n = 2000;
-  std::vector<Vec3> x(n);
-  std::vector<double> r(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = {0.05 * u(), 0.03 * u(), 0.02 * u()};
-    r[i] = 0.5e-3 + 1.0e-3 * u();
-  }
+  const auto [x, r] = random_spheres(3, n, 0.05);
   const double skin = 0.4e-3;
   NeighborList list;
   list.build(x, r, skin, 2);
