@@ -9,6 +9,8 @@
 
 #include <omp.h>
 
+#include "list_slack.hpp"
+
 namespace demfit::dem_core {
 namespace {
 
@@ -86,7 +88,7 @@ void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<cons
 
 constexpr std::size_t kBuildBlockRows = 256;
 constexpr std::size_t kBuildWaves = 8;             // of blocks; the buffers hold one wave's pairs
-constexpr std::size_t kBlocksPerWaveAtLeast = 16;  // fewer blocks: one wave
+constexpr std::size_t kBlocksPerWaveAtLeast = 16;  // up to kBuildWaves waves of at least this many blocks
 
 /// Where each block of a wave begins in the buffer of the thread that took it.
 struct BlockPlace {
@@ -137,7 +139,8 @@ void collect_wave(const CellGrid& grid, std::span<const Vec3> positions, std::sp
 
 // The half list in one walk over the candidates, in waves of blocks of rows (collect_wave).
 // Counting first and walking again to fill checked every candidate's distance twice; the buffers
-// of one wave cost 4 bytes per pair of that wave (about 1/8 of the list on large beds). `second`
+// of one wave cost 4 bytes per pair of that wave (1/8 of the list from 32,768 particles on, 1/2 at
+// 8,192). `second`
 // is reserved from `expected_pairs` (the previous list's count) or, when that is 0, from the first
 // wave, so that it rarely grows. A row's partners are a set and each row is sorted, so the list is
 // the same for any thread count, any assignment of blocks to threads and any `expected_pairs`.
@@ -145,9 +148,9 @@ void collect_partners(const CellGrid& grid, std::span<const Vec3> positions, std
                       int threads, std::size_t expected_pairs, std::vector<std::uint32_t>& row_offsets,
                       std::vector<std::uint32_t>& second) {
   const std::size_t blocks = (positions.size() + kBuildBlockRows - 1) / kBuildBlockRows;
-  const std::size_t waves = blocks >= kBuildWaves * kBlocksPerWaveAtLeast ? kBuildWaves : 1;
+  const std::size_t waves = std::clamp<std::size_t>(blocks / kBlocksPerWaveAtLeast, 1, kBuildWaves);
   const std::size_t per_wave = (blocks + waves - 1) / waves;
-  if (expected_pairs > 0) second.reserve(expected_pairs + expected_pairs / 16 + 64);
+  if (expected_pairs > 0) second.reserve(with_slack(expected_pairs));
   std::vector<std::vector<std::uint32_t>> partners(static_cast<std::size_t>(threads));
   std::vector<BlockPlace> place(per_wave);
   for (std::size_t first = 0; first < blocks; first += per_wave) {

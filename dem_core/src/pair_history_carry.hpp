@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "demfit/dem_core/neighbor_list.hpp"
+#include "list_slack.hpp"
 
 namespace demfit::dem_core {
 
@@ -18,10 +19,6 @@ namespace demfit::dem_core {
 /// members swapped roles (the tangential spring is then negated), or kNewPair.
 inline constexpr std::uint32_t kNewPair = 0xFFFFFFFFu;
 inline constexpr std::uint32_t kSwappedPair = 0x80000000u;
-
-/// Capacity for `pairs` histories with room for a list that grows a little at the next rebuild
-/// (a reallocation would hold both arrays at once).
-inline std::size_t with_slack(std::size_t pairs) { return pairs + pairs / 16 + 64; }
 
 /// A neighbour-list rebuild: the old and the new list, order[new] = old particle index (empty
 /// when the particles were not reordered), the old pairs' touching flags and the new ones (all 0).

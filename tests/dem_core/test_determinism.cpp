@@ -68,9 +68,10 @@ RandomSpheres random_spheres(std::uint64_t seed, std::size_t n, double length) {
 
 TEST_CASE("The neighbour list is the same on 1 2 and 3 threads whatever buffer size it is told to expect",
           "[dem_core][neighbors]") {
-  // 3000 spheres: 12 blocks of rows, taken by the threads as they come and copied back in order.
-  const std::size_t n = 3000;
-  const auto [x, r] = random_spheres(5, n, 0.06);
+  // 9000 spheres: 36 blocks of rows in 2 waves, taken by the threads as they come and copied back
+  // in order.
+  const std::size_t n = 9000;
+  const auto [x, r] = random_spheres(5, n, 0.18);
   NeighborList reference;
   reference.build(x, r, 0.4e-3, 1, false);
   const std::vector<std::uint32_t> rows(reference.row_offsets().begin(), reference.row_offsets().end());
