@@ -141,6 +141,7 @@ nlohmann::json to_json(const Diagnosis& d) {
     refits.push_back({{"effect", r.effect},
                       {"parameters", r.fit.parameters},
                       {"chi_square", r.fit.chi_square},
+                      {"criterion_chi_square", r.criterion_chi_square},
                       {"bic", r.bic},
                       {"aicc", r.aicc},
                       {"delta_bic", r.delta_bic},
@@ -167,6 +168,7 @@ nlohmann::json to_json(const Diagnosis& d) {
           {"base",
            {{"parameters", d.base.parameters},
             {"chi_square", d.base.chi_square},
+            {"criterion_chi_square", d.base_criterion_chi_square},
             {"bic", d.base_bic},
             {"aicc", d.base_aicc},
             {"evaluations", d.base.evaluations},
@@ -232,15 +234,20 @@ std::string markdown_report(const Diagnosis& d) {
                  s.fraction_explained, s.absorbed_by_base, s.full_range_gain,
                  s.evaluated ? "" : " (a perturbed run failed)");
   md << "\n## Re-identification and criterion (threshold: delta BIC > " << format("%.3g", d.bic_threshold)
-     << " and residual = noise)\n\n| model | parameters | chi-square | BIC | delta BIC | AICc | delta AICc | named |\n"
-        "|---|---|---|---|---|---|---|---|\n";
-  md << format("| base | %zu | %.5g | %.5g | 0 | %.5g | 0 | - |\n", d.base_variables.size(), d.base.chi_square,
-               d.base_bic, d.base_aicc);
+     << " and residual = noise)\n\n"
+     << (d.criterion_replicas > 0
+             ? format("criterion chi-square: mean over %d fresh runs of each optimum (the model scatters)\n\n",
+                      d.criterion_replicas)
+             : std::string())
+     << "| model | parameters | chi-square | criterion chi-square | BIC | delta BIC | AICc | delta AICc | named |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
+  md << format("| base | %zu | %.5g | %.5g | %.5g | 0 | %.5g | 0 | - |\n", d.base_variables.size(), d.base.chi_square,
+               d.base_criterion_chi_square, d.base_bic, d.base_aicc);
   for (std::size_t i = 0; i < d.refits.size(); ++i) {
     const auto& r = d.refits[i];
-    md << format("| base + %s | %zu | %.5g | %.5g | %.4g | %.5g | %.4g | %s |\n", r.effect.c_str(), r.fit.values.size(),
-                 r.fit.chi_square, r.bic, r.delta_bic, r.aicc, r.delta_aicc,
-                 static_cast<int>(i) == d.chosen ? "**yes**" : "no");
+    md << format("| base + %s | %zu | %.5g | %.5g | %.5g | %.4g | %.5g | %.4g | %s |\n", r.effect.c_str(),
+                 r.fit.values.size(), r.fit.chi_square, r.criterion_chi_square, r.bic, r.delta_bic, r.aicc,
+                 r.delta_aicc, static_cast<int>(i) == d.chosen ? "**yes**" : "no");
   }
   md << "\n## Parameters\n\n| parameter | base";
   for (const auto& r : d.refits) md << " | base + " << r.effect;

@@ -182,8 +182,10 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
     std::printf("  target %s: noise sigma true %.4g, used %.4g%s\n", d.targets[t].name.c_str(), out.sigma[t],
                 d.targets[t].sigma,
                 t < d.scatter.size() ? detail_scatter(d.scatter[t], d.targets[t].noise_factor.size() > 0).c_str() : "");
-  std::printf("  BIC threshold used %.4g (chi-square spread of the scatter replicas %.4g)\n", d.bic_threshold,
-              d.scatter_chi_square_sd);
+  std::printf(
+      "  BIC threshold used %.4g (chi-square spread of the scatter replicas %.4g; criterion over %d replicas, "
+      "base %.4g against its fit's %.4g)\n",
+      d.bic_threshold, d.scatter_chi_square_sd, d.criterion_replicas, d.base_criterion_chi_square, d.base.chi_square);
   std::printf(
       "  base RMS/sigma_true %.2f; worst region %s\n", out.rms_over_true_sigma(d.base),
       d.base_analysis.worst_region >= 0 ? d.base_analysis.regions[d.base_analysis.worst_region].label.c_str() : "-");
@@ -206,9 +208,10 @@ Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
     for (const auto& c : d.candidates)
       if (c.name == r.effect)
         for (const auto& p : c.parameters) extra += p.name + " " + std::to_string(r.fit.parameters.at(p.name)) + " ";
-    std::printf("  refit     %-20s delta BIC %9.4g  RMS/sigma_true %.2f  residual %s  %s\n", r.effect.c_str(),
-                r.delta_bic, out.rms_over_true_sigma(r.fit), r.analysis.structural ? "structure" : "noise",
-                r.passes ? "PASSES" : "fails");
+    std::printf(
+        "  refit     %-20s delta BIC %9.4g (chi-square %.4g, criterion %.4g)  RMS/sigma_true %.2f  residual %s  %s\n",
+        r.effect.c_str(), r.delta_bic, r.fit.chi_square, r.criterion_chi_square, out.rms_over_true_sigma(r.fit),
+        r.analysis.structural ? "structure" : "noise", r.passes ? "PASSES" : "fails");
     std::printf(
         "            tests: runs p %.3g, lag-1 %.3f (p %.3g), variance ratio %.3g (p %.3g), smooth p %.3g; %s(%d "
         "evaluations)\n",
@@ -280,71 +283,51 @@ TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the
   CHECK(d.refits[d.chosen].fit.parameters.at("wall_frics") == Approx(0.2).margin(0.04));
 }
 
-// Issue 15: an s = 4 drum with hidden particle rolling friction was named "hertz_stiffness" on one
-// noise seed (screening scores within 25 %, rolling resistance ranked third and never re-fitted)
-// and named on a 148.0 vs 147.4 tie on another. The true noise level is given (as `--noise`; the
-// difference-based estimate, 0.99-1.22 against the true 0.46-0.47 on this 31-point surface, let the
-// base residual pass as noise). Measured 2026-12-01 against the data noise alone: "unexplained" on
-// all 5 seeds — the true effect's re-fit left RMS/sigma_true 1.8-2.3 and a structural residual,
-// because two runs differing in round-off differ by 0.84-0.99 mm (lag-1 0.3-0.5): the model's own
-// scatter, twice the data noise. With that scatter in the noise model (model_scatter.hpp) and the
-// plain threshold, seed 31 named wall_friction (wall FRICS 0.014, delta BIC 17.3) by trajectory
-// luck; with the threshold raised by the replicas' chi-square spread (27-31 here: threshold 88-98)
-// the candidates' gains (delta BIC -8 to 21) are within that spread. So at s = 4 the contract is:
-// never another effect's name; and when nothing is named, say it is below the model's own scatter
-// (not "no missing effect" against the data noise alone, nor "unexplained"). Issue 15's target
-// (the right name or "ambiguous" on every seed) needs less scatter and, as the FRICR 0.25 test below
-// shows, a second curve: one free surface cannot separate rolling from sliding friction.
-// ~130-150 s per seed on 2 cores; hidden ([.]), run it by name.
-TEST_CASE("A hidden rolling friction in an s = 4 drum is never misnamed and is reported as below the model's scatter",
-          "[.][slow][drum]") {
-  for (std::uint64_t seed = 31; seed <= 35; ++seed) {
-    Scenario s = drum_scenario("drum, hidden rolling friction, seed " + std::to_string(seed), {{"fricr", 0.15}}, seed);
-    s.variables = {{"frics", 0.1, 0.8, 0.5, false, 1.0}};  // rolling friction is the hidden effect, not a base variable
-    s.truth["fricr"] = 0.15;
-    s.noise_given = true;
-    const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
-    const Diagnosis& d = o.diagnosis;
-    INFO("seed " << seed << ": " << d.summary);
-    const bool right_name =
-        d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
-    CHECK_FALSE((d.verdict == Verdict::effect_identified && !right_name));  // never another effect
-    CHECK(d.base_analysis_data_noise.structural);  // the hidden effect is seen against the data noise
-    if (d.verdict == Verdict::no_missing_effect) {
-      // Never "no missing effect" against the data noise alone: only within the model's own scatter.
-      CHECK(d.scatter_in_noise_model);
-      CHECK(d.summary.find("beyond the model's own scatter") != std::string::npos);
-    }
-    if (d.verdict == Verdict::ambiguous) {
-      bool listed = false;
-      for (int i : d.tied) listed = listed || d.refits[i].effect == "rolling_resistance";
-      CHECK(listed);  // ambiguous between the true effect and another, not between two wrong ones
-    }
-  }
+// Issue 15: an s = 4 drum with hidden particle rolling friction (wall rolling friction 0, 3 % noise)
+// was named "hertz_stiffness" on one noise seed (screening scores within 25 %, rolling resistance
+// ranked third and never re-fitted) and named on a 148.0 vs 147.4 tie on another.
+//
+// Until 2026-12-03 this test ran on drum_overrides(), whose drum wall has no sliding friction
+// (wall FRICS 0, wall rolling friction 0.3): there the bed is not carried round at all — its
+// dynamic angle is ~1 degree (demfit simulate at FRICS 0.3, FRICR 0.15) — so the "surface" was a
+// slumped heap on which sliding and rolling friction look alike, and no verdict could name it.
+// The drum here is the issue's: wall sliding friction 0.3 (the case's value; so wall friction is
+// part of the base model and not a candidate, as `demfit diagnose` rules), wall rolling friction
+// 0. Measured with demfit simulate (s = 4, 30 rpm, 3 s window): FRICS 0.3 + FRICR 0.15 stands at
+// 34-36 degrees (fill seeds 1, 2); FRICS alone gives 26.7 degrees at 0.3 and 29.5 at 0.8, the top
+// of its range, so sliding friction cannot take rolling friction's part in a turning bed.
+identify::ParameterSet rolling_truth(double fricr) { return {{"frics", 0.3}, {"fricr", fricr}}; }
+
+Scenario rolling_drum_scenario(std::uint64_t seed) {
+  nlohmann::json overrides = drum_overrides();
+  overrides["wall_contact"] = {{"frics", 0.3}, {"fricd", 0.0}};
+  Scenario s{"drum with wall friction, hidden rolling friction, seed " + std::to_string(seed),
+             "rotary_drum",
+             overrides,
+             {{"frics", 0.1, 0.8, 0.5, false, 1.0}},  // rolling friction is the hidden effect, not a base variable
+             rolling_truth(0.15),
+             {"free_surface"},
+             seed,
+             0.03};
+  s.noise_given = true;
+  return s;
 }
 
-// The same drum with a larger rolling friction (FRICR 0.25; the rolling_resistance candidate's
-// range is 0-0.3). Measured 2026-12-02 (seeds 31, 32): the base fit with FRICS alone lands at FRICS
-// 0.49-0.50 (truth 0.3) and leaves RMS/sigma_true 2.2-2.5, which is the model's own scatter (0.90-0.97
-// mm against the data's 0.46 mm); the rolling_resistance re-fit goes to FRICR 0.015 with FRICS 0.51.
-// One free surface cannot tell rolling from sliding friction: more sliding friction raises the
-// surface the same way. So issue 15's "right name or ambiguous" cannot be reached from this data;
-// the contract here is that the degeneracy is reported as it is (sliding friction absorbs it, no
-// other effect named). Hidden ([.]), ~2-4 min per seed on 2 cores.
-TEST_CASE(
-    "A larger hidden rolling friction in an s = 4 drum surface is absorbed by the sliding friction and not misnamed",
-    "[.][slow][drum]") {
-  for (std::uint64_t seed = 31; seed <= 32; ++seed) {
-    Scenario s =
-        drum_scenario("drum, hidden rolling friction 0.25, seed " + std::to_string(seed), {{"fricr", 0.25}}, seed);
-    s.variables = {{"frics", 0.1, 0.8, 0.5, false, 1.0}};
-    s.truth["fricr"] = 0.25;
-    s.noise_given = true;
-    const Outcome o = run(s, candidates_for("rotary_drum", {}, drum_overrides()));
+// The target of issue 15: the right name or "ambiguous" (with the right name among the tied) on
+// every one of 5 noise seeds, never another effect. ~2-3 min per seed on 2 cores; hidden ([.]),
+// run it by name.
+TEST_CASE("A hidden rolling friction in an s = 4 drum with wall friction is named or called ambiguous on every seed",
+          "[.][slow][drum]") {
+  for (std::uint64_t seed = 31; seed <= 35; ++seed) {
+    const Scenario s = rolling_drum_scenario(seed);
+    const Outcome o = run(s, candidates_for("rotary_drum", {"wall_friction"}, s.overrides));
     const Diagnosis& d = o.diagnosis;
     INFO("seed " << seed << ": " << d.summary);
-    const bool named = d.verdict == Verdict::effect_identified;
-    CHECK_FALSE((named && d.refits[d.chosen].effect != "rolling_resistance"));
-    if (!named) CHECK(d.base.parameters.at("frics") > 0.4);  // the sliding friction took the rolling friction's part
+    CHECK(d.base_analysis.structural);  // FRICS alone leaves the effect in the residual
+    bool tied_with_truth = false;
+    for (int i : d.tied) tied_with_truth = tied_with_truth || d.refits[i].effect == "rolling_resistance";
+    const bool named = d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "rolling_resistance";
+    CHECK((named || (d.verdict == Verdict::ambiguous && tied_with_truth)));
+    if (named) CHECK(d.refits[d.chosen].fit.parameters.at("fricr") == Approx(0.15).margin(0.05));
   }
 }

@@ -76,6 +76,9 @@ struct CandidateFit {
   FitResult fit;
   ResidualAnalysis analysis;
   double bic = 0.0, aicc = 0.0;
+  // The chi-square in BIC and AICc: the fit's own, or, when the model's scatter is in the noise
+  // model, the mean over Diagnosis::criterion_replicas fresh replicas of the optimum.
+  double criterion_chi_square = 0.0;
   double delta_bic = 0.0;  // BIC(base) - BIC(this): > 0 favours the effect
   double delta_aicc = 0.0;
   bool passes = false;  // delta_bic > threshold and residual passes the noise tests
@@ -100,12 +103,17 @@ struct Diagnosis {
   int chosen = -1;        // index into refits when an effect is identified
   std::vector<int> tied;  // ambiguous: the refits that explain it equally well
   std::vector<EffectCandidate> candidates;
-  // As used: DiagnoseOptions::bic_threshold, raised by 2 x sqrt(2) x scatter_chi_square_sd when the
-  // model's scatter is in the noise model (the chi-square of one evaluation is itself that noisy).
+  // As used: DiagnoseOptions::bic_threshold, raised by 2 x sqrt(2 / criterion_replicas) x
+  // scatter_chi_square_sd when the model's scatter is in the noise model (the chi-square of one
+  // evaluation is itself that noisy; the criterion compares means over that many replicas).
   double bic_threshold = 10.0;
   double scatter_chi_square_sd = 0.0;  // spread of the replicas' chi-squares (0: not measured)
-  bool noise_given = false;            // sigma given (--noise) rather than estimated
-  std::vector<std::string> notes;      // plain-language statements for the report
+  // > 0: the criterion's chi-squares (base and re-fits) are means over this many fresh replicas of
+  // each optimum (runs differing only in round-off), not the one lucky run a fit keeps.
+  int criterion_replicas = 0;
+  double base_criterion_chi_square = 0.0;  // the chi-square in base_bic and base_aicc
+  bool noise_given = false;                // sigma given (--noise) rather than estimated
+  std::vector<std::string> notes;          // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
   double wall_seconds = 0.0;

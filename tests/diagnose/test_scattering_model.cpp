@@ -1,0 +1,144 @@
+// The diagnosis of a model that scatters like a DEM run (issue 15): every parameter set draws its
+// own smooth "trajectory" error, so runs that differ only in round-off give different curves. The
+// criterion must then compare means over fresh replicas of each optimum, not the one run a fit
+// kept; these tests check that arithmetic against an independent computation and the verdicts it
+// leads to.
+#include <catch2/catch.hpp>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+#include "demfit/diagnose/analytic_effects_model.hpp"
+#include "demfit/diagnose/effect.hpp"
+#include "demfit/diagnose/least_squares.hpp"
+#include "demfit/diagnose/model_scatter.hpp"
+#include "demfit/diagnose/workflow.hpp"
+
+using namespace demfit;
+using namespace demfit::diagnose;
+
+namespace {
+
+constexpr double kNoise = 0.01;  // data noise [y units]
+constexpr double kScatter =
+    0.007;                      // the model's own scatter: 0.7 x the data noise (s = 4 drum: 0.69 mm against 0.94 mm)
+constexpr double kLag1 = 0.85;  // smooth along the curve, as a free surface's error
+
+// The analytic effects model plus an AR(1) error along the curve, seeded by the exact bits of the
+// parameter values: deterministic for one parameter set, unrelated for a set moved by round-off.
+class ScatteringModel final : public identify::Model {
+ public:
+  std::vector<identify::ParameterDescriptor> parameters() const override { return inner_.parameters(); }
+  identify::ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  identify::CurveSet evaluate(const identify::ParameterSet& p, const identify::EvaluationContext& c) const override {
+    identify::CurveSet curves = inner_.evaluate(p, c);
+    std::uint64_t seed = 1469598103934665603ull;  // FNV-1a over the values' bits, in name order
+    for (const auto& [name, value] : p) seed = (seed ^ std::bit_cast<std::uint64_t>(value)) * 1099511628211ull;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    double e = kScatter * normal(rng);
+    for (double& y : curves.at("response").y) {
+      y += e;
+      e = kLag1 * e + std::sqrt(1.0 - kLag1 * kLag1) * kScatter * normal(rng);
+    }
+    return curves;
+  }
+
+ private:
+  AnalyticEffectsModel inner_{101};
+};
+
+// Measured data as a real experiment gives them: the true curve plus white measurement noise (the
+// model's trajectory scatter is the model's, not the data's).
+identify::StudySpec scattering_study(const identify::ParameterSet& truth, unsigned seed) {
+  const AnalyticEffectsModel truth_model(101);
+  identify::Curve data = truth_model.evaluate(truth, {}).at("response");
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, kNoise);
+  for (auto& y : data.y) y += normal(rng);
+  identify::StudySpec spec;
+  spec.name = "scattering";
+  spec.model_reference = "analytic";
+  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
+                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
+                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
+  identify::TargetSpec target;
+  target.name = target.curve = "response";
+  target.data = data;
+  spec.targets = {target};
+  return spec;
+}
+
+identify::ParameterSet truth_with(const std::string& effect, double value) {
+  identify::ParameterSet truth{{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}};
+  if (!effect.empty()) truth[effect] = value;
+  return truth;
+}
+
+// As for a DEM model (large difference steps, 4 replicas), with the data noise given.
+DiagnoseOptions scattering_options() {
+  DiagnoseOptions options = expensive_model_options();
+  options.noise_sigma = kNoise;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("With a scattering model the base criterion is the mean chi-square of fresh replicas of its optimum",
+          "[diagnose][scatter]") {
+  const ScatteringModel model;
+  const Diagnosis d = run_diagnosis(scattering_study(truth_with("stiffening_coefficient", 1.5), 61), model,
+                                    analytic_effect_candidates(), scattering_options());
+  INFO(d.summary);
+  REQUIRE(d.scatter_in_noise_model);
+  REQUIRE(d.criterion_replicas == 4);
+  // Independently: the four replica sets of the base optimum, evaluated here, whitened residuals'
+  // mean squared norm (identical evaluations, so equal to round-off).
+  const auto sets = replica_parameter_sets(d.base.parameters, d.base_variables, 4);
+  double sum = 0.0;
+  for (const auto& set : sets) {
+    const identify::CurveSet curves = model.evaluate(set, {});
+    const auto& y = curves.at("response").y;
+    const auto& data = d.targets[0].data.y;
+    Eigen::VectorXd raw(static_cast<Eigen::Index>(y.size()));
+    for (std::size_t i = 0; i < y.size(); ++i) raw(static_cast<Eigen::Index>(i)) = y[i] - data[i];
+    sum += d.targets[0].noise_factor.triangularView<Eigen::Lower>().solve(raw).squaredNorm();
+  }
+  CHECK(d.base_criterion_chi_square == Approx(sum / 4.0).epsilon(1e-9));
+  CHECK(d.base_bic == Approx(d.base_criterion_chi_square + 3.0 * std::log(101.0)).epsilon(1e-12));
+  // The threshold: 10 + 2 x sqrt(2/4) x the replicas' chi-square spread.
+  CHECK(d.bic_threshold == Approx(10.0 + 2.0 * std::sqrt(0.5) * d.scatter_chi_square_sd).epsilon(1e-12));
+  for (const auto& r : d.refits) CHECK(r.delta_bic == Approx(d.base_bic - r.bic).epsilon(1e-12));
+}
+
+// Measured 2026-12-03 (seeds 62-64): "unexplained structural residual" each time — the base leaves
+// RMS/sigma 3.2-3.7 with structure, the best re-fit (yield_drop, delta BIC 955-1399) brings it to
+// 1.04-1.16 but leaves lag-1 0.18-0.45, so nothing passes the residual tests: fits of a scattering
+// model stop on its noise before the structure is gone. The contract here is the weaker one that
+// matters most: a scattering model never gets a wrong name.
+TEST_CASE("With a scattering model a hidden effect is never misnamed", "[diagnose][scatter]") {
+  const ScatteringModel model;
+  for (unsigned seed : {62u, 63u, 64u}) {
+    const Diagnosis d = run_diagnosis(scattering_study(truth_with("stiffening_coefficient", 1.5), seed), model,
+                                      analytic_effect_candidates(), scattering_options());
+    INFO("seed " << seed << ": " << d.summary);
+    CHECK(d.base_analysis.structural);
+    CHECK_FALSE((d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect != "stiffening"));
+    bool tied_with_truth = false;
+    for (int i : d.tied) tied_with_truth = tied_with_truth || d.refits[i].effect == "stiffening";
+    CHECK_FALSE((d.verdict == Verdict::ambiguous && !tied_with_truth));
+  }
+}
+
+TEST_CASE("With a scattering model and no hidden effect no effect is named", "[diagnose][scatter]") {
+  const ScatteringModel model;
+  for (unsigned seed : {65u, 66u, 67u, 68u, 69u}) {
+    const Diagnosis d = run_diagnosis(scattering_study(truth_with("", 0.0), seed), model, analytic_effect_candidates(),
+                                      scattering_options());
+    INFO("seed " << seed << ": " << d.summary);
+    CHECK(d.verdict != Verdict::effect_identified);
+    CHECK(d.verdict != Verdict::ambiguous);
+  }
+}
