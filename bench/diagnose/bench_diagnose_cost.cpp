@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -35,24 +34,6 @@ class CountingModel final : public identify::Model {
   const identify::Model& inner_;
 };
 
-identify::StudySpec study_with(const identify::ParameterSet& truth, unsigned seed) {
-  const AnalyticEffectsModel model(101);
-  identify::Curve data = model.evaluate(truth, {}).at("response");
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal(0.0, 0.01);
-  for (auto& y : data.y) y += normal(rng);
-  identify::StudySpec spec;
-  spec.model_reference = "analytic";
-  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
-                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
-                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
-  identify::TargetSpec target;
-  target.name = target.curve = "response";
-  target.data = data;
-  spec.targets = {target};
-  return spec;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,8 +56,8 @@ int main(int argc, char** argv) {
       if (!parameter.empty()) truth[parameter] = value;
       const long before = model.count;
       const auto start = std::chrono::steady_clock::now();
-      const Diagnosis d =
-          run_diagnosis(study_with(truth, 1000 + s), model, analytic_effect_candidates(), DiagnoseOptions{});
+      const Diagnosis d = run_diagnosis(analytic_effects_study(truth, 1000 + s, 0.01), model,
+                                        analytic_effect_candidates(), DiagnoseOptions{});
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       base += d.base_evaluations;
       screen += d.screening_evaluations;

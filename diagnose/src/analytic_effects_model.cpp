@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 namespace demfit::diagnose {
@@ -50,6 +51,26 @@ identify::CurveSet AnalyticEffectsModel::evaluate(const identify::ParameterSet& 
     curve.y.push_back(y);
   }
   return {{"response", curve}};
+}
+
+identify::StudySpec analytic_effects_study(const identify::ParameterSet& truth, unsigned seed, double noise,
+                                           int points) {
+  const AnalyticEffectsModel model(points);
+  identify::Curve data = model.evaluate(truth, {}).at("response");
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, noise);
+  for (auto& y : data.y) y += normal(rng);
+  identify::StudySpec spec;
+  spec.name = "synthetic";
+  spec.model_reference = "analytic";
+  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
+                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
+                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
+  identify::TargetSpec target;
+  target.name = target.curve = "response";
+  target.data = data;
+  spec.targets = {target};
+  return spec;
 }
 
 }  // namespace demfit::diagnose

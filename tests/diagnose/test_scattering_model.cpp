@@ -53,22 +53,7 @@ class ScatteringModel final : public identify::Model {
 // Measured data as a real experiment gives them: the true curve plus white measurement noise (the
 // model's trajectory scatter is the model's, not the data's).
 identify::StudySpec scattering_study(const identify::ParameterSet& truth, unsigned seed) {
-  const AnalyticEffectsModel truth_model(101);
-  identify::Curve data = truth_model.evaluate(truth, {}).at("response");
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal(0.0, kNoise);
-  for (auto& y : data.y) y += normal(rng);
-  identify::StudySpec spec;
-  spec.name = "scattering";
-  spec.model_reference = "analytic";
-  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
-                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
-                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
-  identify::TargetSpec target;
-  target.name = target.curve = "response";
-  target.data = data;
-  spec.targets = {target};
-  return spec;
+  return analytic_effects_study(truth, seed, kNoise);
 }
 
 identify::ParameterSet truth_with(const std::string& effect, double value) {

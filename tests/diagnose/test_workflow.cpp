@@ -20,23 +20,7 @@ namespace {
 constexpr double kNoise = 0.01;
 
 identify::StudySpec synthetic_study(const identify::ParameterSet& truth, unsigned seed, int points = 101) {
-  const AnalyticEffectsModel model(points);
-  identify::Curve data = model.evaluate(truth, {}).at("response");
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal(0.0, kNoise);
-  for (auto& y : data.y) y += normal(rng);
-  identify::StudySpec spec;
-  spec.name = "synthetic";
-  spec.model_reference = "analytic";
-  spec.variables = {{"amplitude", 0.5, 2.0, 1.2, false, 1.0},
-                    {"rate", 1.0, 8.0, 4.0, false, 1.0},
-                    {"slope", 0.0, 1.5, 0.3, false, 1.0}};
-  identify::TargetSpec target;
-  target.name = "response";
-  target.curve = "response";
-  target.data = data;
-  spec.targets = {target};
-  return spec;
+  return analytic_effects_study(truth, seed, kNoise, points);
 }
 
 identify::ParameterSet base_truth() { return {{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}}; }

@@ -8,6 +8,7 @@
 //   ripple      + e sin(4 pi x): a non-physical artefact, not a candidate (ripple_amplitude)
 // Curve "response", x = 0..1 in `points` steps (labels x_1, y_1, dimensionless).
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/study_spec.hpp"
 
 namespace demfit::diagnose {
 
@@ -22,5 +23,11 @@ class AnalyticEffectsModel final : public identify::Model {
  private:
   int points_;
 };
+
+// A synthetic study on this family for tests and benchmarks: the "response" curve at `truth` (a
+// real experiment's data: the true curve) plus seeded white noise of standard deviation `noise`
+// (y units); base variables amplitude [0.5, 2] from 1.2, rate [1, 8] from 4, slope [0, 1.5] from 0.3.
+identify::StudySpec analytic_effects_study(const identify::ParameterSet& truth, unsigned seed, double noise,
+                                           int points = 101);
 
 }  // namespace demfit::diagnose
