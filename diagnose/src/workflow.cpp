@@ -325,9 +325,17 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
   const double difference_sd = std::sqrt(2.0 / d.criterion_replicas) * d.scatter_chi_square_sd;
   d.bic_threshold = c.options.bic_threshold + 2.0 * difference_sd;
   d.targets = std::move(targets);
+  const identify::ParameterSet first_optimum = d.base.parameters;
   refine_base(c, d, a);
-  d.base_criterion_chi_square = replicated_chi_square(c, d.base.parameters, d.base_variables, d.targets,
-                                                      d.criterion_replicas, d.base.chi_square, d.base_evaluations);
+  if (d.base.parameters == first_optimum) {
+    // The refinement kept the first optimum: its replicas above are the fresh runs (4 fewer runs).
+    double sum = 0.0;
+    for (std::size_t i = 1; i < replicas.size(); ++i) sum += (a * replicas[i]).squaredNorm();
+    d.base_criterion_chi_square = sum / static_cast<double>(replicas.size() - 1);
+  } else {
+    d.base_criterion_chi_square = replicated_chi_square(c, d.base.parameters, d.base_variables, d.targets,
+                                                        d.criterion_replicas, d.base.chi_square, d.base_evaluations);
+  }
   d.notes.push_back(format(
       "the chi-square of %zu runs differing only in round-off spreads by %.3g (standard deviation); the criterion "
       "compares means over %d fresh runs of each optimum (base: %.4g, against %.4g for the fit's own run), so an "
