@@ -177,19 +177,25 @@ FitResult fit_base(const FitContext& c, const std::vector<FitVariable>& variable
 // The mean chi-square of `replicas` fresh runs at `optimum` (its `variables` moved by round-off,
 // model_scatter.hpp) under the current targets; `fallback` if every replica failed. A fit keeps
 // the luckiest of its dozens of trajectories; these runs are an unbiased look at its optimum.
+// The mean chi-square of the non-empty (not failed) `residuals`, each mapped by `map` (none: as
+// they are); `fallback` if there is none.
+double mean_chi_square(const std::vector<Eigen::VectorXd>& residuals, const Eigen::MatrixXd* map, double fallback) {
+  double sum = 0.0;
+  int runs = 0;
+  for (const auto& r : residuals)
+    if (r.size() > 0) {
+      sum += map ? (*map * r).squaredNorm() : r.squaredNorm();
+      ++runs;
+    }
+  return runs > 0 ? sum / runs : fallback;
+}
+
 double replicated_chi_square(const FitContext& c, const identify::ParameterSet& optimum,
                              const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets,
                              int replicas, double fallback, int& evaluations) {
   const auto sets = replica_parameter_sets(optimum, variables, replicas);
   evaluations += static_cast<int>(sets.size());
-  double sum = 0.0;
-  int runs = 0;
-  for (const auto& r : residuals_at(c.model, sets, targets, c.options.fit))
-    if (r.size() > 0) {
-      sum += r.squaredNorm();
-      ++runs;
-    }
-  return runs > 0 ? sum / runs : fallback;
+  return mean_chi_square(residuals_at(c.model, sets, targets, c.options.fit), nullptr, fallback);
 }
 
 // Residual tests and information criteria of a re-fit over `variables` (base + the effect's);
@@ -328,10 +334,9 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
   const identify::ParameterSet first_optimum = d.base.parameters;
   refine_base(c, d, a);
   if (d.base.parameters == first_optimum) {
-    // The refinement kept the first optimum: its replicas above are the fresh runs (4 fewer runs).
-    double sum = 0.0;
-    for (std::size_t i = 1; i < replicas.size(); ++i) sum += (a * replicas[i]).squaredNorm();
-    d.base_criterion_chi_square = sum / static_cast<double>(replicas.size() - 1);
+    // The refinement kept the first optimum: its replicas above (all but the base's own run) are
+    // the fresh runs, so no new ones are needed.
+    d.base_criterion_chi_square = mean_chi_square({replicas.begin() + 1, replicas.end()}, &a, d.base.chi_square);
   } else {
     d.base_criterion_chi_square = replicated_chi_square(c, d.base.parameters, d.base_variables, d.targets,
                                                         d.criterion_replicas, d.base.chi_square, d.base_evaluations);

@@ -296,8 +296,6 @@ TEST_CASE("A hidden wall friction in a rotary drum free surface is named and the
 // 0. Measured with demfit simulate (s = 4, 30 rpm, 3 s window): FRICS 0.3 + FRICR 0.15 stands at
 // 34-36 degrees (fill seeds 1, 2); FRICS alone gives 26.7 degrees at 0.3 and 29.5 at 0.8, the top
 // of its range, so sliding friction cannot take rolling friction's part in a turning bed.
-identify::ParameterSet rolling_truth(double fricr) { return {{"frics", 0.3}, {"fricr", fricr}}; }
-
 Scenario rolling_drum_scenario(std::uint64_t seed) {
   nlohmann::json overrides = drum_overrides();
   overrides["wall_contact"] = {{"frics", 0.3}, {"fricd", 0.0}};
@@ -305,7 +303,7 @@ Scenario rolling_drum_scenario(std::uint64_t seed) {
              "rotary_drum",
              overrides,
              {{"frics", 0.1, 0.8, 0.5, false, 1.0}},  // rolling friction is the hidden effect, not a base variable
-             rolling_truth(0.15),
+             {{"frics", 0.3}, {"fricr", 0.15}},
              {"free_surface"},
              seed,
              0.03};
