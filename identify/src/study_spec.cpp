@@ -276,43 +276,6 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
     in.fail("first_step", "must be in (0, 0.5] (a fraction of each variable's range)");
 }
 
-std::string metric_name(CurveMetric metric) {
-  switch (metric) {
-    case CurveMetric::mse:
-      return "mse";
-    case CurveMetric::curve_mapping:
-      return "curve_mapping";
-    case CurveMetric::profile_area:
-      return "profile_area";
-  }
-  return "mse";
-}
-
-nlohmann::json model_json(const std::string& reference, const nlohmann::json& overrides, const ParameterSet& fixed) {
-  nlohmann::json json = {{"case", reference}, {"overrides", overrides}, {"fixed_parameters", nlohmann::json::object()}};
-  for (const auto& [name, value] : fixed) json["fixed_parameters"][name] = value;
-  return json;
-}
-
-// A resolved target: data inline, "source" = where it came from (informational, not hashed).
-nlohmann::json target_json(const TargetSpec& t, const std::string& name, const std::string& curve) {
-  nlohmann::json target = {{"name", name},
-                           {"curve", curve},
-                           {"x_column", t.data.x_label},
-                           {"y_column", t.data.y_label},
-                           {"x", t.data.x},
-                           {"y", t.data.y},
-                           {"metric", metric_name(t.metric)},
-                           {"weight", t.weight},
-                           {"scale", t.scale},
-                           {"mapping_points", t.mapping_points}};
-  if (!t.csv.empty())
-    target["source"] = t.csv.generic_string();
-  else if (t.image)
-    target["source"] = t.image->file.generic_string();
-  return target;
-}
-
 }  // namespace
 
 int default_points_per_iteration(int variables) {
@@ -375,74 +338,6 @@ StudySpec load_study_file(const std::filesystem::path& path) {
   // Size, nesting depth and duplicate keys are checked while reading (json_document.hpp).
   const nlohmann::json json = read_json_file(path, "study file");
   return parse_study(json, std::filesystem::absolute(path).parent_path());
-}
-
-nlohmann::json to_json(const StudySpec& spec) {
-  nlohmann::json json;
-  json["demfit_study_version"] = spec.version;
-  json["name"] = spec.name;
-  json["variables"] = nlohmann::json::array();
-  for (const auto& v : spec.variables)
-    json["variables"].push_back({{"name", v.name},
-                                 {"lower", v.lower},
-                                 {"upper", v.upper},
-                                 {"initial", v.initial},
-                                 {"log_scale", v.log_scale},
-                                 {"initial_range", v.initial_range}});
-  if (spec.experiments.empty()) {
-    json["model"] = model_json(spec.model_reference, spec.model_overrides, spec.fixed_parameters);
-    json["targets"] = nlohmann::json::array();
-    for (const auto& t : spec.targets) json["targets"].push_back(target_json(t, t.name, t.curve));
-  } else {
-    json["experiments"] = nlohmann::json::array();
-    for (const auto& e : spec.experiments) {
-      nlohmann::json targets = nlohmann::json::array();
-      for (const auto& t : spec.targets)
-        if (t.experiment == e.name)
-          targets.push_back(target_json(t, t.name.substr(e.name.size() + 1), t.curve.substr(e.name.size() + 1)));
-      json["experiments"].push_back({{"name", e.name},
-                                     {"model", model_json(e.model_reference, e.model_overrides, e.fixed_parameters)},
-                                     {"targets", targets}});
-    }
-  }
-  json["sampling"] = {{"points_per_iteration", spec.points_per_iteration}, {"strategy", strategy_name(spec.strategy)}};
-  json["domain_reduction"] = {{"gamma_pan", spec.gamma_pan}, {"gamma_osc", spec.gamma_osc}, {"eta", spec.eta}};
-  json["surrogate"] = {
-      {"basis", spec.basis},
-      {"responses", spec.responses == ResponseMode::curve_points ? "curve_points" : "principal_components"},
-      {"smoothing", spec.smoothing}};
-  json["stopping"] = {{"max_iterations", spec.max_iterations},
-                      {"design_tolerance", spec.design_tolerance},
-                      {"objective_tolerance", spec.objective_tolerance}};
-  if (spec.interval_check.max_steps > 0)  // written only when on: older resolved studies stay unchanged
-    json["interval_check"] = {{"max_steps", spec.interval_check.max_steps},
-                              {"replicates", spec.interval_check.replicates},
-                              {"first_step", spec.interval_check.first_step},
-                              {"all_variables", spec.interval_check.all_variables}};
-  json["seed"] = spec.seed;
-  return json;
-}
-
-std::uint64_t study_hash(const StudySpec& spec) {
-  // FNV-1a 64 over the resolved JSON text: stable across runs and compilers (std::hash is not).
-  // The stopping rule is left out so that a finished study can be resumed with a larger
-  // iteration limit; informational "source" paths are left out (the data itself is hashed). The
-  // interval check runs after the loop, so a finished study can be resumed to add it.
-  nlohmann::json json = to_json(spec);
-  json.erase("stopping");
-  json.erase("interval_check");
-  if (json.contains("targets"))
-    for (auto& target : json["targets"]) target.erase("source");
-  if (json.contains("experiments"))
-    for (auto& experiment : json["experiments"])
-      for (auto& target : experiment["targets"]) target.erase("source");
-  const std::string text = json.dump();
-  std::uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  return hash;
 }
 
 }  // namespace demfit::identify
