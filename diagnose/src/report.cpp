@@ -1,7 +1,7 @@
 // Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
 #include "demfit/diagnose/report.hpp"
 #include "text_format.hpp"
-#include "demfit/identify/run_program.hpp"
+#include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/safe_output.hpp"
 
 #include <cmath>
@@ -59,19 +59,6 @@ std::string tests_row(const std::string& label, const ResidualAnalysis& a) {
                 a.smooth.statistic, a.smooth.basis, a.smooth.p_value, a.structural ? "structure" : "noise");
 }
 
-// Control characters would end a gnuplot command and start another: they become '?'.
-std::string gnuplot_quote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f)
-      out += '?';
-    else
-      out += (c == '\'') ? std::string("''") : std::string(1, c);
-  }
-  return out + "'";
-}
-
 const CandidateFit* augmented(const Diagnosis& d) {
   if (d.chosen >= 0) return &d.refits[d.chosen];
   const CandidateFit* best = nullptr;
@@ -84,10 +71,11 @@ const CandidateFit* augmented(const Diagnosis& d) {
 // through the atomic writer under a slug of the target name; gnuplot runs inside `out` from an
 // argument vector and sees relative names only (issue #13).
 std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, const std::filesystem::path& out) {
+  using identify::gnuplot_quote;
   const FitTarget& target = d.targets[t];
   const CandidateFit* aug = augmented(d);
   const std::string stem = identify::safe_slug("diagnosis_" + target.name);
-  const std::string data = stem + ".dat", png = stem + ".png", script = stem + ".gp";
+  const std::string data = stem + ".dat", png = stem + ".png";
   std::ostringstream f;
   f << "# x data base_fit augmented_fit base_residual augmented_residual\n";
   f.precision(10);
@@ -100,9 +88,7 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
   identify::write_file_atomically(identify::path_inside(out, data), f.str());
   const std::string aug_title = aug ? "base + " + aug->effect + (d.chosen >= 0 ? "" : " (not accepted)") : "";
   std::ostringstream gp;
-  gp << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,800 noenhanced } "
-        "else { set terminal png size 900,800 noenhanced }\n"
-     << "set output " << gnuplot_quote(png + ".tmp") << "\nset grid\nset key below\nset multiplot layout 2,1\n"
+  gp << "set multiplot layout 2,1\n"
      << "set title " << gnuplot_quote(target.name + ": " + verdict_text(d.verdict)) << "\n"
      << "set xlabel " << gnuplot_quote(target.data.x_label) << "\nset ylabel " << gnuplot_quote(target.data.y_label)
      << "\n"
@@ -112,16 +98,9 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
      << format("plot %s u 1:5 w lp pt 7 ps 0.4 t 'base', %.10g w l lt 0 t '+-2 sigma', %.10g w l lt 0 notitle",
                gnuplot_quote(data).c_str(), 2 * target.sigma, -2 * target.sigma)
      << (aug ? ", '' u 1:6 w lp pt 7 ps 0.4 t " + gnuplot_quote(aug_title) : std::string()) << "\n"
-     << "unset multiplot\nunset output\n";
-  identify::write_file_atomically(identify::path_inside(out, script), gp.str());
-  const int status = identify::run_program({"gnuplot", script}, out);
-  std::error_code error;
-  if (status != 0 || !std::filesystem::exists(out / (png + ".tmp"))) {
-    std::filesystem::remove(out / (png + ".tmp"), error);
-    return "warning: gnuplot failed for " + png + "\n";
-  }
-  std::filesystem::rename(out / (png + ".tmp"), out / png, error);
-  return error ? "warning: cannot move " + png + " into place\n" : std::string();
+     << "unset multiplot";
+  const std::string problem = identify::gnuplot_png(out / png, gp.str(), 800);
+  return problem.empty() ? std::string() : "warning: " + problem + "\n";
 }
 
 }  // namespace
@@ -274,7 +253,7 @@ std::string write_diagnosis(const Diagnosis& d, const std::filesystem::path& out
   identify::write_file_atomically(out / "report.md", markdown_report(d));
   identify::write_file_atomically(out / "diagnosis.json", to_json(d).dump(2) + "\n");
   if (!plots) return {};
-  if (!identify::program_available("gnuplot")) return "warning: gnuplot not found; plots skipped\n";
+  if (!identify::gnuplot_available()) return "warning: gnuplot not found; plots skipped\n";
   std::string warnings;
   Eigen::Index offset = 0;
   for (std::size_t t = 0; t < d.targets.size(); ++t) {

@@ -1,11 +1,11 @@
-#include "gnuplot.hpp"
+#include "demfit/identify/gnuplot.hpp"
 
 #include <unistd.h>
 
 #include "demfit/identify/run_program.hpp"
 #include "demfit/identify/safe_output.hpp"
 
-namespace demfit::identify::detail {
+namespace demfit::identify {
 
 bool gnuplot_available() { return program_available("gnuplot"); }
 
@@ -21,20 +21,21 @@ std::string gnuplot_quote(const std::string& text) {
   return out + "'";
 }
 
-std::string gnuplot_png(const std::filesystem::path& png, const std::string& commands) {
+std::string gnuplot_png(const std::filesystem::path& png, const std::string& commands, int height) {
   const std::filesystem::path folder = png.has_parent_path() ? png.parent_path() : std::filesystem::path(".");
   const std::string name = safe_slug(png.filename().string());
   const std::string suffix = ".tmp" + std::to_string(::getpid());
   const std::string temporary_png = name + suffix;
   const std::string script = name + ".gp" + suffix;
   try {
-    write_file_atomically(
-        path_inside(folder, script),
-        "out = " + gnuplot_quote(temporary_png) + "\n" +
-            "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,600 noenhanced } "
-            "else { set terminal png size 900,600 noenhanced }\n"
-            "set output out\nset grid\nset key below\n" +
-            commands + "\nunset output\n");
+    write_file_atomically(path_inside(folder, script),
+                          "out = " + gnuplot_quote(temporary_png) + "\n" +
+                              "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900," +
+                              std::to_string(height) + " noenhanced } else { set terminal png size 900," +
+                              std::to_string(height) +
+                              " noenhanced }\n"
+                              "set output out\nset grid\nset key below\n" +
+                              commands + "\nunset output\n");
   } catch (const std::exception& e) { return e.what(); }
   const int status = run_program({"gnuplot", script}, folder);
   std::error_code ignored;
@@ -48,4 +49,4 @@ std::string gnuplot_png(const std::filesystem::path& png, const std::string& com
   return {};
 }
 
-}  // namespace demfit::identify::detail
+}  // namespace demfit::identify

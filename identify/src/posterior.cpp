@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/uncertainty.hpp"
-#include "gnuplot.hpp"
 #include "study_support.hpp"
 
 namespace demfit::identify {
@@ -150,7 +150,7 @@ PosteriorEstimate sample_posterior_from_runs(const RunSample& s, const std::vect
 
 std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vector<VariableSpec>& variables,
                                       const std::filesystem::path& png) {
-  if (!detail::gnuplot_available()) return "gnuplot not found on the PATH; no pair plot";
+  if (!gnuplot_available()) return "gnuplot not found on the PATH; no pair plot";
   const int n = static_cast<int>(variables.size());
   std::ostringstream g;
   g.precision(10);
@@ -166,7 +166,7 @@ std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vec
   g << "set key off\nset tics font ',7'\n";
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
-      g << "unset arrow\nset xlabel " << detail::gnuplot_quote(variables[c].name) << " font ',8'\n";
+      g << "unset arrow\nset xlabel " << gnuplot_quote(variables[c].name) << " font ',8'\n";
       if (c > r) {
         g << "unset border\nunset tics\nunset xlabel\nunset ylabel\nplot [0:1][0:1] NaN notitle\nset border\nset "
              "tics\n";
@@ -192,13 +192,13 @@ std::string write_posterior_pair_plot(const PosteriorEstimate& e, const std::vec
           << "plot $draws using (" << width << "*floor(($" << c + 1 << ")/" << width << ")+" << width / 2
           << "):(1.0) smooth frequency with boxes\n";
       } else {
-        g << "set ylabel " << detail::gnuplot_quote(variables[r].name) << " font ',8'\n"
+        g << "set ylabel " << gnuplot_quote(variables[r].name) << " font ',8'\n"
           << "set yrange [" << ylo << ":" << yhi << "]\n"
           << "plot $draws using " << c + 1 << ":" << r + 1 << " with dots\n";
       }
     }
   g << "unset multiplot\n";
-  return detail::gnuplot_png(png, g.str());
+  return gnuplot_png(png, g.str());
 }
 
 }  // namespace demfit::identify

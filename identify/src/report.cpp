@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/rbf_surrogate/bounds.hpp"
-#include "gnuplot.hpp"
 #include "report_plots.hpp"
 #include "study_support.hpp"
 
@@ -148,7 +148,7 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
   }
   std::vector<std::string> images;
   if (plots) {
-    if (!detail::gnuplot_available()) {
+    if (!gnuplot_available()) {
       summary.plot_warning = "gnuplot not found: plots skipped (apt-get install gnuplot-nox)";
     } else {
       const auto written = detail::write_plots(spec, runs, iterations, best, output_dir);

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/objective.hpp"
 #include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_warnings.hpp"
-#include "gnuplot.hpp"
 #include "target_misfit.hpp"
 #include "study_support.hpp"
 
