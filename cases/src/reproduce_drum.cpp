@@ -17,6 +17,7 @@
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
+#include "reproduce_study.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -166,11 +167,7 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   context.threads = o.threads_per_job;
   const identify::CurveSet initial_curves = model->evaluate({}, context);
   const double error_before = rms_surface_error(target, initial_curves.at("free_surface"));
-  identify::RunOptions run;
-  run.jobs = o.jobs;
-  run.threads_per_job = o.threads_per_job;
-  run.resume = o.resume;
-  run.output_dir = dir / "study";
+  const identify::RunOptions run = detail::study_run_options(o, dir / "study");
   const identify::StudyResult r = identify::run_study(spec, *model, run);
   const double error_after = rms_surface_error(target, r.best_curves.at("free_surface"));
   std::string t =

@@ -20,6 +20,7 @@
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/overlay.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
+#include "reproduce_study.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -306,11 +307,7 @@ std::string reproduce_granudrum(const GranudrumOptions& options) {
                                                                                    : "granudrum_calibration.json");
   const identify::StudySpec spec = identify::load_study_file(study_file);
   const auto model = make_study_model(spec);
-  identify::RunOptions run;
-  run.jobs = o.jobs;
-  run.threads_per_job = o.threads_per_job;
-  run.resume = o.resume;
-  run.output_dir = o.out_dir / "study";
+  const identify::RunOptions run = detail::study_run_options(o, o.out_dir / "study");
   const identify::StudyResult result = identify::run_study(spec, *model, run);
   const auto calibrated = surface_errors(spec, result.best_curves);
   const auto pictures = write_surface_pictures(spec, result.best_curves, o.out_dir);

@@ -10,6 +10,7 @@
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "builtin_cases.hpp"
+#include "reproduce_study.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -54,11 +55,7 @@ std::string reproduce_table1(const ReproduceOptions& o) {
   const identify::StudySpec spec =
       identify::load_study_file(o.cases_dir / (o.quick ? "table1_study_quick.json" : "table1_study.json"));
   const auto model = make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-  identify::RunOptions run;
-  run.jobs = o.jobs;
-  run.threads_per_job = o.threads_per_job;
-  run.resume = o.resume;
-  run.output_dir = o.out_dir / "table1";
+  const identify::RunOptions run = detail::study_run_options(o, o.out_dir / "table1");
   const identify::StudyResult r = identify::run_study(spec, *model, run);
 
   const CaseSpec pellet = parse_case(nlohmann::json::parse(detail::kBuiltinPelletCompression));
