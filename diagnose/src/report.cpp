@@ -148,6 +148,7 @@ nlohmann::json to_json(const Diagnosis& d) {
            {{"parameters", d.base.parameters},
             {"chi_square", d.base.chi_square},
             {"criterion_chi_square", d.base_criterion_chi_square},
+            {"refined_under_scatter", d.base_refined},
             {"bic", d.base_bic},
             {"aicc", d.base_aicc},
             {"evaluations", d.base.evaluations},

@@ -114,7 +114,8 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
   d.targets = std::move(targets);
   const identify::ParameterSet first_optimum = d.base.parameters;
   refine_base(c, d, a);
-  if (d.base.parameters == first_optimum) {
+  d.base_refined = !(d.base.parameters == first_optimum);
+  if (!d.base_refined) {
     // The refinement kept the first optimum: its replicas above (all but the base's own run) are
     // the fresh runs, so no new ones are needed.
     d.base_criterion_chi_square = mean_chi_square({replicas.begin() + 1, replicas.end()}, &a, d.base.chi_square);

@@ -112,8 +112,12 @@ struct Diagnosis {
   // each optimum (runs differing only in round-off), not the one lucky run a fit keeps.
   int criterion_replicas = 0;
   double base_criterion_chi_square = 0.0;  // the chi-square in base_bic and base_aicc
-  bool noise_given = false;                // sigma given (--noise) rather than estimated
-  std::vector<std::string> notes;          // plain-language statements for the report
+  // With the model's scatter in the noise model: whether the base fit refined under it moved from
+  // the first optimum. If it did not, base_criterion_chi_square is the mean of the scatter replicas
+  // already run (mapped to the whitened targets); if it did, of fresh replicas of the new optimum.
+  bool base_refined = false;
+  bool noise_given = false;        // sigma given (--noise) rather than estimated
+  std::vector<std::string> notes;  // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
   double wall_seconds = 0.0;
