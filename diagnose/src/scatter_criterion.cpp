@@ -2,7 +2,6 @@
 // replicas of an optimum, the whitened noise model and the base fit refined under it.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "fit_context.hpp"
 #include "text_format.hpp"
@@ -45,24 +44,6 @@ void refine_base(const FitContext& c, Diagnosis& d, const Eigen::MatrixXd& a) {
 }
 
 }  // namespace
-
-void progress(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started, const std::string& what) {
-  if (!options.progress) return;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  std::fprintf(stderr, "demfit diagnose: %s (%.0f s so far)\n", what.c_str(), seconds);
-}
-
-FitOptions stage_fit_options(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started,
-                             const std::string& what) {
-  FitOptions fit = options.fit;
-  if (options.progress)
-    fit.on_step = [&options, started, what](int iteration, int evaluations, double chi_square) {
-      progress(
-          options, started,
-          format("%s: step %d, %d evaluations, chi-square %.4g", what.c_str(), iteration, evaluations, chi_square));
-    };
-  return fit;
-}
 
 double replicated_chi_square(const FitContext& c, const identify::ParameterSet& optimum,
                              const std::vector<FitVariable>& variables, const std::vector<FitTarget>& targets,

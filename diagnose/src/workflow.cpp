@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 
@@ -51,6 +52,28 @@ double aicc(double chi_square, int parameters, int points) {
   const double denominator = points - k - 1.0;
   return chi_square + 2.0 * k + (denominator > 0.0 ? 2.0 * k * (k + 1.0) / denominator : 1e300);
 }
+
+namespace detail {
+
+void progress(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started, const std::string& what) {
+  if (!options.progress) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::fprintf(stderr, "demfit diagnose: %s (%.0f s so far)\n", what.c_str(), seconds);
+}
+
+FitOptions stage_fit_options(const DiagnoseOptions& options, std::chrono::steady_clock::time_point started,
+                             const std::string& what) {
+  FitOptions fit = options.fit;
+  if (options.progress)
+    fit.on_step = [&options, started, what](int iteration, int evaluations, double chi_square) {
+      progress(
+          options, started,
+          format("%s: step %d, %d evaluations, chi-square %.4g", what.c_str(), iteration, evaluations, chi_square));
+    };
+  return fit;
+}
+
+}  // namespace detail
 
 namespace {
 
