@@ -340,3 +340,35 @@ TEST_CASE("The initial-point check's run is stored as run 0 and not evaluated ag
   CHECK(calls_other.load() == calls_plain.load());
   CHECK(evaluated.best == plain.best);
 }
+
+TEST_CASE("The initial-point check through a pool of jobs hands over the run a direct evaluation gives",
+          "[identify][experiments]") {
+  // demfit identify checks the initial point with the loop's pool (--jobs), so a study's
+  // experiments run side by side there too; the run handed to the loop must not depend on that.
+  const StudySpec parsed = parse_study(study(true, true), ".");
+  std::atomic<int> calls_direct{0}, calls_pool{0};
+  std::optional<InitialRun> direct, pooled;
+  const auto direct_model = models_for(parsed, &calls_direct);
+  const StudySpec spec_direct = preflight_study(parsed, *direct_model, EvaluationContext{}, &direct);
+  const auto pool_model = models_for(parsed, &calls_pool);
+  ThreadPoolEvaluator pool(*pool_model, 2, 1, static_cast<unsigned long>(parsed.seed));
+  const StudySpec spec_pool = preflight_study(parsed, *pool_model, pool, &pooled);
+  REQUIRE(direct.has_value());
+  REQUIRE(pooled.has_value());
+  CHECK(calls_pool.load() == 2);  // both experiments, once
+  CHECK(pooled->parameters == direct->parameters);
+  CHECK(pooled->outcome.ok);
+  REQUIRE(pooled->outcome.curves.size() == direct->outcome.curves.size());
+  for (const auto& [name, curve] : direct->outcome.curves) {
+    REQUIRE(pooled->outcome.curves.count(name) == 1);
+    CHECK(pooled->outcome.curves.at(name).y == curve.y);
+  }
+  RunOptions from_pool = quiet(test::fresh_dir("initial_pooled"));
+  from_pool.initial_run = pooled;
+  RunOptions from_direct = quiet(test::fresh_dir("initial_direct"));
+  from_direct.initial_run = direct;
+  const auto a = run_study(spec_pool, *pool_model, from_pool);
+  const auto b = run_study(spec_direct, *direct_model, from_direct);
+  CHECK(a.best == b.best);
+  CHECK(a.best_objective == b.best_objective);
+}
