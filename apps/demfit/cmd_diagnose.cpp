@@ -196,9 +196,10 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
-  // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13).
-  const identify::StudySpec checked =
-      identify::preflight_study(spec, *model, {1, static_cast<unsigned long>(spec.seed)});
+  // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13); a
+  // study's experiments run side by side over --jobs.
+  identify::ThreadPoolEvaluator preflight_pool(*model, o.jobs, 1, static_cast<unsigned long>(spec.seed));
+  const identify::StudySpec checked = identify::preflight_study(spec, *model, preflight_pool);
   const diagnose::Diagnosis d = diagnose::run_diagnosis(checked, *model, candidates, options);
   identify::prepare_output_folder(out, study_inputs(spec, o.study_file), "--out");
   const std::string warnings = diagnose::write_diagnosis(d, out, !o.no_plots);
