@@ -181,13 +181,14 @@ void run_identify(const IdentifyOptions& o) {
   if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
   const auto model = make_model(parsed);
   options.resolved_model = resolved_model(parsed);
-  // The initial point's experiments run side by side over --jobs, as the loop's runs do (a pool of
-  // the loop's settings, so the run it hands over is the one the loop would make).
-  identify::ThreadPoolEvaluator preflight_pool(*model, options.jobs, options.threads_per_job,
-                                               static_cast<unsigned long>(parsed.seed));
-  const identify::StudySpec spec = identify::preflight_study(parsed, *model, preflight_pool, &options.initial_run);
+  // One pool for the initial-point check and the loop (as the MPI path shares its evaluator): the
+  // check's experiments run side by side over --jobs, and the run it hands over is the loop's own.
+  identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
+                                     static_cast<unsigned long>(parsed.seed));
+  const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
   identify::prepare_output_folder(options.output_dir, inputs, "--out");
   if (!lock) lock.emplace(options.output_dir);
+  options.evaluator = &pool;
   const auto result = identify::run_study(spec, *model, options);
   print_summary(spec, result, options.output_dir);
   print_warnings(options.output_dir / "study.db");
