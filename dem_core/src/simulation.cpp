@@ -337,12 +337,12 @@ std::size_t Simulation::wall_contact_count() const {
 }
 
 double Simulation::elastic_energy() const {
-  reduce_diagnostics();
+  reduce_pair_diagnostics();
   return elastic_energy_;
 }
 
 std::size_t Simulation::contact_count() const {
-  reduce_diagnostics();
+  reduce_pair_diagnostics();
   return contact_count_;
 }
 

@@ -181,7 +181,8 @@ class Simulation {
   /// `old` is freed before the histories move).
   void rebuild_pair_arrays(NeighborList&& old, const std::vector<std::uint32_t>& order);
   double kick_and_drift(double dt);
-  void reduce_diagnostics() const;  // lazily, when a diagnostic is asked for
+  void reduce_diagnostics() const;       // wall loads, lazily, when one is asked for
+  void reduce_pair_diagnostics() const;  // pair energy and contact count, lazily
   [[nodiscard]] double resolved_step() const;
 
   SimulationSettings settings_;
@@ -205,11 +206,13 @@ class Simulation {
   ContactLawStates contact_state_{};
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
-  std::uint32_t next_id_ = 0;  // id of the next particle added
-  mutable double elastic_energy_ = 0.0;
+  std::uint32_t next_id_ = 0;                 // id of the next particle added
+  mutable double wall_elastic_energy_ = 0.0;  // wall slots' springs, summed with the wall loads
+  mutable double elastic_energy_ = 0.0;       // walls' and pairs' springs
   mutable std::size_t contact_count_ = 0;
-  mutable bool diagnostics_valid_ = false;
-  bool rebuild_requested_ = false;  // walls added or their motion changed
+  mutable bool diagnostics_valid_ = false;       // wall loads
+  mutable bool pair_diagnostics_valid_ = false;  // pair energy and contact count
+  bool rebuild_requested_ = false;               // walls added or their motion changed
   bool forces_valid_ = false;
   mutable double cached_step_ = 0.0;
   mutable bool step_cache_valid_ = false;
