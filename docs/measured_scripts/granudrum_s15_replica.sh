@@ -1,0 +1,24 @@
+#!/bin/bash
+# One fill replica of the s = 1.5 calibration's best point (docs/granudrum.md, "The full
+# calibration at s = 1.5"): the study's overrides, another random packing (drum.fill_seed), scored
+# against the photo by profile_error.py as the report scores it.
+# Usage (from the repository root, after scripts/build):
+#   docs/measured_scripts/granudrum_s15_replica.sh WORK FILL_SEED RPM
+# WORK: scratch folder (photo profiles, runs, logs; DEMFIT_CACHE_DIR=WORK/cache).
+# Prints: fill FILL_SEED rpm RPM wall-time RMS [mm] area [mm2] common x-range [mm].
+set -euo pipefail
+work=$1 seed=$2 rpm=$3
+mkdir -p "$work"
+export DEMFIT_CACHE_DIR=$work/cache
+photo=$work/photo$rpm
+[ -f "$photo/free_surface.csv" ] ||
+  build/apps/demfit target from-image "data/granudrum_mcc/granudrum_mcc_${rpm}rpm.bmp" --diameter 84mm \
+    --margin 0.3 --points 41 --out "$photo" > /dev/null
+out=$work/run_f${seed}_$rpm
+log=$work/log_f${seed}_$rpm
+/usr/bin/time -f "%e s" build/apps/demfit simulate cases/granudrum_mcc.json --threads 1 --out "$out" \
+  --set frics=0.4003570477367563 fricr=0.2142785650738433 particle_count=29344.618202290832 \
+  drum.rpm="$rpm" time_step.value=1.5e-5 drum.scale_factor=1.5 drum.duration=1.7 drum.surface_window=0.2 \
+  drum.surface_snapshots=21 drum.image.margin=0.3 drum.fill_seed="$seed" > "$log" 2>&1
+echo "fill $seed rpm $rpm $(tail -1 "$log") $(python3 docs/measured_scripts/profile_error.py \
+  "$out/free_surface_image.csv" "$photo/free_surface.csv")"
