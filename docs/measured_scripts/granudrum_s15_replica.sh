@@ -10,10 +10,8 @@ set -euo pipefail
 work=$1 seed=$2 rpm=$3
 mkdir -p "$work"
 export DEMFIT_CACHE_DIR=$work/cache
-photo=$work/photo$rpm
-[ -f "$photo/free_surface.csv" ] ||
-  build/apps/demfit target from-image "data/granudrum_mcc/granudrum_mcc_${rpm}rpm.bmp" --diameter 84mm \
-    --margin 0.3 --points 41 --out "$photo" > /dev/null
+source "$(dirname "$0")/photo_profile.sh"
+photo=$(photo_profile "$work" "$rpm")
 out=$work/run_f${seed}_$rpm
 log=$work/log_f${seed}_$rpm
 /usr/bin/time -f "%e s" build/apps/demfit simulate cases/granudrum_mcc.json --threads 1 --out "$out" \

@@ -1,0 +1,9 @@
+# Sourced by the GranuDrum measurement scripts: photo_profile WORK RPM extracts the photo's free
+# surface once (margin 0.3, 41 points, as the shipped studies) into WORK/photoRPM and prints that folder.
+photo_profile() {
+  local photo=$1/photo$2
+  [ -f "$photo/free_surface.csv" ] ||
+    build/apps/demfit target from-image "data/granudrum_mcc/granudrum_mcc_${2}rpm.bmp" --diameter 84mm \
+      --margin 0.3 --points 41 --out "$photo" > /dev/null
+  echo "$photo"
+}
