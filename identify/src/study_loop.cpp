@@ -280,10 +280,18 @@ MatrixXd StudyLoop::design(int iteration, const Box& region, const VectorXd& pre
     points.bottomRows(P - 1) = rbf_surrogate::latin_hypercube_maximin(P - 1, dims_, seed, region);
     kinds[0] = "initial";
   } else {  // the previous predicted optimum plus space-filling / infill points
-    points.row(0) = previous_optimum.transpose();
-    points.bottomRows(P - 1) = ask_tell_ ? ask_tell_->ask(P - 1, previous_optimum.transpose(), seed)
-                                         : infill(previous_optimum, P - 1, region, seed, iteration);
-    kinds[0] = "optimum";
+    // When too few runs allowed a surrogate, the "optimum" is the best run itself: running it
+    // again would repeat a deterministic result, so the whole batch goes to new points.
+    const bool optimum_is_new = std::none_of(all_points_.begin(), all_points_.end(), [&](const VectorXd& p) {
+      return (p - previous_optimum).cwiseAbs().maxCoeff() < 1e-14;
+    });
+    const int fresh = optimum_is_new ? P - 1 : P;
+    if (optimum_is_new) {
+      points.row(0) = previous_optimum.transpose();
+      kinds[0] = "optimum";
+    }
+    points.bottomRows(fresh) = ask_tell_ ? ask_tell_->ask(fresh, previous_optimum.transpose(), seed)
+                                         : infill(previous_optimum, fresh, region, seed, iteration);
   }
   return points;
 }

@@ -4,7 +4,8 @@
 // objective per run, NaN for a failed run, in point order — the order the store replays on resume)
 // and asks for the infill points of the next iteration: q = points_per_iteration − 1 batch
 // expected-improvement points (kriging believer) on the composite objective; row 0 of each
-// iteration stays the loop's predicted optimum of the curve surrogate.
+// iteration stays the loop's predicted optimum of the curve surrogate (all points_per_iteration
+// are asked for when that optimum is a run already made).
 #include <cstdint>
 #include <memory>
 

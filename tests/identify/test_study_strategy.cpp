@@ -97,3 +97,24 @@ TEST_CASE("An expected-improvement study resumed after a kill reaches the uninte
   CHECK(resumed.best_objective == reference.best_objective);
   CHECK(resumed.ci_half_width == reference.ci_half_width);
 }
+
+TEST_CASE("A first iteration too small for a surrogate is not followed by a re-run of its best point",
+          "[identify][strategy]") {
+  // 3 points per iteration on 2 variables: iteration 0 has fewer than n + 2 runs, so its
+  // "optimum" is its best run. Every strategy must spend iteration 1 on new points instead:
+  // 3 iterations x 3 points + verification = 10 runs, all at distinct points.
+  for (const std::string strategy : {"srsm", "adaptive_infill", "expected_improvement"}) {
+    auto study = test::analytic_study(0.0, 3);
+    study["sampling"] = {{"strategy", strategy}, {"points_per_iteration", 3}};
+    const auto dir = test::fresh_dir("strategy_no_rerun_" + strategy);
+    run_study(parse_study(study, "."), AnalyticCurveModel(), quiet(dir));
+    const auto evaluations = StudyStore::open_existing(dir / "study.db").evaluations();
+    INFO("strategy " << strategy);
+    REQUIRE(evaluations.size() == 10);
+    for (std::size_t i = 0; i < evaluations.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        INFO("runs " << j << " and " << i);
+        CHECK(evaluations[i].parameters != evaluations[j].parameters);
+      }
+  }
+}
