@@ -193,7 +193,7 @@ MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region
   std::vector<int> unique;
   for (int i = 0; i < static_cast<int>(runs_.size()); ++i) {
     bool duplicate = false;
-    for (int u : unique) duplicate = duplicate || (runs_[u].unit - runs_[i].unit).cwiseAbs().maxCoeff() < 1e-14;
+    for (int u : unique) duplicate = duplicate || detail::same_point(runs_[u].unit, runs_[i].unit);
     if (!duplicate) unique.push_back(i);
   }
   if (static_cast<int>(unique.size()) < dims_ + 2)
@@ -283,7 +283,7 @@ MatrixXd StudyLoop::design(int iteration, const Box& region, const VectorXd& pre
     // When too few runs allowed a surrogate, the "optimum" is the best run itself: running it
     // again would repeat a deterministic result, so the whole batch goes to new points.
     const bool optimum_is_new = std::none_of(all_points_.begin(), all_points_.end(), [&](const VectorXd& p) {
-      return (p - previous_optimum).cwiseAbs().maxCoeff() < 1e-14;
+      return detail::same_point(p, previous_optimum);
     });
     const int fresh = optimum_is_new ? P - 1 : P;
     if (optimum_is_new) {

@@ -212,6 +212,8 @@ rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surro
   return result;
 }
 
+bool same_point(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-14; }
+
 std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, const Eigen::VectorXd& center,
                                   const Eigen::VectorXd& width, int minimum, int maximum) {
   const Eigen::VectorXd w = width.cwiseMax(1e-12);
@@ -224,7 +226,7 @@ std::vector<int> nearest_distinct(const std::vector<Eigen::VectorXd>& points, co
     if (static_cast<int>(chosen.size()) >= maximum) break;
     if (entry.first > 1.0 + 1e-12 && static_cast<int>(chosen.size()) >= minimum) break;
     bool duplicate = false;  // a repeated point (e.g. the verification run) adds no information
-    for (int c : chosen) duplicate = duplicate || (points[c] - points[entry.second]).cwiseAbs().maxCoeff() < 1e-14;
+    for (int c : chosen) duplicate = duplicate || same_point(points[c], points[entry.second]);
     if (!duplicate) chosen.push_back(entry.second);
   }
   std::sort(chosen.begin(), chosen.end());  // run order: deterministic

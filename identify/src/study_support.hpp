@@ -60,6 +60,10 @@ rbf_surrogate::MinimizeResult minimize_prediction(const ResponseSurrogate& surro
                                                   const CompositeObjective& objective, const rbf_surrogate::Box& region,
                                                   std::uint64_t seed, std::optional<HeldCoordinate> held = {});
 
+// Two points in unit coordinates are the same run if they agree to 1e-14 in every variable: a
+// deterministic model answers both alike, so a repeat adds no information (fits, infill, design).
+bool same_point(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
 // Indices (ascending) of the distinct points (repeated points count once) within one `width` of
 // `center` (distance max_j |x_j - c_j| / width_j <= 1), nearest first, topped up with the next
 // nearest to `minimum` and cut at `maximum`: the runs a surrogate is fitted to, and the
