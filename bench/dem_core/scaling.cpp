@@ -3,7 +3,7 @@
 // with N so every size has the same contacts per particle (6 pairs in the half list). 10..50
 // warm-up steps (lists built, first transients) precede the timed steps. Each size runs once per
 // PairLoadOrder, in its own child; peak memory is the child's ru_maxrss after the warm-up (2
-// threads, Morton order: dem_core's defaults) and one forced list rebuild, before the box of
+// threads, slab order: dem_core's defaults) and one forced list rebuild, before the box of
 // the stored-order A/B is built.
 #include "scaling.hpp"
 
@@ -134,7 +134,7 @@ int run_scaling_child(std::size_t particles, long steps, int repeats, bool shuff
   const PairLoadOrder order = order_text == order_name(PairLoadOrder::own_row_first)
                                   ? PairLoadOrder::own_row_first
                                   : PairLoadOrder::ascending_first_member;
-  // The peak is taken with the kernel's default Morton order (few pairs cross the threads'
+  // The peak is taken with the kernel's default slab order (few pairs cross the threads'
   // chunks), before the stored-order box of the A/B is built.
   Simulation reordered = make_box(particles, shuffled, order);
   reordered.set_reorder_particles(true);  // hertz_settings keeps insertion order
@@ -168,7 +168,7 @@ void print_scaling_table(const ScalingOptions& o) {
       "child process\n",
       o.shuffled ? "shuffled" : "lattice", o.repeats);
   std::printf(
-      "M particle-steps/s as stored / with reorder_particles (Morton order at list rebuilds, same run); peak memory\n"
+      "M particle-steps/s as stored / with reorder_particles (slab order at list rebuilds, same run); peak memory\n"
       "with reordering, after a warm-up on 2 threads and one list rebuild; marginal = between successive sizes\n");
   std::printf("%9s %-22s %7s %6s %15s %15s %8s %11s %9s  %s\n", "N", "pair_load_order", "pairs/N", "steps", "1 thread",
               "2 threads", "speedup", "peak B/part", "marg B/p", "load");

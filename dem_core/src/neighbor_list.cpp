@@ -77,9 +77,15 @@ void for_each_partner(const CellGrid& g, std::span<const Vec3> x, std::span<cons
     for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, g.ny - 1); ++y)
       for (std::int64_t xx = std::max<std::int64_t>(cx - 1, 0); xx <= std::min(cx + 1, g.nx - 1); ++xx) {
         const std::size_t c = static_cast<std::size_t>((z * g.ny + y) * g.nx + xx);
-        for (std::uint32_t k = g.cell_start[c]; k < g.cell_start[c + 1]; ++k) {
+        const std::uint32_t end = g.cell_start[c + 1];
+        // A cell lists its particles in ascending index: one look at its last decides whether any
+        // is a partner (j > i), and the first j > i is found without testing the smaller ones
+        // one by one (in spatial order about half the cells around i hold only smaller indices).
+        if (end == g.cell_start[c] || g.cell_particles[end - 1] <= i) continue;
+        const auto first = std::upper_bound(g.cell_particles.begin() + g.cell_start[c], g.cell_particles.begin() + end,
+                                            static_cast<std::uint32_t>(i));
+        for (auto k = static_cast<std::uint32_t>(first - g.cell_particles.begin()); k < end; ++k) {
           const std::uint32_t j = g.cell_particles[k];
-          if (j <= i) continue;
           const double cutoff = r[i] + r[j] + skin;
           if (norm2(x[j] - p) < cutoff * cutoff) emit(j);
         }

@@ -1,4 +1,5 @@
-// Morton order: interleave the bits of the three cell coordinates (21 bits each).
+// Slab order: the slab index (21 bits) above the interleaved bits of the two other cell
+// coordinates (21 bits each).
 #include "particle_order.hpp"
 
 #include <algorithm>
@@ -9,14 +10,14 @@
 namespace demfit::dem_core {
 namespace {
 
-/// Spread the low 21 bits of x so that bit b lands at bit 3b.
+/// Spread the low 21 bits of x so that bit b lands at bit 2b.
 std::uint64_t spread_bits(std::uint64_t x) {
   x &= 0x1fffffULL;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
+  x = (x | x << 16) & 0x0000ffff0000ffffULL;
+  x = (x | x << 8) & 0x00ff00ff00ff00ffULL;
+  x = (x | x << 4) & 0x0f0f0f0f0f0f0f0fULL;
+  x = (x | x << 2) & 0x3333333333333333ULL;
+  x = (x | x << 1) & 0x5555555555555555ULL;
   return x;
 }
 
@@ -39,30 +40,57 @@ void sort_unique_keys(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keys
   std::inplace_merge(keys.begin(), middle, keys.end());
 }
 
-}  // namespace
+struct Bounds {
+  Vec3 low, high;
+};
 
-std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double cell, int threads) {
-  const std::size_t n = positions.size();
-  if (n < 2 || !(cell > 0.0)) return {};
-  const auto count = static_cast<std::int64_t>(n);
-  // min is order-independent: the same corner for any thread count.
+/// The positions' bounding box; min and max are order-independent: the same for any thread count.
+Bounds bounds(std::span<const Vec3> positions, int threads) {
+  const auto count = static_cast<std::int64_t>(positions.size());
   double lo_x = std::numeric_limits<double>::max(), lo_y = lo_x, lo_z = lo_x;
-#pragma omp parallel for schedule(static) reduction(min : lo_x, lo_y, lo_z) num_threads(threads) if (threads > 1)
+  double hi_x = std::numeric_limits<double>::lowest(), hi_y = hi_x, hi_z = hi_x;
+#pragma omp parallel for schedule(static) reduction(min                                               \
+                                                    : lo_x, lo_y, lo_z) reduction(max                 \
+                                                                                  : hi_x, hi_y, hi_z) \
+    num_threads(threads) if (threads > 1)
   for (std::int64_t k = 0; k < count; ++k) {
     const Vec3& p = positions[static_cast<std::size_t>(k)];
     lo_x = std::min(lo_x, p.x);
     lo_y = std::min(lo_y, p.y);
     lo_z = std::min(lo_z, p.z);
+    hi_x = std::max(hi_x, p.x);
+    hi_y = std::max(hi_y, p.y);
+    hi_z = std::max(hi_z, p.z);
   }
+  return {{lo_x, lo_y, lo_z}, {hi_x, hi_y, hi_z}};
+}
+
+/// Axis of the largest extent (0 x, 1 y, 2 z; ties to the lower axis).
+int longest_axis(const Bounds& b) {
+  const double ex = b.high.x - b.low.x, ey = b.high.y - b.low.y, ez = b.high.z - b.low.z;
+  if (ex >= ey && ex >= ez) return 0;
+  return ey >= ez ? 1 : 2;
+}
+
+double component(const Vec3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+}  // namespace
+
+std::vector<std::uint32_t> slab_order(std::span<const Vec3> positions, double cell, int threads) {
+  const std::size_t n = positions.size();
+  if (n < 2 || !(cell > 0.0)) return {};
+  const auto count = static_cast<std::int64_t>(n);
+  const Bounds box = bounds(positions, threads);
+  const int across = longest_axis(box), first = across == 0 ? 1 : 0, second = across == 2 ? 1 : 2;
   const double inverse = 1.0 / cell;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(k);
     const Vec3& p = positions[i];
-    keys[i] = {spread_bits(cell_coordinate(p.x, lo_x, inverse)) |
-                   spread_bits(cell_coordinate(p.y, lo_y, inverse)) << 1 |
-                   spread_bits(cell_coordinate(p.z, lo_z, inverse)) << 2,
+    const std::uint64_t slab = cell_coordinate(component(p, across), component(box.low, across), inverse);
+    keys[i] = {slab << 42 | spread_bits(cell_coordinate(component(p, first), component(box.low, first), inverse)) |
+                   spread_bits(cell_coordinate(component(p, second), component(box.low, second), inverse)) << 1,
                static_cast<std::uint32_t>(i)};
   }
   if (std::is_sorted(keys.begin(), keys.end())) return {};

@@ -1,7 +1,12 @@
 #pragma once
-// Spatial ordering of particles along a Morton (Z-order) curve, so that particles close in space
-// are close in memory: the pair loop and the per-particle gather then touch few cache lines even
-// when the bed has mixed (issue 16: past the last-level cache the kernel was memory-bound).
+// Spatial ordering of particles, so that particles close in space are close in memory (the pair
+// loop and the per-particle gather then touch few cache lines even when the bed has mixed; issue
+// 16: past the last-level cache the kernel was memory-bound) AND so that T threads' contiguous
+// chunks of the order meet across planes: slabs one cell thick across the longest extent of the
+// bed, Morton (Z) order of the cells within a slab. A chunk boundary then lies inside one slab,
+// and the pairs crossing it are those of about one plane section of the bed; a 3-D Morton order
+// cuts the bed along a staircase of octant faces, with ~3x the crossing pairs on the issue-16
+// drum (measured: bench_dem --only drum prints the fraction).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -11,12 +16,13 @@
 
 namespace demfit::dem_core {
 
-/// Permutation order[new] = old that sorts the particles by the Morton code of their cell (edge
-/// `cell` [m] > 0, grid anchored at the lowest corner); particles of one cell keep ascending old
-/// index, so the result depends on the positions only (deterministic, any thread count).
-/// Returns an empty vector when the current order already is that order. `threads` share the
-/// work; the result does not depend on them.
-std::vector<std::uint32_t> morton_order(std::span<const Vec3> positions, double cell, int threads = 1);
+/// Permutation order[new] = old that sorts the particles by (slab, 2-D Morton code of the cell
+/// in the slab); cells have edge `cell` [m] > 0 on a grid anchored at the lowest corner, slabs
+/// are one cell thick across the axis with the largest extent (ties: x, then y). Particles of one
+/// cell keep ascending old index, so the result depends on the positions only (deterministic, any
+/// thread count). Returns an empty vector when the current order already is that order. `threads`
+/// share the work; the result does not depend on them.
+std::vector<std::uint32_t> slab_order(std::span<const Vec3> positions, double cell, int threads = 1);
 
 /// v[new] = old v[order[new]], applied to blocks of `block` consecutive elements
 /// (per-(particle, wall) arrays have `walls` elements per particle). Empty vectors stay empty.

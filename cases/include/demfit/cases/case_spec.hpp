@@ -105,7 +105,7 @@ struct OutputSpec {
   double progress_interval = 1.0;      // wall-clock seconds between progress updates
 };
 
-// How the kernel runs, not what it simulates. "numerics.reorder_particles": Morton order at list
+// How the kernel runs, not what it simulates. "numerics.reorder_particles": slab order at list
 // rebuilds (dem_core's default; x1.5 on 2 threads on the issue-16 drum, x2.1-6.4 past the cache
 // at 1e5-1e6 particles, bench_dem --only scaling). Off in cases by default: a reordered run is
 // another round-off realisation of the flow, and the shipped figures (Tables 1 and 3) were made

@@ -58,7 +58,8 @@ struct SimulationSettings {
   double time_step_factor = 0.15;
   /// Verlet skin [m]; <= 0 means 0.3 x the largest radius (set when the first step runs).
   double skin = 0.0;
-  /// Sort the particles along a Morton (space-filling) curve at every neighbour-list rebuild, so
+  /// Sort the particles into slabs across the bed's longest extent, Morton order inside a slab
+  /// (particle_order.hpp), at every neighbour-list rebuild, so
   /// that neighbours in space are neighbours in memory (issue 16: large mixed beds are otherwise
   /// memory-bound). All per-particle arrays and contact histories follow the permutation; results
   /// stay deterministic and identical for any thread count, but particle INDICES then change at
@@ -174,7 +175,7 @@ class Simulation {
   template <class Law>
   ContactLawState<Law>& law_state();
   void ensure_neighbors(double moved);
-  /// With settings_.reorder_particles: permute every per-particle array into Morton order and
+  /// With settings_.reorder_particles: permute every per-particle array into slab order and
   /// return order[new] = old (empty when nothing moved). Pair arrays are rebuilt by the caller.
   std::vector<std::uint32_t> apply_spatial_order();
   /// New pair arrays after a rebuild, histories carried over from `old` (mapped through `order`;
