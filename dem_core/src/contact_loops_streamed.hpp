@@ -48,8 +48,8 @@ inline std::size_t crossing_blocks(std::size_t rows_with_crossing) {
 /// order, into `out`. Rows are sorted by second member, so a row's crossing pairs are its tail.
 template <class Law>
 void crossing_pairs(const StreamedPairSide<Law>& pairs, const ParticleState& p, const StepInputs& step,
-                    const std::vector<std::size_t>& chunk, std::size_t begin, std::size_t end,
-                    std::vector<CrossingPairLoads>& out) {
+                    const std::vector<std::size_t>& chunk, std::size_t begin, std::size_t end, CrossingBuffer& buffer) {
+  std::vector<CrossingPairLoads>& out = buffer.pairs;
   const auto rows = pairs.list.row_offsets();
   const auto second = pairs.list.second();
   out.clear();
@@ -69,11 +69,12 @@ void crossing_pairs(const StreamedPairSide<Law>& pairs, const ParticleState& p, 
 /// Walks the crossing buffers in pair order from the first entry of pair `from` on.
 class CrossingCursor {
  public:
-  CrossingCursor(const std::vector<std::vector<CrossingPairLoads>>& buffers, std::size_t count, std::uint32_t from)
+  CrossingCursor(const std::vector<CrossingBuffer>& buffers, std::size_t count, std::uint32_t from)
       : buffers_(buffers), count_(count) {
-    while (buffer_ < count_ && (buffers_[buffer_].empty() || buffers_[buffer_].back().pair < from)) ++buffer_;
+    while (buffer_ < count_ && (buffers_[buffer_].pairs.empty() || buffers_[buffer_].pairs.back().pair < from))
+      ++buffer_;
     if (buffer_ == count_) return;
-    const auto& b = buffers_[buffer_];
+    const auto& b = buffers_[buffer_].pairs;
     index_ = static_cast<std::size_t>(
         std::lower_bound(b.begin(), b.end(), from,
                          [](const CrossingPairLoads& x, std::uint32_t k) { return x.pair < k; }) -
@@ -81,18 +82,18 @@ class CrossingCursor {
   }
   /// The entry of pair k if it is the next one (then the cursor moves on), else nullptr.
   const CrossingPairLoads* take(std::uint32_t k) {
-    if (buffer_ == count_ || buffers_[buffer_][index_].pair != k) return nullptr;
-    const CrossingPairLoads* entry = &buffers_[buffer_][index_];
-    if (++index_ == buffers_[buffer_].size()) {
+    if (buffer_ == count_ || buffers_[buffer_].pairs[index_].pair != k) return nullptr;
+    const CrossingPairLoads* entry = &buffers_[buffer_].pairs[index_];
+    if (++index_ == buffers_[buffer_].pairs.size()) {
       index_ = 0;
       do ++buffer_;
-      while (buffer_ < count_ && buffers_[buffer_].empty());
+      while (buffer_ < count_ && buffers_[buffer_].pairs.empty());
     }
     return entry;
   }
 
  private:
-  const std::vector<std::vector<CrossingPairLoads>>& buffers_;
+  const std::vector<CrossingBuffer>& buffers_;
   std::size_t count_, buffer_ = 0, index_ = 0;
 };
 
@@ -102,14 +103,14 @@ class CrossingCursor {
 template <class Law>
 void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p,
                   const StepInputs& step, std::size_t begin, std::size_t end,
-                  const std::vector<std::vector<CrossingPairLoads>>& crossing, std::size_t buffers) {
+                  const std::vector<CrossingBuffer>& crossing, std::size_t buffers) {
   for (std::size_t i = begin; i < end; ++i) {
     p.force[i] = p.mass[i] * step.gravity;
     p.torque[i] = {};
   }
   const auto rows = pairs.list.row_offsets();
   for (std::size_t w = 0; w < buffers; ++w)
-    for (const CrossingPairLoads& c : crossing[w]) {
+    for (const CrossingPairLoads& c : crossing[w].pairs) {
       if (c.pair >= rows[begin]) break;  // from here on: this chunk's rows and later ones
       if (c.second >= begin && c.second < end) {
         p.force[c.second] -= c.loads.force;
@@ -147,12 +148,11 @@ void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls
 /// from each step's chunk times (results do not depend on it).
 template <class Law>
 void all_forces_streamed(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls, ParticleState& p,
-                         const StepInputs& step, std::vector<std::vector<CrossingPairLoads>>& crossing,
-                         ChunkBalance& balance) {
+                         const StepInputs& step, std::vector<CrossingBuffer>& crossing, ChunkBalance& balance) {
   const std::size_t n = p.size();
   if (step.threads <= 1 || n < 2) {
     crossing.resize(1);
-    crossing[0].clear();
+    crossing[0].pairs.clear();
     stream_chunk(pairs, walls, p, step, 0, n, crossing, 0);
     return;
   }

@@ -115,9 +115,12 @@ void collect_wave(const CellGrid& grid, std::span<const Vec3> positions, std::sp
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const auto thread = static_cast<std::uint32_t>(omp_get_thread_num());
-    std::vector<std::uint32_t>& mine = partners[thread];
+    // Appended to as a local: the threads' vectors side by side in `partners` share a cache line,
+    // and every append would take it from the other thread.
+    std::vector<std::uint32_t> mine;
+    mine.swap(partners[thread]);
     mine.clear();
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
     for (std::int64_t b = first; b < last; ++b) {
       const auto block = static_cast<std::size_t>(b);
       place[block - first_block] = {thread, mine.size()};
@@ -128,6 +131,7 @@ void collect_wave(const CellGrid& grid, std::span<const Vec3> positions, std::sp
         row_offsets[i + 1] = static_cast<std::uint32_t>(mine.size() - row_start);
       }
     }
+    partners[thread].swap(mine);
   }
   const std::size_t row_end = std::min(n, last_block * kBuildBlockRows);
   for (std::size_t i = first_block * kBuildBlockRows; i < row_end; ++i) row_offsets[i + 1] += row_offsets[i];

@@ -2,6 +2,7 @@
 // What a contact law sees of one contact, computed once per pair (or particle–wall pair) by the
 // loops, and the history a law may carry from step to step.
 #include <cstdint>
+#include <vector>
 
 #include "demfit/dem_core/vec3.hpp"
 
@@ -60,6 +61,13 @@ struct CrossingPairLoads {
   std::uint32_t pair = 0;    ///< index in the half list
   std::uint32_t second = 0;  ///< second member (in a later chunk than the first)
   PairLoads loads{};
+};
+
+/// One block of rows' crossing pairs. Its own cache line: the threads fill neighbouring blocks at
+/// the same time, and vectors side by side would pass their shared line back and forth on every
+/// append.
+struct alignas(64) CrossingBuffer {
+  std::vector<CrossingPairLoads> pairs;
 };
 
 }  // namespace demfit::dem_core

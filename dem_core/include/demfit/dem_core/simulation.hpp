@@ -200,7 +200,7 @@ class Simulation {
   std::vector<std::uint8_t> pair_touching_{};
   // ascending_first_member with threads > 1: per block of rows, the touching pairs crossing
   // into a later thread's chunk; and where the chunks split (learnt from their times).
-  std::vector<std::vector<CrossingPairLoads>> crossing_pair_loads_{};
+  std::vector<CrossingBuffer> crossing_pair_loads_{};
   ChunkBalance chunk_balance_{};
   WallSlots wall_slots_{};  // particle–wall candidates and their last loads
   // The active law's contact histories (pairs and wall slots, of its history type) and wall laws.
