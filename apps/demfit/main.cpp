@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
 
 int main(int argc, char** argv) {
@@ -12,6 +13,9 @@ int main(int argc, char** argv) {
   // passive and active waiting). libgomp reads this before main, hence a re-execution; the user's
   // OMP_WAIT_POLICY or GOMP_SPINCOUNT wins.
   demfit::dem_core::use_bounded_spin_waiting(argv);
+  // Freed memory stays in the process: a rebuild's fresh pages cost ~10 us each on a virtual
+  // machine (dem_core/memory_retention.hpp).
+  demfit::dem_core::retain_freed_memory();
   CLI::App app{
       "demfit — identify Discrete Element Method contact parameters (NORMK, SHEARK, damping, "
       "friction) from measured curves.\nAll quantities are SI unless a name states its unit "

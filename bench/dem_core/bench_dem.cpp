@@ -13,6 +13,7 @@
 
 #include "bench_scenarios.hpp"
 #include "demfit/dem_core/dem_core.hpp"
+#include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
 #include "drum_comparison.hpp"
 #include "roundoff.hpp"
@@ -74,12 +75,17 @@ int usage() {
       "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
       "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
-      "                 [--lattice-order] [--no-liggghts (drum: time demfit only)]\n");
+      "                 [--lattice-order] [--no-liggghts (drum: time demfit only)]\n"
+      "                 [--malloc-defaults (glibc's own thresholds instead of retain_freed_memory)]\n");
   return EXIT_FAILURE;
 }
 
 int main(int argc, char** argv) {
   dem_core::use_bounded_spin_waiting(argv);  // as the demfit CLI waits
+  // As the demfit CLI keeps freed memory, unless --malloc-defaults (an A/B of the retention).
+  bool malloc_defaults = false;
+  for (int a = 1; a < argc; ++a) malloc_defaults = malloc_defaults || std::string(argv[a]) == "--malloc-defaults";
+  const bool retained = !malloc_defaults && dem_core::retain_freed_memory();
   if (argc == 7 && std::string(argv[1]) == "--scaling-child")
     return bench::run_scaling_child(std::stoul(argv[2]), std::stol(argv[3]), std::stoi(argv[4]),
                                     std::string(argv[5]) == "shuffled", argv[6]);
@@ -87,6 +93,8 @@ int main(int argc, char** argv) {
   std::string only;
   bench::DrumComparisonOptions drum;
   drum.dir = std::filesystem::temp_directory_path() / ("demfit_bench_drum_" + std::to_string(getpid()));
+  drum.memory_retention =
+      retained ? "kept in the process (retain_freed_memory, as the CLI)" : "returned to the kernel (glibc defaults)";
   bench::ScalingOptions scaling;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -107,6 +115,8 @@ int main(int argc, char** argv) {
       scaling.work = std::stod(argv[++a]);
     else if (arg == "--no-liggghts")
       drum.liggghts = false;
+    else if (arg == "--malloc-defaults")
+      continue;  // read above
     else if (arg == "--lattice-order")
       scaling.shuffled = false;
     else if (arg == "--scaling-sizes" && has_value) {

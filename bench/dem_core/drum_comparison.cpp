@@ -51,13 +51,16 @@ double time_demfit(const Simulation& prepared, int threads, long steps, Simulati
   sim.set_reorder_particles(v.reorder);
   sim.set_pair_load_order(v.order);
   const std::size_t builds = sim.neighbor_list().build_count();
+  const std::uint64_t faults = minor_page_faults();
   const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
+  const std::uint64_t new_pages = minor_page_faults() - faults;
   const double rate = static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds;
   std::printf(
       "  demfit   %d thread%s %8.3f s  %6.3g M particle-steps/s  (%zu list builds, %.1f %% of pairs cross the "
-      "middle)%s  [%s]\n",
+      "middle, %llu page faults)%s  [%s]\n",
       threads, threads > 1 ? "s" : " ", seconds, rate / 1e6, sim.neighbor_list().build_count() - builds,
-      100.0 * crossing_share_at_middle(sim.neighbor_list()), v.label, load_average().c_str());
+      100.0 * crossing_share_at_middle(sim.neighbor_list()), static_cast<unsigned long long>(new_pages), v.label,
+      load_average().c_str());
   if (keep != nullptr) *keep = std::move(sim);
   return rate;
 }
@@ -112,6 +115,8 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
       "mu_r=%.2g, dt=%.3g s, skin=%.3g m, %ld steps, t0=%.3f s\n",
       bed.particle_count(), spec.radius, 2 * spec.drum_radius, spec.depth, spec.youngs_modulus, spec.poisson_ratio,
       spec.restitution, spec.sliding_friction, spec.rolling_friction, spec.time_step, spec.skin, o.steps, bed.time());
+  std::printf("this host: a fresh page (page fault) costs %.1f us; freed memory %s\n", fresh_page_microseconds(),
+              o.memory_retention.c_str());
   const bool have_liggghts = o.liggghts && !liggghts_executable().empty();
   std::size_t triangles = 0;
   if (have_liggghts) {
