@@ -4,9 +4,12 @@
 // size. glibc returns large freed blocks to the kernel (a block above its mmap threshold is
 // unmapped; the heap top above its trim threshold is released), so the next rebuild takes fresh
 // pages, and each fresh page is a page fault. On this project's machines (virtual machines) one
-// costs ~10 µs: bench_dem --only drum prints the cost and the faults per rebuild. Kept in the
-// process, the freed blocks are reused and the faults stop; the peak memory is that of the
-// largest rebuild, as before.
+// costs 9-12 µs; bench_dem --only drum prints the cost and each run's faults: in the cases' pair
+// order (own_row_first) a 10,000-step drum run on 1 thread took 15,401 faults with glibc's
+// defaults and 365 with the retention (bench/dem_core/measured/drum_2026-12-04_ab_retention.txt).
+// Peak memory at 10^6 particles with it: 463 (default order) and 757 (own_row_first) bytes per
+// particle, against 466 and 734 the session before (scaling_2026-12-04_eighteenth.txt,
+// scaling_2026-12-04_slab_order.txt): the cases' order keeps ~23 bytes per particle more.
 namespace demfit::dem_core {
 
 /// glibc only (elsewhere nothing changes): blocks below 32 MiB come from the heap, and up to
