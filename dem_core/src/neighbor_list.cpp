@@ -9,6 +9,7 @@
 
 #include <omp.h>
 
+#include "bounding_box.hpp"
 #include "list_slack.hpp"
 
 namespace demfit::dem_core {
@@ -30,13 +31,9 @@ struct CellGrid {
   }
 };
 
-CellGrid make_grid(std::span<const Vec3> positions, double edge) {
-  Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  Vec3 hi = -lo;
-  for (const Vec3& p : positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
+CellGrid make_grid(std::span<const Vec3> positions, double edge, int threads) {
+  const Bounds box = bounding_box(positions, threads);
+  const Vec3 lo = box.low, hi = box.high;
   // Cap the cell count (escaped particles would otherwise blow up the grid): at most ~4N cells.
   const double limit = 4.0 * static_cast<double>(positions.size()) + 64.0;
   auto count = [&](double e) {
@@ -189,7 +186,7 @@ void NeighborList::build(std::span<const Vec3> positions, std::span<const double
   if (transposed) column_offsets_.assign(n + 1, 0);
   if (n == 0) return;
   const double r_max = *std::max_element(radii.begin(), radii.end());
-  const CellGrid grid = make_grid(positions, 2.0 * r_max + skin);
+  const CellGrid grid = make_grid(positions, 2.0 * r_max + skin, std::max(threads, 1));
   collect_partners(grid, positions, radii, skin, std::max(threads, 1), expected_pairs, row_offsets_, second_);
   const std::size_t pairs = second_.size();
   if (!transposed) return;

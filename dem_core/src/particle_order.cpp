@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "bounding_box.hpp"
+
 namespace demfit::dem_core {
 namespace {
 
@@ -40,31 +42,6 @@ void sort_unique_keys(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keys
   std::inplace_merge(keys.begin(), middle, keys.end());
 }
 
-struct Bounds {
-  Vec3 low, high;
-};
-
-/// The positions' bounding box; min and max are order-independent: the same for any thread count.
-Bounds bounds(std::span<const Vec3> positions, int threads) {
-  const auto count = static_cast<std::int64_t>(positions.size());
-  double lo_x = std::numeric_limits<double>::max(), lo_y = lo_x, lo_z = lo_x;
-  double hi_x = std::numeric_limits<double>::lowest(), hi_y = hi_x, hi_z = hi_x;
-#pragma omp parallel for schedule(static) reduction(min                                               \
-                                                    : lo_x, lo_y, lo_z) reduction(max                 \
-                                                                                  : hi_x, hi_y, hi_z) \
-    num_threads(threads) if (threads > 1)
-  for (std::int64_t k = 0; k < count; ++k) {
-    const Vec3& p = positions[static_cast<std::size_t>(k)];
-    lo_x = std::min(lo_x, p.x);
-    lo_y = std::min(lo_y, p.y);
-    lo_z = std::min(lo_z, p.z);
-    hi_x = std::max(hi_x, p.x);
-    hi_y = std::max(hi_y, p.y);
-    hi_z = std::max(hi_z, p.z);
-  }
-  return {{lo_x, lo_y, lo_z}, {hi_x, hi_y, hi_z}};
-}
-
 /// Axis of the largest extent (0 x, 1 y, 2 z; ties to the lower axis).
 int longest_axis(const Bounds& b) {
   const double ex = b.high.x - b.low.x, ey = b.high.y - b.low.y, ez = b.high.z - b.low.z;
@@ -80,7 +57,7 @@ std::vector<std::uint32_t> slab_order(std::span<const Vec3> positions, double ce
   const std::size_t n = positions.size();
   if (n < 2 || !(cell > 0.0)) return {};
   const auto count = static_cast<std::int64_t>(n);
-  const Bounds box = bounds(positions, threads);
+  const Bounds box = bounding_box(positions, threads);
   const int across = longest_axis(box), first = across == 0 ? 1 : 0, second = across == 2 ? 1 : 2;
   const double inverse = 1.0 / cell;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
