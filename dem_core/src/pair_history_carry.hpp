@@ -3,22 +3,18 @@
 // used to hold the old and the new history arrays at once, 24 bytes per pair twice, the peak of a
 // dense bed's memory). First each new pair finds its old pair (`pair_sources`, parallel, while the
 // old list still exists); the old list is then freed and the history array is permuted in place
-// (`apply_pair_sources`): 4 bytes per pair for the sources and two bits instead of a second array.
-// The values are the same as a copy into a new array would give, bit for bit. Internal to
-// Simulation.
+// (`apply_pair_sources`, in parallel: pair_history_permutation.hpp): 4 bytes per pair for the
+// sources and one byte of flags instead of a second array. The values are the same as a copy into
+// a new array would give, bit for bit. Internal to Simulation.
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
 
 #include "demfit/dem_core/neighbor_list.hpp"
+#include "demfit/dem_core/pair_history_permutation.hpp"
 #include "list_slack.hpp"
 
 namespace demfit::dem_core {
-
-/// Where a new pair's history comes from: an old pair index, with kSwappedPair set when the
-/// members swapped roles (the tangential spring is then negated), or kNewPair.
-inline constexpr std::uint32_t kNewPair = 0xFFFFFFFFu;
-inline constexpr std::uint32_t kSwappedPair = 0x80000000u;
 
 /// A neighbour-list rebuild: the old and the new list, order[new] = old particle index (empty
 /// when the particles were not reordered), the old pairs' touching flags and the new ones (all 0).
@@ -62,25 +58,12 @@ inline std::vector<std::uint32_t> pair_sources(const PairRebuild& r) {
   return source;
 }
 
-namespace detail {
-
-/// history[to] = the old content of `from` (negated spring when swapped).
-template <class History>
-void move_history(std::vector<History>& history, std::size_t to, std::uint32_t source) {
-  const std::size_t from = source & ~kSwappedPair;
-  history[to] = history[from];
-  if (source & kSwappedPair) history[to].tangential_displacement = -history[to].tangential_displacement;
-}
-
-}  // namespace detail
-
 /// history (aligned with the old list) becomes aligned with the new one: new pair k takes the
-/// old history of source[k], a new pair (or an empty `source`) starts afresh. In place: a chain of
-/// moves starts at a slot whose content no new pair needs and follows the sources (each old slot
-/// feeds at most one new pair, so a slot is free once it has been read); what remains are cycles,
-/// done with one saved value each.
+/// old history of source[k], a new pair (or an empty `source`) starts afresh. In place when the
+/// capacity allows (pair_history_permutation.hpp), by `threads`; the result does not depend on them.
 template <class History>
-void apply_pair_sources(const std::vector<std::uint32_t>& source, std::size_t pairs, std::vector<History>& history) {
+void apply_pair_sources(const std::vector<std::uint32_t>& source, std::size_t pairs, std::vector<History>& history,
+                        int threads) {
   if (source.empty() || history.empty()) {
     history = std::vector<History>();
     history.reserve(with_slack(pairs));
@@ -99,47 +82,7 @@ void apply_pair_sources(const std::vector<std::uint32_t>& source, std::size_t pa
     history.swap(next);
     return;
   }
-  std::vector<bool> needed(history.size(), false), done(pairs, false);
-  for (std::size_t k = 0; k < pairs; ++k)
-    if (source[k] != kNewPair) needed[source[k] & ~kSwappedPair] = true;
-  if (pairs > history.size()) history.resize(pairs);  // within capacity: no reallocation
-  auto follow = [&](std::size_t to) {
-    while (!done[to]) {
-      done[to] = true;
-      const std::uint32_t s = source[to];
-      if (s == kNewPair) {
-        history[to] = History{};
-        return;
-      }
-      detail::move_history(history, to, s);
-      const std::size_t from = s & ~kSwappedPair;
-      needed[from] = false;
-      if (from >= pairs) return;  // an old slot past the new end: nobody writes it
-      to = from;                  // read, so free: its own new content comes next
-    }
-  };
-  for (std::size_t k = 0; k < pairs; ++k)
-    if (!done[k] && !(k < needed.size() && needed[k])) follow(k);
-  for (std::size_t start = 0; start < pairs; ++start) {  // cycles: every slot needed by the next
-    if (done[start]) continue;
-    const History saved = history[start];
-    std::size_t to = start;
-    while (true) {
-      done[to] = true;
-      const std::uint32_t s = source[to];
-      const std::size_t from = s & ~kSwappedPair;
-      if (s == kNewPair || from >= pairs || (from != start && done[from]))
-        throw std::logic_error("pair history carry: a cycle that does not close");
-      if (from == start) {
-        history[to] = saved;
-        if (s & kSwappedPair) history[to].tangential_displacement = -history[to].tangential_displacement;
-        break;
-      }
-      detail::move_history(history, to, s);
-      to = from;
-    }
-  }
-  history.resize(pairs);  // shrinking keeps the capacity for the next rebuild
+  apply_pair_sources_in_place(source, pairs, history, threads);
 }
 
 }  // namespace demfit::dem_core

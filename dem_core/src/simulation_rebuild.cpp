@@ -17,7 +17,7 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
   const int threads = settings_.threads;
   std::vector<std::uint32_t> order = slab_order(p.position, 2.0 * r_max + skin(), threads);
   if (order.empty()) return order;
-  p.for_each_array([&](auto& values) { apply_order(values, order, 1, threads); });
+  p.for_all_arrays([&](auto&... arrays) { apply_order(order, threads, arrays...); });
   return order;  // the wall slots are rebuilt next, through `order`
 }
 
@@ -33,7 +33,8 @@ void Simulation::rebuild_pair_arrays(NeighborList&& old, const std::vector<std::
   // Freed before the histories move (peak memory at rebuilds; `= {}` would keep the storage).
   old = NeighborList();
   old_touching = decltype(old_touching)();
-  std::visit([&](auto& state) { apply_pair_sources(source, pairs, state.pair_history); }, contact_state_);
+  std::visit([&](auto& state) { apply_pair_sources(source, pairs, state.pair_history, settings_.threads); },
+             contact_state_);
   // Allocated once the old histories are gone (ensure_neighbors freed the old loads before the
   // build): the peak of a rebuild stays below the steady per-pair storage.
   if (settings_.pair_load_order != PairLoadOrder::own_row_first) return;  // nothing stored per pair
