@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <tuple>
 #include <vector>
 
 #include "demfit/dem_core/vec3.hpp"
@@ -26,21 +25,19 @@ namespace demfit::dem_core {
 /// share the work; the result does not depend on them.
 std::vector<std::uint32_t> slab_order(std::span<const Vec3> positions, double cell, int threads = 1);
 
-/// Every array v[new] = old v[order[new]] (all of one length, or empty: empty ones stay empty),
-/// in one pass over `order` by one thread team: one fork and join per reordering instead of one
-/// per array (13 per-particle arrays; issue 16: the reordering was no faster on 2 threads than on
-/// 1). `threads` share the work; the result does not depend on them.
-template <class... T>
-void apply_order(const std::vector<std::uint32_t>& order, int threads, std::vector<T>&... arrays) {
-  std::tuple<std::vector<T>...> moved{std::vector<T>(arrays.empty() ? 0 : order.size())...};
+/// v[new] = old v[order[new]], applied to blocks of `block` consecutive elements
+/// (per-(particle, wall) arrays have `walls` elements per particle). Empty vectors stay empty.
+template <class T>
+void apply_order(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::size_t block = 1, int threads = 1) {
+  if (v.empty() || block == 0) return;
+  std::vector<T> moved(v.size());
   const auto count = static_cast<std::int64_t>(order.size());
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::int64_t k = 0; k < count; ++k) {
     const auto s = static_cast<std::size_t>(k);
-    const std::size_t from = order[s];
-    std::apply([&](auto&... out) { ((out.empty() ? void() : void(out[s] = arrays[from])), ...); }, moved);
+    for (std::size_t b = 0; b < block; ++b) moved[s * block + b] = v[order[s] * block + b];
   }
-  std::apply([&](auto&... out) { (arrays.swap(out), ...); }, moved);
+  v.swap(moved);
 }
 
 }  // namespace demfit::dem_core

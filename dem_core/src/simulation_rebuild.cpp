@@ -17,7 +17,7 @@ std::vector<std::uint32_t> Simulation::apply_spatial_order() {
   const int threads = settings_.threads;
   std::vector<std::uint32_t> order = slab_order(p.position, 2.0 * r_max + skin(), threads);
   if (order.empty()) return order;
-  p.for_all_arrays([&](auto&... arrays) { apply_order(order, threads, arrays...); });
+  p.for_each_array([&](auto& values) { apply_order(values, order, 1, threads); });
   return order;  // the wall slots are rebuilt next, through `order`
 }
 

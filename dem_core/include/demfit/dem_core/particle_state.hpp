@@ -37,19 +37,13 @@ struct ParticleState {
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
 
-  /// Calls `f(arrays...)` once with every per-particle array: the one list that removal,
-  /// reordering and any other whole-state operation use, so a new array cannot be forgotten by one
-  /// of them.
-  template <class F>
-  void for_all_arrays(F&& f) {
-    f(position, velocity, angular_velocity, force, torque, radius, mass, inverse_mass, inverse_inertia, material, id,
-      normal_compliance, shear_compliance);
-  }
-
-  /// Calls `f(array)` for every per-particle array (for_all_arrays, one at a time).
+  /// Calls `f(array)` for every per-particle array: the one list that removal, reordering and
+  /// any other whole-state operation use, so a new array cannot be forgotten by one of them.
   template <class F>
   void for_each_array(F&& f) {
-    for_all_arrays([&](auto&... arrays) { (f(arrays), ...); });
+    f(position), f(velocity), f(angular_velocity), f(force), f(torque);
+    f(radius), f(mass), f(inverse_mass), f(inverse_inertia), f(material), f(id);
+    f(normal_compliance), f(shear_compliance);
   }
 
   /// Particle indices in ascending id: the order of every output (snapshots, particle tables),
