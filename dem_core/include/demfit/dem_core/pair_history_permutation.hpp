@@ -1,9 +1,10 @@
 #pragma once
 // Moving the per-pair contact histories to the new pair order of a neighbour-list rebuild, in
 // place and in parallel (issue 16). In place, because holding the old and the new history array
-// at once was the peak of a dense bed's memory. In parallel, because the serial version took
-// 0.28-0.30 ms of each 2-thread rebuild on the issue-16 drum (more than on one thread, 0.19 ms),
-// about 2 % of a 2-thread run.
+// at once was the peak of a dense bed's memory. In parallel, because the serial version was the
+// rebuild's largest serial part on the issue-16 drum: with temporary timers, history sources plus
+// carry took 0.49 ms per 2-thread rebuild serially and 0.25 ms in parallel, about 2 % of a
+// 2-thread run (bench/dem_core/measured/drum_2026-12-04_nineteenth_ab_parallel_carry.txt).
 //
 // The moves form chains and cycles: new slot k takes the old content of source[k], and each old
 // slot feeds at most one new slot. A list rebuilt with a few pairs more or less early on shifts
