@@ -75,10 +75,7 @@ void apply_pair_sources(const std::vector<std::uint32_t>& source, std::size_t pa
     next.reserve(with_slack(pairs));
     next.assign(pairs, History{});
     for (std::size_t k = 0; k < pairs; ++k)
-      if (source[k] != kNewPair) {
-        next[k] = history[source[k] & ~kSwappedPair];
-        if (source[k] & kSwappedPair) next[k].tangential_displacement = -next[k].tangential_displacement;
-      }
+      if (source[k] != kNewPair) next[k] = as_carried(history[source[k] & ~kSwappedPair], source[k]);
     history.swap(next);
     return;
   }

@@ -32,6 +32,14 @@ namespace demfit::dem_core {
 inline constexpr std::uint32_t kNewPair = 0xFFFFFFFFu;
 inline constexpr std::uint32_t kSwappedPair = 0x80000000u;
 
+/// An old history as the new pair with source `s` carries it: the tangential spring is that of
+/// the first member relative to the second, so it is negated when the members swapped roles.
+template <class History>
+History as_carried(History h, std::uint32_t s) {
+  if (s & kSwappedPair) h.tangential_displacement = -h.tangential_displacement;
+  return h;
+}
+
 namespace detail {
 
 /// One thread's part of apply_pair_sources: the destination slots [begin, end) of `history`.
@@ -76,16 +84,11 @@ class SlotRange {
   /// The old content of `to`'s source, negated spring if the members swapped.
   [[nodiscard]] History old_content(std::size_t to, std::uint32_t s) const {
     const std::size_t from = s & ~kSwappedPair;
-    History h;
-    if (own(from) || from >= pairs_) {
-      h = history_[from];  // own and not yet written, or past the new end: nobody writes it
-    } else {
-      const auto it = std::lower_bound(foreign_.begin(), foreign_.end(), static_cast<std::uint32_t>(to),
-                                       [](const auto& entry, std::uint32_t slot) { return entry.first < slot; });
-      h = it->second;
-    }
-    if (s & kSwappedPair) h.tangential_displacement = -h.tangential_displacement;
-    return h;
+    // Own and not yet written, or past the new end (nobody writes it): read in place.
+    if (own(from) || from >= pairs_) return as_carried(history_[from], s);
+    const auto it = std::lower_bound(foreign_.begin(), foreign_.end(), static_cast<std::uint32_t>(to),
+                                     [](const auto& entry, std::uint32_t slot) { return entry.first < slot; });
+    return as_carried(it->second, s);
   }
 
   void follow_chain(std::size_t to) {
@@ -111,13 +114,8 @@ class SlotRange {
       const std::uint32_t s = source_[to];
       const std::size_t from = s & ~kSwappedPair;
       if (s == kNewPair || !own(from) || (from != start && (flags_[from] & kDone))) return false;
-      if (from == start) {
-        history_[to] = saved;
-        if (s & kSwappedPair) history_[to].tangential_displacement = -history_[to].tangential_displacement;
-        return true;
-      }
-      history_[to] = history_[from];
-      if (s & kSwappedPair) history_[to].tangential_displacement = -history_[to].tangential_displacement;
+      history_[to] = as_carried(from == start ? saved : history_[from], s);
+      if (from == start) return true;
       to = from;
     }
   }
