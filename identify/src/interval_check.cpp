@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "demfit/identify/roundoff_replicates.hpp"
 #include "study_support.hpp"
 
 namespace demfit::identify {
@@ -28,16 +29,7 @@ struct EndWalk {
   IntervalEndCheck* record = nullptr;
 };
 
-constexpr double kReplicateNudge = 1e-7;  // unit coordinates: another round-off trajectory, same parameters
-constexpr double kSamePoint = 1e-3;       // unit: a retry this close to the rejected run would repeat it
-
-Eigen::VectorXd replicate_point(const Eigen::VectorXd& best, int r) {
-  Eigen::VectorXd p = best;
-  for (Eigen::Index j = 0; j < p.size(); ++j)
-    p(j) =
-        p(j) + (r + 1) * kReplicateNudge <= 1.0 ? p(j) + (r + 1) * kReplicateNudge : p(j) - (r + 1) * kReplicateNudge;
-  return p;
-}
+constexpr double kSamePoint = 1e-3;  // unit: a retry this close to the rejected run would repeat it
 
 // Closes an end whose run at `unit` fitted worse than the spread: the first such distance bounds
 // the interval; at the first distance the posterior's own end stands.
