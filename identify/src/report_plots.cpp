@@ -242,6 +242,23 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
         "`demfit export study.db --lsdyna out.k` writes LS-DYNA cards)\n";
 }
 
+// The final selection's choice (final_selection.hpp), when the study made one.
+std::string selection_line(const std::optional<nlohmann::json>& result) {
+  if (!result || !result->contains("final_selection") || !(*result)["final_selection"].is_object()) return "";
+  const nlohmann::json& s = (*result)["final_selection"];
+  const nlohmann::json& candidates = s.at("candidates");
+  const nlohmann::json& chosen = candidates.at(s.at("chosen").get<std::size_t>());
+  const nlohmann::json& lowest = candidates.at(0);
+  std::ostringstream line;
+  line << "- chosen by final selection among the " << candidates.size() << " best runs, each re-run "
+       << s.at("replicates").get<int>() << " times as round-off replicates: mean objective "
+       << format_number(chosen.at("mean_objective").get<double>()) << "; the lowest single run, "
+       << lowest.at("iteration").get<int>() << "/" << lowest.at("point").get<int>() << " ("
+       << format_number(lowest.at("objective").get<double>()) << "), averages "
+       << format_number(lowest.at("mean_objective").get<double>()) << "\n";
+  return line.str();
+}
+
 }  // namespace
 
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
@@ -270,7 +287,8 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
     return md.str();
   }
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
-     << ", " << best->kind << ")\n\n";
+     << ", " << best->kind << ")\n"
+     << selection_line(result) << "\n";
   // Issue 13: what the numbers may hide, and the objective in the curve's own units.
   const StudyDiagnostics diagnostics = study_diagnostics(spec, runs, iterations, best, result);
   if (!diagnostics.warnings.empty()) {

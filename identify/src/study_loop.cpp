@@ -209,7 +209,11 @@ MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region
 
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
   decision_runs_ = runs_.size();
-  const Run best = *best_run();  // a copy: the interval check appends runs
+  // A copy: the selection and the interval check append runs.
+  nlohmann::json selection = nullptr;
+  const bool selecting = spec_.final_selection.candidates > 0;
+  const Run best = selecting ? select_by_replicates(verification_iteration + 1, selection) : *best_run();
+  const int check_iteration = verification_iteration + (selecting ? 2 : 1);
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;
@@ -228,9 +232,9 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
         detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
     if (options_.progress && !posterior_warning.empty())
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
-    const int runs_before_check = total_runs_;
+    const int runs_before_check = total_runs_;  // after the selection: its replicates lead to the answer
     if (spec_.interval_check.max_steps > 0 && uncertainty["posterior"].is_object())
-      check_intervals(best, sample, verification_iteration + 1, uncertainty);
+      check_intervals(best, sample, check_iteration, uncertainty);
     result.interval_check_runs = total_runs_ - runs_before_check;
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
@@ -258,6 +262,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
                      {"failed_runs", result.failed_runs},
                      {"iterations", result.iterations},
                      {"converged", converged},
+                     {"final_selection", selection},
                      {"wall_seconds", result.wall_seconds},
                      {"uncertainty", uncertainty}});
   const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);

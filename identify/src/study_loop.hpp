@@ -33,7 +33,7 @@ struct Run {
   VectorXd unit;
   VectorXd responses;
   double objective = 0.0;
-  bool replicate = false;  // an interval check's nudged re-run: kept out of surrogate fits (a near-duplicate)
+  bool replicate = false;  // a nudged re-run (selection, interval check): kept out of surrogate fits (a near-duplicate)
 };
 
 class StudyLoop {
@@ -68,6 +68,11 @@ class StudyLoop {
                            std::uint64_t seed) const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
+  // The best distinct decision runs, best first (at most `count`).
+  std::vector<int> selection_candidates(int count) const;
+  // Re-runs the candidates as round-off replicates in `iteration` and returns the one with the
+  // lowest mean objective (final_selection.hpp); `record` describes the choice for the store.
+  Run select_by_replicates(int iteration, nlohmann::json& record);
   RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
   // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
   void check_intervals(const Run& best, const RunSample& sample, int first_iteration, nlohmann::json& uncertainty);

@@ -60,9 +60,9 @@ IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSam
     input.upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
   }
   // Other runs at (almost) the best point: the run-to-run spread there.
-  const Run* best_stored = best_run();
   for (std::size_t i = 0; i < decision_runs_; ++i)
-    if (&runs_[i] != best_stored && (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
+    if (!(runs_[i].iteration == best.iteration && runs_[i].point == best.point) &&
+        (runs_[i].unit - best.unit).cwiseAbs().maxCoeff() <= kNearbyRadius)
       input.nearby_objectives.push_back(runs_[i].objective);
   return input;
 }

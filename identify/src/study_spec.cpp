@@ -276,6 +276,16 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
     in.fail("first_step", "must be in (0, 0.5] (a fraction of each variable's range)");
 }
 
+void parse_final_selection(JsonReader in, StudySpec& spec) {
+  FinalSelectionSpec& selection = spec.final_selection;
+  selection.candidates = in.integer_or("candidates", 4);
+  selection.replicates = in.integer_or("replicates", selection.replicates);
+  in.finish();
+  if (selection.candidates < 0 || selection.candidates > 20)
+    in.fail("candidates", "must be 0 (off: the best single run is the answer) to 20");
+  if (selection.replicates < 1 || selection.replicates > 20) in.fail("replicates", "must be 1 to 20");
+}
+
 }  // namespace
 
 int default_points_per_iteration(int variables) {
@@ -321,6 +331,7 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
   if (in.has("surrogate")) parse_surrogate(in.object("surrogate"), spec);
   if (in.has("stopping")) parse_stopping(in.object("stopping"), spec);
   if (in.has("interval_check")) parse_interval_check(in.object("interval_check"), spec);
+  if (in.has("final_selection")) parse_final_selection(in.object("final_selection"), spec);
   if (in.has("seed")) {
     const auto& seed = in.raw("seed");
     if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))

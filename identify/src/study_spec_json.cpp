@@ -88,6 +88,9 @@ nlohmann::json to_json(const StudySpec& spec) {
                               {"replicates", spec.interval_check.replicates},
                               {"first_step", spec.interval_check.first_step},
                               {"all_variables", spec.interval_check.all_variables}};
+  if (spec.final_selection.candidates > 0)  // written only when on: older resolved studies stay unchanged
+    json["final_selection"] = {{"candidates", spec.final_selection.candidates},
+                               {"replicates", spec.final_selection.replicates}};
   json["seed"] = spec.seed;
   return json;
 }

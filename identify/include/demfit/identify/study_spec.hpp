@@ -97,6 +97,13 @@ struct IntervalCheckSpec {
   bool all_variables = true;
 };
 
+// The answer chosen among the best runs by round-off replicates (final_selection.hpp): on a noisy
+// objective the lowest single run is partly the luckiest trajectory. Off when candidates is 0.
+struct FinalSelectionSpec {
+  int candidates = 0;  // the best distinct runs re-run; 0 = off (the best single run is the answer)
+  int replicates = 3;  // nudged re-runs of each candidate (roundoff_replicates.hpp)
+};
+
 struct StudySpec {
   int version = kStudyFormatVersion;
   std::string name;
@@ -127,6 +134,7 @@ struct StudySpec {
   double design_tolerance = 0.01;     // change of the optimum, fraction of each range
   double objective_tolerance = 0.01;  // relative change of the optimum's objective
   IntervalCheckSpec interval_check;
+  FinalSelectionSpec final_selection;
   std::uint64_t seed = 1;
   std::filesystem::path base_dir;  // for relative paths (CSV files, case files)
 };

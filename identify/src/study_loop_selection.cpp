@@ -1,0 +1,68 @@
+// The answer chosen by round-off replicates of the best runs (final_selection.hpp).
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+
+#include "demfit/identify/final_selection.hpp"
+#include "demfit/identify/roundoff_replicates.hpp"
+#include "study_loop.hpp"
+
+namespace demfit::identify::detail {
+
+std::vector<int> StudyLoop::selection_candidates(int count) const {
+  std::vector<int> order;
+  for (int i = 0; i < static_cast<int>(std::min(decision_runs_, runs_.size())); ++i)
+    if (!runs_[i].replicate) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return runs_[a].objective < runs_[b].objective; });
+  std::vector<int> chosen;
+  for (const int i : order) {
+    if (static_cast<int>(chosen.size()) == count) break;
+    // A point run twice (a verification at a known point) is one candidate.
+    if (std::none_of(chosen.begin(), chosen.end(), [&](int c) { return same_point(runs_[c].unit, runs_[i].unit); }))
+      chosen.push_back(i);
+  }
+  return chosen;
+}
+
+Run StudyLoop::select_by_replicates(int iteration, nlohmann::json& record) {
+  const int replicates = spec_.final_selection.replicates;
+  const std::vector<int> candidates = selection_candidates(spec_.final_selection.candidates);
+  MatrixXd points(static_cast<Eigen::Index>(candidates.size()) * replicates, dims_);
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+    for (int r = 0; r < replicates; ++r)
+      points.row(static_cast<Eigen::Index>(c) * replicates + r) =
+          replicate_point(runs_[candidates[c]].unit, r).transpose();
+  if (options_.progress)
+    std::fprintf(stderr, "demfit: final selection: the %d best runs, %d round-off replicates each\n",
+                 static_cast<int>(candidates.size()), replicates);
+  evaluate_points(iteration, points, std::vector<std::string>(points.rows(), "replicate"));
+  std::vector<SelectionCandidate> scored;
+  record = {{"replicates", replicates}, {"iteration", iteration}, {"candidates", nlohmann::json::array()}};
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    SelectionCandidate s{runs_[candidates[c]].objective, {}};
+    nlohmann::json objectives = nlohmann::json::array();
+    for (int r = 0; r < replicates; ++r) {
+      const EvaluationRecord* e = store_.find_evaluation(iteration, static_cast<int>(c) * replicates + r);
+      s.replicate_objectives.push_back(e->ok ? e->objective : std::numeric_limits<double>::quiet_NaN());
+      objectives.push_back(e->ok ? nlohmann::json(e->objective) : nlohmann::json(nullptr));
+    }
+    const Run& run = runs_[candidates[c]];
+    record["candidates"].push_back({{"iteration", run.iteration},
+                                    {"point", run.point},
+                                    {"objective", run.objective},
+                                    {"replicate_objectives", objectives},
+                                    {"mean_objective", candidate_mean(s)}});
+    scored.push_back(std::move(s));
+  }
+  const int chosen = choose_by_replicate_means(scored);
+  record["chosen"] = chosen;
+  if (options_.progress)
+    std::fprintf(stderr, "demfit: final selection: run %d/%d (mean objective %s over %d runs) instead of %d/%d (%s)\n",
+                 runs_[candidates[chosen]].iteration, runs_[candidates[chosen]].point,
+                 format_number(candidate_mean(scored[chosen])).c_str(), replicates + 1, runs_[candidates[0]].iteration,
+                 runs_[candidates[0]].point, format_number(candidate_mean(scored[0])).c_str());
+  return runs_[candidates[chosen]];
+}
+
+}  // namespace demfit::identify::detail

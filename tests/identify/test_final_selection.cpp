@@ -1,0 +1,132 @@
+// Final selection (final_selection.hpp): on a noisy objective the answer is the best run by its
+// mean over round-off replicates, not the luckiest single run.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/final_selection.hpp"
+#include "demfit/identify/study.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "test_helpers.hpp"
+
+using namespace demfit::identify;
+
+namespace {
+
+// The analytic model with chaotic-like noise: every parameter value, to the last bit, gives its
+// own smooth error (like another DEM trajectory), 3 % of max|y|; a round-off replicate redraws it.
+class ChaoticAnalyticModel final : public Model {
+ public:
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
+  std::vector<CurveDescriptor> curves() const override { return inner_.curves(); }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override {
+    CurveSet curves = inner_.evaluate(parameters, context);
+    std::uint64_t hash = 14695981039346656037ull;
+    for (const auto& [name, value] : parameters) {
+      unsigned char bytes[sizeof value];
+      std::memcpy(bytes, &value, sizeof value);
+      for (const unsigned char b : bytes) hash = (hash ^ b) * 1099511628211ull;
+    }
+    std::mt19937_64 rng(hash);
+    std::normal_distribution<double> normal(0.0, 0.03 * 2.0);
+    const double g1 = normal(rng), g2 = normal(rng);
+    Curve& response = curves.at("response");
+    for (std::size_t i = 0; i < response.x.size(); ++i)
+      response.y[i] += g1 * response.x[i] + g2 * std::sin(6.283185307179586 * response.x[i]);
+    return curves;
+  }
+
+ private:
+  AnalyticCurveModel inner_;
+};
+
+RunOptions quiet(const std::filesystem::path& dir) {
+  RunOptions options;
+  options.output_dir = dir;
+  options.plots = false;
+  options.progress = false;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("The final selection chooses the candidate with the lowest mean over its run and finite replicates",
+          "[identify][selection]") {
+  const double failed = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<SelectionCandidate> candidates{{1.0, {5.0, 5.0}}, {2.0, {2.5, failed}}, {1.5, {3.0, 3.0}}};
+  CHECK(candidate_mean(candidates[0]) == Approx(11.0 / 3.0));
+  CHECK(candidate_mean(candidates[1]) == Approx(2.25));  // the failed replicate is left out
+  CHECK(choose_by_replicate_means(candidates) == 1);
+  CHECK(choose_by_replicate_means({}) == -1);
+  CHECK(choose_by_replicate_means({{2.0, {}}, {2.0, {}}}) == 0);  // ties: the better-ranked run
+}
+
+TEST_CASE("A study with a final selection answers with the candidate whose replicates average lowest",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["final_selection"] = {{"candidates", 4}, {"replicates", 3}};
+  const StudySpec spec = parse_study(json, ".");
+  REQUIRE(spec.final_selection.candidates == 4);
+  const ChaoticAnalyticModel model;
+  const auto dir = test::fresh_dir("final_selection_study");
+  const StudyResult result = run_study(spec, model, quiet(dir));
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  // Recomputed from the store: the 4 best distinct decision runs and their replicates' mean.
+  std::vector<EvaluationRecord> decision, replicates;
+  for (const auto& e : store.evaluations()) (e.kind == "replicate" ? replicates : decision).push_back(e);
+  REQUIRE(replicates.size() == 12);
+  std::stable_sort(decision.begin(), decision.end(),
+                   [](const auto& a, const auto& b) { return a.objective < b.objective; });
+  std::vector<EvaluationRecord> best4;
+  for (const auto& e : decision)
+    if (best4.size() < 4 &&
+        std::none_of(best4.begin(), best4.end(), [&](const auto& c) { return c.unit_x == e.unit_x; }))
+      best4.push_back(e);
+  REQUIRE(best4.size() == 4);
+  int lowest = 0;
+  std::vector<double> means;
+  for (std::size_t c = 0; c < 4; ++c) {
+    double sum = best4[c].objective;
+    for (std::size_t r = 0; r < 3; ++r) {
+      const EvaluationRecord& e = replicates[c * 3 + r];
+      CHECK(e.iteration == result.iterations + 1);
+      for (std::size_t j = 0; j < e.unit_x.size(); ++j) CHECK(std::abs(e.unit_x[j] - best4[c].unit_x[j]) < 1e-6);
+      sum += e.objective;
+    }
+    means.push_back(sum / 4.0);
+    if (means[c] < means[lowest]) lowest = static_cast<int>(c);
+  }
+  const auto stored = store.result();
+  REQUIRE(stored);
+  CHECK((*stored)["best_iteration"].get<int>() == best4[lowest].iteration);
+  CHECK((*stored)["best_point"].get<int>() == best4[lowest].point);
+  CHECK(result.best_objective == best4[lowest].objective);
+  // On this noise the luckiest single run is not the answer (else the test would not tell).
+  CHECK(lowest != 0);
+  INFO("means " << means[0] << " " << means[1] << " " << means[2] << " " << means[3]);
+  CHECK(means[lowest] < means[0]);
+  // A resume repeats no run and keeps the answer.
+  RunOptions resume = quiet(dir);
+  resume.resume = true;
+  int evaluated = 0;
+  resume.after_evaluation = [&](int done) { evaluated = done; };
+  const StudyResult again = run_study(spec, model, resume);
+  CHECK(evaluated == 0);
+  CHECK(again.best == result.best);
+}
+
+TEST_CASE("A final selection with candidates out of range is refused naming the field", "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["final_selection"] = {{"candidates", 21}};
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("final_selection.candidates"));
+  json["final_selection"] = {{"candidates", 2}, {"replicates", 0}};
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("final_selection.replicates"));
+  json["final_selection"] = {{"candidates", 2}, {"replicate", 2}};
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("replicate"));
+}
