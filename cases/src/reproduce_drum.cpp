@@ -103,6 +103,10 @@ double rms_surface_error(const identify::Curve& target, const identify::Curve& c
   return std::sqrt(sum / static_cast<double>(f.size()));
 }
 
+// The first replicate index of the report's re-runs: past the 20 a study's final selection may use
+// (study_spec.hpp), so the trajectories that chose the answer do not also judge it.
+constexpr int kFirstReportReplicate = 20;
+
 // Surface errors of `count` runs at `values`: the run already made (`first_error`), then
 // round-off replicates (roundoff_replicates.hpp), each another trajectory of the same physics.
 std::vector<double> replicate_errors(const identify::Model& model, const identify::StudySpec& spec,
@@ -111,7 +115,8 @@ std::vector<double> replicate_errors(const identify::Model& model, const identif
                                      const identify::EvaluationContext& context) {
   std::vector<double> errors{first_error};
   for (int r = 0; r + 1 < count; ++r) {
-    const identify::CurveSet curves = model.evaluate(identify::replicate_parameters(spec, values, r), context);
+    const identify::CurveSet curves =
+        model.evaluate(identify::replicate_parameters(spec, values, kFirstReportReplicate + r), context);
     errors.push_back(rms_surface_error(target, curves.at("free_surface")));
   }
   return errors;
@@ -135,12 +140,13 @@ std::string replicate_text(const identify::Model& model, const identify::StudySp
       identify::replicate_spread(replicate_errors(model, spec, best, error_after, target, count, context));
   const identify::RatioOfMeans ratio = identify::ratio_of_means(after, before);
   return "How sure: each point run " + std::to_string(count) +
-         " times (the run above, then round-off replicates: every variable moved by 1e-7 to " +
-         std::to_string(count - 1) + "e-7 of its range, other trajectories of the same physics; " +
-         std::to_string(2 * (count - 1)) + " runs outside the study). Surface RMS error at the initial values " +
-         spread_text(before) + ", at the identified values " + spread_text(after) + "; ratio of the means " +
-         fmt("%.2f", ratio.ratio) + " (±2 standard errors " + fmt("%.2f", ratio.lower) + "–" +
-         fmt("%.2f", ratio.upper) + "). The single-run ratio above compares one trajectory of each point.\n";
+         " times (the run above, then round-off replicates: every variable moved by " +
+         std::to_string(kFirstReportReplicate + 1) + "e-7 to " + std::to_string(kFirstReportReplicate + count - 1) +
+         "e-7 of its range, other trajectories of the same physics; " + std::to_string(2 * (count - 1)) +
+         " runs outside the study). Surface RMS error at the initial values " + spread_text(before) +
+         ", at the identified values " + spread_text(after) + "; ratio of the means " + fmt("%.2f", ratio.ratio) +
+         " (±2 standard errors " + fmt("%.2f", ratio.lower) + "–" + fmt("%.2f", ratio.upper) +
+         "). The single-run ratio above compares one trajectory of each point.\n";
 }
 
 std::string table3_cell(const identify::StudyResult& r, const std::string& name) {
