@@ -124,7 +124,7 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
     Eigen::MatrixXd points(replicates + static_cast<int>(active.size()), n);
     std::vector<std::string> kinds(points.rows(), "interval_check");
     for (int r = 0; r < replicates; ++r) {
-      points.row(r) = replicate_point(best_unit, r).transpose();
+      points.row(r) = replicate_point(best_unit, input.first_replicate + r).transpose();
       kinds[r] = "replicate";
     }
     for (std::size_t a = 0; a < active.size(); ++a)

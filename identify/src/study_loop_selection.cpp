@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
-#include <numeric>
 
 #include "demfit/identify/final_selection.hpp"
 #include "demfit/identify/roundoff_replicates.hpp"

@@ -130,3 +130,24 @@ TEST_CASE("A final selection with candidates out of range is refused naming the 
   json["final_selection"] = {{"candidates", 2}, {"replicate", 2}};
   CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("replicate"));
 }
+
+TEST_CASE("After a final selection the interval check measures the spread on trajectories the selection did not use",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["final_selection"] = {{"candidates", 2}, {"replicates", 2}};
+  json["interval_check"] = {{"max_steps", 1}, {"replicates", 2}};
+  const StudySpec spec = parse_study(json, ".");
+  const ChaoticAnalyticModel model;
+  const auto dir = test::fresh_dir("final_selection_then_check");
+  const StudyResult result = run_study(spec, model, quiet(dir));
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  std::vector<std::vector<double>> selection_points, check_replicates;
+  for (const auto& e : store.evaluations()) {
+    if (e.kind != "replicate") continue;
+    (e.iteration == result.iterations + 1 ? selection_points : check_replicates).push_back(e.unit_x);
+  }
+  REQUIRE(selection_points.size() == 4);
+  REQUIRE(check_replicates.size() == 2);
+  for (const auto& c : check_replicates)
+    CHECK(std::none_of(selection_points.begin(), selection_points.end(), [&](const auto& s) { return s == c; }));
+}

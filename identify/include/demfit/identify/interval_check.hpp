@@ -87,6 +87,9 @@ struct IntervalCheckInput {
   std::vector<double> nearby_objectives;  // the study's runs within kNearbyRadius of the best
   std::vector<double> lower, upper;       // the posterior's 95 % interval [model units]
   Eigen::MatrixXd fitted_runs;            // rows: the unit points the posterior was fitted to
+  // Index of the first replicate (roundoff_replicates.hpp) the check runs: past those a final
+  // selection already ran, whose favourable draws chose this point and would lower the threshold.
+  int first_replicate = 0;
 };
 
 IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variables, const IntervalCheckInput& input,
