@@ -82,14 +82,7 @@ std::unique_ptr<ExperimentSetModel> models_for(const StudySpec& spec, std::atomi
   return std::make_unique<ExperimentSetModel>(spec, std::move(models));
 }
 
-RunOptions quiet(const std::filesystem::path& dir, int jobs = 1) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.jobs = jobs;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 bool flagged(const StudyResult& r, const std::string& name) {
   return std::find(r.unidentifiable.begin(), r.unidentifiable.end(), name) != r.unidentifiable.end();
@@ -100,7 +93,8 @@ bool flagged(const StudyResult& r, const std::string& name) {
 TEST_CASE("Two experiments together recover shared parameters that neither pins alone", "[identify][experiments]") {
   for (const auto& [product, ratio] : {std::pair{true, false}, std::pair{false, true}}) {
     const StudySpec alone = parse_study(study(product, ratio), ".");
-    const auto result = run_study(alone, *models_for(alone, nullptr), quiet(test::fresh_dir("experiments_alone")));
+    const auto result =
+        run_study(alone, *models_for(alone, nullptr), quiet_options(test::fresh_dir("experiments_alone")));
     INFO("alone: " << alone.experiments[0].name << " a " << result.best.at("a") << " b " << result.best.at("b"));
     // The experiment's own combination is matched, but a direction stays free and is flagged.
     const double combination =
@@ -109,7 +103,7 @@ TEST_CASE("Two experiments together recover shared parameters that neither pins 
     CHECK((flagged(result, "a") || flagged(result, "b")));
   }
   const StudySpec both = parse_study(study(true, true), ".");
-  const auto result = run_study(both, *models_for(both, nullptr), quiet(test::fresh_dir("experiments_both")));
+  const auto result = run_study(both, *models_for(both, nullptr), quiet_options(test::fresh_dir("experiments_both")));
   INFO("together: a " << result.best.at("a") << " b " << result.best.at("b"));
   CHECK(result.best.at("a") == Approx(kTrueA).epsilon(0.001));  // stated tolerance: 0.1 %
   CHECK(result.best.at("b") == Approx(kTrueB).epsilon(0.001));
@@ -121,8 +115,10 @@ TEST_CASE("Each experiment of a design point is its own job and the answer does 
           "[identify][experiments]") {
   const StudySpec spec = parse_study(study(true, true), ".");
   std::atomic<int> calls_one{0}, calls_three{0};
-  const auto one = run_study(spec, *models_for(spec, &calls_one), quiet(test::fresh_dir("experiments_jobs1"), 1));
-  const auto three = run_study(spec, *models_for(spec, &calls_three), quiet(test::fresh_dir("experiments_jobs3"), 3));
+  const auto one =
+      run_study(spec, *models_for(spec, &calls_one), quiet_options(test::fresh_dir("experiments_jobs1"), 1));
+  const auto three =
+      run_study(spec, *models_for(spec, &calls_three), quiet_options(test::fresh_dir("experiments_jobs3"), 3));
   CHECK(calls_one.load() == 2 * one.runs);  // every point ran both experiments, once each
   CHECK(calls_three.load() == calls_one.load());
   CHECK(three.best == one.best);
@@ -157,7 +153,7 @@ TEST_CASE("The store keeps each experiment's curves under its name and the repor
           "[identify][experiments]") {
   const StudySpec spec = parse_study(study(true, true), ".");
   const auto dir = test::fresh_dir("experiments_store");
-  auto options = quiet(dir);
+  auto options = quiet_options(dir);
   const auto result = run_study(spec, *models_for(spec, nullptr), options);
   CHECK(result.best_curves.count("product/signal") == 1);
   CHECK(result.best_curves.count("ratio/signal") == 1);
@@ -210,14 +206,14 @@ TEST_CASE(
   unknown["variables"].push_back({{"name", "nothing"}, {"lower", 0.0}, {"upper", 1.0}});
   const StudySpec bad = parse_study(unknown, ".");
   const auto dir = test::fresh_dir("experiments_unknown_variable");
-  CHECK_THROWS_WITH(run_study(bad, *models_for(bad, nullptr), quiet(dir)),
+  CHECK_THROWS_WITH(run_study(bad, *models_for(bad, nullptr), quiet_options(dir)),
                     Catch::Contains("variables[2].name: 'nothing' is not a parameter of any experiment's model"));
   CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
 
   auto fixed = study(true, true);
   fixed["experiments"][1]["model"]["fixed_parameters"] = {{"gain", 2.0}};
   const StudySpec bad_fixed = parse_study(fixed, ".");
-  CHECK_THROWS_WITH(run_study(bad_fixed, *models_for(bad_fixed, nullptr), quiet(dir)),
+  CHECK_THROWS_WITH(run_study(bad_fixed, *models_for(bad_fixed, nullptr), quiet_options(dir)),
                     Catch::Contains("experiments[1].model.fixed_parameters.gain: not a parameter"));
   CHECK_FALSE(std::filesystem::exists(dir / "study.db"));
 }
@@ -285,7 +281,7 @@ TEST_CASE("A study with a profile_area target recovers the analytic model's para
   auto json = test::analytic_study();
   json["targets"][0]["metric"] = "profile_area";
   const StudySpec spec = parse_study(json, ".");
-  const auto result = run_study(spec, AnalyticCurveModel(), quiet(test::fresh_dir("profile_area_study")));
+  const auto result = run_study(spec, AnalyticCurveModel(), quiet_options(test::fresh_dir("profile_area_study")));
   INFO("amplitude " << result.best.at("amplitude") << " rate " << result.best.at("rate"));
   CHECK(result.best.at("amplitude") == Approx(1.3).epsilon(0.02));  // truth of test::analytic_study, 2 %
   CHECK(result.best.at("rate") == Approx(4.2).epsilon(0.02));
@@ -296,17 +292,17 @@ TEST_CASE("A study with experiments stopped after some points resumes to the sam
   const StudySpec spec = parse_study(study(true, true), ".");
   std::atomic<int> reference_calls{0}, calls{0};
   const auto reference =
-      run_study(spec, *models_for(spec, &reference_calls), quiet(test::fresh_dir("experiments_ref")));
+      run_study(spec, *models_for(spec, &reference_calls), quiet_options(test::fresh_dir("experiments_ref")));
   const auto dir = test::fresh_dir("experiments_resume");
   struct Stop {};
-  auto killed = quiet(dir, 2);
+  auto killed = quiet_options(dir, 2);
   killed.after_evaluation = [](int done) {
     if (done == 7) throw Stop{};
   };
   const auto models = models_for(spec, &calls);
   CHECK_THROWS_AS(run_study(spec, *models, killed), Stop);
   const int before = calls.load();
-  auto resumed = quiet(dir, 2);
+  auto resumed = quiet_options(dir, 2);
   resumed.resume = true;
   const auto result = run_study(spec, *models, resumed);
   CHECK(result.best == reference.best);
@@ -321,8 +317,9 @@ TEST_CASE("The initial-point check's run is stored as run 0 and not evaluated ag
   // is the one it gives when it evaluates run 0/0 itself.
   const StudySpec parsed = parse_study(study(true, true), ".");
   std::atomic<int> calls_plain{0}, calls_reused{0}, calls_other{0};
-  const auto plain = run_study(parsed, *models_for(parsed, &calls_plain), quiet(test::fresh_dir("initial_plain")));
-  RunOptions reuse = quiet(test::fresh_dir("initial_reused"));
+  const auto plain =
+      run_study(parsed, *models_for(parsed, &calls_plain), quiet_options(test::fresh_dir("initial_plain")));
+  RunOptions reuse = quiet_options(test::fresh_dir("initial_reused"));
   const auto model = models_for(parsed, &calls_reused);
   const StudySpec spec = preflight_study(parsed, *model, EvaluationContext{}, &reuse.initial_run);
   REQUIRE(reuse.initial_run.has_value());
@@ -333,7 +330,7 @@ TEST_CASE("The initial-point check's run is stored as run 0 and not evaluated ag
   CHECK(reused.best == plain.best);
   CHECK(reused.best_objective == plain.best_objective);
   // A run of other parameters is not taken for run 0/0.
-  RunOptions other = quiet(test::fresh_dir("initial_other"));
+  RunOptions other = quiet_options(test::fresh_dir("initial_other"));
   other.initial_run = reuse.initial_run;
   other.initial_run->parameters["a"] *= 1.5;
   const auto evaluated = run_study(parsed, *models_for(parsed, &calls_other), other);
@@ -363,9 +360,9 @@ TEST_CASE("The initial-point check through a pool of jobs hands over the run a d
     REQUIRE(pooled->outcome.curves.count(name) == 1);
     CHECK(pooled->outcome.curves.at(name).y == curve.y);
   }
-  RunOptions from_pool = quiet(test::fresh_dir("initial_pooled"));
+  RunOptions from_pool = quiet_options(test::fresh_dir("initial_pooled"));
   from_pool.initial_run = pooled;
-  RunOptions from_direct = quiet(test::fresh_dir("initial_direct"));
+  RunOptions from_direct = quiet_options(test::fresh_dir("initial_direct"));
   from_direct.initial_run = direct;
   const auto a = run_study(spec_pool, *pool_model, from_pool);
   const auto b = run_study(spec_direct, *direct_model, from_direct);

@@ -46,13 +46,7 @@ class ChaoticAnalyticModel final : public Model {
   AnalyticCurveModel inner_;
 };
 
-RunOptions quiet(const std::filesystem::path& dir) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 }  // namespace
 
@@ -75,7 +69,7 @@ TEST_CASE("A study with a final selection answers with the candidate whose repli
   REQUIRE(spec.final_selection.candidates == 4);
   const ChaoticAnalyticModel model;
   const auto dir = test::fresh_dir("final_selection_study");
-  const StudyResult result = run_study(spec, model, quiet(dir));
+  const StudyResult result = run_study(spec, model, quiet_options(dir));
   const auto store = StudyStore::open_existing(dir / "study.db");
   // Recomputed from the store: the 4 best distinct decision runs and their replicates' mean.
   std::vector<EvaluationRecord> decision, replicates;
@@ -112,7 +106,7 @@ TEST_CASE("A study with a final selection answers with the candidate whose repli
   INFO("means " << means[0] << " " << means[1] << " " << means[2] << " " << means[3]);
   CHECK(means[lowest] < means[0]);
   // A resume repeats no run and keeps the answer.
-  RunOptions resume = quiet(dir);
+  RunOptions resume = quiet_options(dir);
   resume.resume = true;
   int evaluated = 0;
   resume.after_evaluation = [&](int done) { evaluated = done; };
@@ -139,7 +133,7 @@ TEST_CASE("After a final selection the interval check measures the spread on tra
   const StudySpec spec = parse_study(json, ".");
   const ChaoticAnalyticModel model;
   const auto dir = test::fresh_dir("final_selection_then_check");
-  const StudyResult result = run_study(spec, model, quiet(dir));
+  const StudyResult result = run_study(spec, model, quiet_options(dir));
   const auto store = StudyStore::open_existing(dir / "study.db");
   std::vector<std::vector<double>> selection_points, check_replicates;
   for (const auto& e : store.evaluations()) {

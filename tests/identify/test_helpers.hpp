@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/identify/analytic_model.hpp"
+#include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::identify::test {
@@ -17,6 +18,16 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// Run options of a test study: output in `dir`, no plots, no progress lines.
+inline RunOptions quiet_options(const std::filesystem::path& dir, int jobs = 1) {
+  RunOptions options;
+  options.output_dir = dir;
+  options.jobs = jobs;
+  options.plots = false;
+  options.progress = false;
+  return options;
 }
 
 // Study JSON identifying amplitude and rate of AnalyticCurveModel from its "response" curve at

@@ -51,13 +51,7 @@ ExperimentSetModel two_models(const StudySpec& spec) {
   return ExperimentSetModel(spec, std::move(models));
 }
 
-RunOptions quiet_options(const std::filesystem::path& dir) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 }  // namespace
 

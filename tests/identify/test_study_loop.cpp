@@ -19,14 +19,7 @@ using namespace demfit::identify;
 
 namespace {
 
-RunOptions quiet_options(const std::filesystem::path& dir, int jobs = 1) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.jobs = jobs;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 // The analytic model, failing (like an unstable simulation) when amplitude > 1.8.
 class FailingModel final : public Model {

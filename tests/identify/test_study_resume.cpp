@@ -17,13 +17,7 @@ namespace {
 
 struct SimulatedKill {};  // not a std::exception: nothing in the loop can swallow it
 
-RunOptions quiet_options(const std::filesystem::path& dir) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 }  // namespace
 

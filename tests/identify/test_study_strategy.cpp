@@ -15,13 +15,7 @@ namespace {
 
 struct SimulatedKill {};
 
-RunOptions quiet(const std::filesystem::path& dir) {
-  RunOptions options;
-  options.output_dir = dir;
-  options.plots = false;
-  options.progress = false;
-  return options;
-}
+using test::quiet_options;
 
 nlohmann::json ei_study(double noise, int iterations) {
   auto study = test::analytic_study(noise, iterations);
@@ -57,10 +51,10 @@ TEST_CASE("An expected-improvement study identifies the analytic parameters to 0
           "[identify][strategy]") {
   // Both studies: 4 points per iteration, 8 iterations + verification = 33 runs, no noise.
   const auto ei_dir = test::fresh_dir("strategy_ei"), srsm_dir = test::fresh_dir("strategy_srsm");
-  const auto ei = run_study(parse_study(ei_study(0.0, 8), "."), AnalyticCurveModel(), quiet(ei_dir));
+  const auto ei = run_study(parse_study(ei_study(0.0, 8), "."), AnalyticCurveModel(), quiet_options(ei_dir));
   auto srsm_json = test::analytic_study(0.0, 8);
   srsm_json["sampling"] = {{"points_per_iteration", 4}};
-  run_study(parse_study(srsm_json, "."), AnalyticCurveModel(), quiet(srsm_dir));
+  run_study(parse_study(srsm_json, "."), AnalyticCurveModel(), quiet_options(srsm_dir));
   CHECK(std::abs(ei.best.at("amplitude") / 1.3 - 1.0) < 1e-3);
   CHECK(std::abs(ei.best.at("rate") / 4.2 - 1.0) < 1e-3);
   // Runs until the best run is within 1 % of the truth in both parameters.
@@ -80,16 +74,16 @@ TEST_CASE("An expected-improvement study resumed after a kill reaches the uninte
           "[identify][strategy][resume]") {
   const auto spec = parse_study(ei_study(0.01, 5), ".");
   const AnalyticCurveModel model;
-  const auto reference = run_study(spec, model, quiet(test::fresh_dir("strategy_resume_reference")));
+  const auto reference = run_study(spec, model, quiet_options(test::fresh_dir("strategy_resume_reference")));
   const auto dir = test::fresh_dir("strategy_resume_killed");
-  auto killed = quiet(dir);
+  auto killed = quiet_options(dir);
   killed.jobs = 2;
   const int kill_after = 2 * spec.points_per_iteration + 2;
   killed.after_evaluation = [&](int done) {
     if (done == kill_after) throw SimulatedKill{};
   };
   CHECK_THROWS_AS(run_study(spec, model, killed), SimulatedKill);
-  auto resumed_options = quiet(dir);
+  auto resumed_options = quiet_options(dir);
   resumed_options.resume = true;
   const auto resumed = run_study(spec, model, resumed_options);
   CHECK(resumed.runs == reference.runs);
@@ -107,7 +101,7 @@ TEST_CASE("A first iteration too small for a surrogate is not followed by a re-r
     auto study = test::analytic_study(0.0, 3);
     study["sampling"] = {{"strategy", strategy}, {"points_per_iteration", 3}};
     const auto dir = test::fresh_dir("strategy_no_rerun_" + strategy);
-    run_study(parse_study(study, "."), AnalyticCurveModel(), quiet(dir));
+    run_study(parse_study(study, "."), AnalyticCurveModel(), quiet_options(dir));
     const auto evaluations = StudyStore::open_existing(dir / "study.db").evaluations();
     INFO("strategy " << strategy);
     REQUIRE(evaluations.size() == 10);
