@@ -103,9 +103,9 @@ double rms_surface_error(const identify::Curve& target, const identify::Curve& c
   return std::sqrt(sum / static_cast<double>(f.size()));
 }
 
-// The first replicate index of the report's re-runs: past the 20 a study's final selection may use
+// The first replicate index of the report's re-runs: past those a study's final selection may use
 // (study_spec.hpp), so the trajectories that chose the answer do not also judge it.
-constexpr int kFirstReportReplicate = 20;
+constexpr int kFirstReportReplicate = identify::kMaxReplicates;
 
 // Surface errors of `count` runs at `values`: the run already made (`first_error`), then
 // round-off replicates (roundoff_replicates.hpp), each another trajectory of the same physics.
@@ -229,7 +229,7 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   const double error_after = rms_surface_error(target, r.best_curves.at("free_surface"));
   std::string t =
       "Table 3: parameters identified on the SCG s = 4 drum against the s = 1 free surface\n\n"
-      "| Keyword | Variable | Initial value | Paper optimal | demfit optimal (best run, its 95 % interval) "
+      "| Keyword | Variable | Initial value | Paper optimal | demfit optimal (the study's answer, its 95 % interval) "
       "|\n|---|---|---|---|---|\n";
   for (const identify::VariableSpec& v : spec.variables) {
     const bool wall = v.name.rfind("wall_", 0) == 0;

@@ -271,7 +271,8 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
   check.all_variables = in.boolean_or("all_variables", check.all_variables);
   in.finish();
   if (check.max_steps < 0 || check.max_steps > 20) in.fail("max_steps", "must be 0 (no check) to 20");
-  if (check.replicates < 1 || check.replicates > 20) in.fail("replicates", "must be 1 to 20");
+  if (check.replicates < 1 || check.replicates > kMaxReplicates)
+    in.fail("replicates", "must be 1 to " + std::to_string(kMaxReplicates));
   if (!(check.first_step > 0.0 && check.first_step <= 0.5))
     in.fail("first_step", "must be in (0, 0.5] (a fraction of each variable's range)");
 }
@@ -283,7 +284,8 @@ void parse_final_selection(JsonReader in, StudySpec& spec) {
   in.finish();
   if (selection.candidates < 0 || selection.candidates > 20)
     in.fail("candidates", "must be 0 (off: the best single run is the answer) to 20");
-  if (selection.replicates < 1 || selection.replicates > 20) in.fail("replicates", "must be 1 to 20");
+  if (selection.replicates < 1 || selection.replicates > kMaxReplicates)
+    in.fail("replicates", "must be 1 to " + std::to_string(kMaxReplicates));
 }
 
 }  // namespace

@@ -97,6 +97,9 @@ struct IntervalCheckSpec {
   bool all_variables = true;
 };
 
+// Most round-off replicates a selection or an interval check may ask for (roundoff_replicates.hpp).
+inline constexpr int kMaxReplicates = 20;
+
 // The answer chosen among the best runs by round-off replicates (final_selection.hpp): on a noisy
 // objective the lowest single run is partly the luckiest trajectory. Off when candidates is 0.
 struct FinalSelectionSpec {
