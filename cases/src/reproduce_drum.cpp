@@ -108,23 +108,27 @@ double rms_surface_error(const identify::Curve& target, const identify::Curve& c
 constexpr int kFirstReportReplicate = identify::kMaxReplicates;
 
 // Surface errors of `count` runs at `values`: the run already made (`first_error`), then
-// round-off replicates (roundoff_replicates.hpp), each another trajectory of the same physics.
+// round-off replicates (roundoff_replicates.hpp), each another trajectory of the same physics. A
+// replicate that fails is left out (the spread's count says so) rather than losing the finished
+// study's table.
 std::vector<double> replicate_errors(const identify::Model& model, const identify::StudySpec& spec,
                                      const identify::ParameterSet& values, double first_error,
                                      const identify::Curve& target, int count,
                                      const identify::EvaluationContext& context) {
   std::vector<double> errors{first_error};
   for (int r = 0; r + 1 < count; ++r) {
-    const identify::CurveSet curves =
-        model.evaluate(identify::replicate_parameters(spec, values, kFirstReportReplicate + r), context);
-    errors.push_back(rms_surface_error(target, curves.at("free_surface")));
+    try {
+      const identify::CurveSet curves =
+          model.evaluate(identify::replicate_parameters(spec, values, kFirstReportReplicate + r), context);
+      errors.push_back(rms_surface_error(target, curves.at("free_surface")));
+    } catch (const std::exception&) {}
   }
   return errors;
 }
 
 std::string spread_text(const identify::ReplicateSpread& s) {
   return fmt("%.2f", s.mean) + " ± " + fmt("%.2f", s.standard_deviation) + " mm (" + fmt("%.2f", s.lowest) + "–" +
-         fmt("%.2f", s.highest) + ")";
+         fmt("%.2f", s.highest) + ", " + std::to_string(s.count) + " runs)";
 }
 
 // How sure the single-run ratio is: both points re-run as round-off replicates (Table 3's s = 4
