@@ -1,0 +1,43 @@
+#!/bin/bash
+# Runs `demfit reproduce table3` on a copy of cases/ whose Table 3 study differs from the shipped
+# one only in the study seed and the given edits, for docs/reproduce.md reading 8 (seeds 1-3,
+# log vs linear particle friction, final-selection candidates). The copy lives in WORK/cases with
+# WORK/data linked to the repository's data/, because reproduce reads its studies from --data's
+# sibling cases/. Prints the report's Surface RMS and How sure lines.
+# Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [quick]
+#   e.g. table3_variant.sh build/apps/demfit /tmp/t3v/lin2 2 frics_log_scale=false
+set -eu
+demfit=$1 work=$2 seed=$3
+shift 3
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(cd "$here/../.." && pwd)
+rm -rf "$work/cases" "$work/data" "$work/out"
+mkdir -p "$work"
+cp -r "$repo/cases" "$work/cases"
+ln -s "$repo/data" "$work/data"
+quick=()
+study="$work/cases/table3_study.json"
+edits=()
+for arg in "$@"; do
+  case "$arg" in
+    quick) quick=(--quick); study="$work/cases/table3_study_quick.json" ;;
+    *) edits+=("$arg") ;;
+  esac
+done
+python3 - "$study" "$seed" "${edits[@]}" <<'PY'
+import json, sys
+path, seed, edits = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+study = json.load(open(path))
+study["seed"] = seed
+for edit in edits:
+    key, value = edit.split("=", 1)
+    if key == "frics_log_scale":
+        next(v for v in study["variables"] if v["name"] == "frics")["log_scale"] = (value == "true")
+    elif key == "candidates":
+        study["final_selection"]["candidates"] = int(value)
+    else:
+        sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=)" % key)
+json.dump(study, open(path, "w"), indent=1)
+PY
+"$demfit" reproduce table3 "${quick[@]}" --jobs 2 --data "$work/data" --out "$work/out" > "$work/log" 2>&1
+grep -E "^Surface RMS|^How sure|final selection: run" "$work/log"
