@@ -10,10 +10,8 @@ set -euo pipefail
 work=$1 name=$2 rpm=$3
 shift 3
 case_file=docs/granudrum_measured/s15_and_wall_scan/case_walls_separate.json
-mkdir -p "$work"
-export DEMFIT_CACHE_DIR=$work/cache
 source "$(dirname "$0")/photo_profile.sh"
-photo=$(photo_profile "$work" "$rpm")
+granudrum_setup "$work" "$rpm"
 out=$work/run_${name}_$rpm
 /usr/bin/time -f "%e s" build/apps/demfit simulate "$case_file" --threads 1 --out "$out" \
   --set frics=0.38523 fricr=0.15210 particle_count=28796 wall_frics=0.38523 wall_fricd=0.15210 \

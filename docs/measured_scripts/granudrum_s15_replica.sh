@@ -14,10 +14,8 @@ best=${4:-docs/granudrum_measured/s15_full_calibration/best_parameters.json}
 read -r frics fricr count < <(python3 -c 'import json, sys
 p = json.load(open(sys.argv[1]))["parameters"]
 print(repr(p["frics"]), repr(p["fricr"]), repr(p["particle_count"]))' "$best")
-mkdir -p "$work"
-export DEMFIT_CACHE_DIR=$work/cache
 source "$(dirname "$0")/photo_profile.sh"
-photo=$(photo_profile "$work" "$rpm")
+granudrum_setup "$work" "$rpm"
 out=$work/run_f${seed}_$rpm
 log=$work/log_f${seed}_$rpm
 /usr/bin/time -f "%e s" build/apps/demfit simulate cases/granudrum_mcc.json --threads 1 --out "$out" \

@@ -9,10 +9,8 @@
 # Prints: source fill FILL_SEED rpm RPM wall-time RMS [mm] area [mm2] common x-range [mm].
 set -euo pipefail
 work=$1 seed=$2 rpm=$3 threads=${4:-1}
-mkdir -p "$work"
-export DEMFIT_CACHE_DIR=$work/cache
 source "$(dirname "$0")/photo_profile.sh"
-photo=$(photo_profile "$work" "$rpm")
+granudrum_setup "$work" "$rpm"
 out=$work/run_source_f${seed}_$rpm
 log=$work/log_source_f${seed}_$rpm
 /usr/bin/time -f "%e s" build/apps/demfit simulate cases/granudrum_mcc.json --threads "$threads" --out "$out" \

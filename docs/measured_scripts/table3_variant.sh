@@ -32,6 +32,8 @@ study["seed"] = seed
 for edit in edits:
     key, value = edit.split("=", 1)
     if key == "frics_log_scale":
+        if value not in ("true", "false"):
+            sys.exit("table3_variant.sh: frics_log_scale must be true or false, not '%s'" % value)
         next(v for v in study["variables"] if v["name"] == "frics")["log_scale"] = (value == "true")
     elif key == "candidates":
         study["final_selection"]["candidates"] = int(value)
