@@ -1,6 +1,9 @@
 // demfit target from-image PHOTO --diameter 84mm --out DIR: the free-surface profile of a drum
 // photo in the drum frame (free_surface.csv, mm) and an overlay picture (overlay.png). Issue 14;
 // extraction rule in imaging/include/demfit/imaging/surface.hpp.
+// demfit target compare SIMULATED.csv MEASURED.csv: how far two such profiles lie apart, and the
+// gap split into level, tilt and shape (imaging::profile_gap_parts); writes nothing.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +15,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "demfit/identify/curve_io.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/imaging/imaging.hpp"
 
@@ -92,6 +96,58 @@ void run_target_from_image(const TargetFromImageOptions& o) {
       profile.threshold_used, o.threshold < 0.0 ? " (Otsu)" : "", line.angle_deg, line.residual_rms * 1e3);
 }
 
+struct TargetCompareOptions {
+  std::string simulated, measured;
+};
+
+// A profile CSV (x_mm, z_mm) in metres; x must increase (both of demfit's profile writers sort it).
+imaging::SurfaceProfile read_profile(const std::string& file) {
+  const identify::Curve curve = identify::read_curve_csv(file, "x_mm", "z_mm");
+  imaging::SurfaceProfile profile;
+  for (std::size_t i = 0; i < curve.x.size(); ++i) {
+    if (!std::isfinite(curve.x[i]) || !std::isfinite(curve.y[i]))
+      throw std::runtime_error(file + ": point " + std::to_string(i + 1) +
+                               " is not a finite number; give numbers in mm in both columns");
+    if (i > 0 && !(curve.x[i] > curve.x[i - 1]))
+      throw std::runtime_error(file + ": x_mm must increase from row to row (row " + std::to_string(i + 1) +
+                               "); sort the profile by x");
+    profile.x.push_back(1e-3 * curve.x[i]);
+    profile.z.push_back(1e-3 * curve.y[i]);
+  }
+  return profile;
+}
+
+void run_target_compare(const TargetCompareOptions& o) {
+  const imaging::SurfaceProfile simulated = read_profile(o.simulated), measured = read_profile(o.measured);
+  const imaging::ProfileGapParts parts = imaging::profile_gap_parts(simulated, measured);
+  const double lo = std::max(simulated.x.front(), measured.x.front());
+  const double hi = std::min(simulated.x.back(), measured.x.back());
+  std::printf(
+      "demfit target compare: %s against %s (common x-range %.2f .. %.2f mm)\n"
+      "  RMS gap %.3f mm, differing area %.1f mm2\n"
+      "  split: level offset %+.3f mm (> 0: simulated above measured), angle difference %+.2f deg, tilt %.3f mm "
+      "RMS, shape %.3f mm RMS\n",
+      o.simulated.c_str(), o.measured.c_str(), lo * 1e3, hi * 1e3, parts.rms * 1e3,
+      imaging::profile_differing_area(simulated, measured) * 1e6, parts.level_offset * 1e3, parts.angle_difference_deg,
+      parts.tilt_rms * 1e3, parts.shape_rms * 1e3);
+}
+
+void register_compare(CLI::App& target) {
+  auto options = std::make_shared<TargetCompareOptions>();
+  auto* cmd = target.add_subcommand(
+      "compare",
+      "Compare two free-surface profiles (CSV with columns x_mm,z_mm in the drum frame, e.g. a simulated\n"
+      "free_surface_image.csv and a photo's free_surface.csv) over their common x-range. Prints the RMS gap\n"
+      "(mm), the differing area (mm2), and the gap split into three orthogonal parts: the level offset\n"
+      "(mean gap, mm), the tilt (angle difference in degrees and its RMS in mm) and the shape left over\n"
+      "(RMS, mm); RMS^2 = level^2 + tilt^2 + shape^2. Writes no file.");
+  cmd->add_option("simulated", options->simulated, "profile CSV (x_mm,z_mm) whose gap is reported (e.g. simulated)")
+      ->required();
+  cmd->add_option("measured", options->measured, "reference profile CSV (x_mm,z_mm), e.g. from target from-image")
+      ->required();
+  cmd->callback([options] { run_target_compare(*options); });
+}
+
 }  // namespace
 
 void register_target(CLI::App& app) {
@@ -121,6 +177,7 @@ void register_target(CLI::App& app) {
                   "profile abscissae, equally spaced across the surface's chord (default 41)");
   cmd->add_option("--out", options->out, "output folder (created if missing)")->required();
   cmd->callback([options] { run_target_from_image(*options); });
+  register_compare(*target);
 }
 
 }  // namespace demfit::apps

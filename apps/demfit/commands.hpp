@@ -9,6 +9,6 @@ void register_simulate(CLI::App& app);    // demfit simulate
 void register_identify(CLI::App& app);    // demfit identify / report / export
 void register_reproduce(CLI::App& app);   // demfit reproduce table1|table2|table3|figures|all
 void register_diagnose(CLI::App& app);    // demfit diagnose
-void register_target(CLI::App& app);      // demfit target from-image
+void register_target(CLI::App& app);      // demfit target from-image, target compare
 void register_parameters(CLI::App& app);  // demfit parameters
 }  // namespace demfit::apps

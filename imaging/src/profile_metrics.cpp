@@ -69,6 +69,39 @@ double profile_differing_area(const SurfaceProfile& a, const SurfaceProfile& b) 
   return area;
 }
 
+ProfileGapParts profile_gap_parts(const SurfaceProfile& a, const SurfaceProfile& b) {
+  std::vector<double> x, d;
+  merged_differences(a, b, x, d);
+  // Moments over the common range; every integrand is at most quadratic on an interval (x, z_a,
+  // z_b linear there), so Simpson's rule is exact.
+  double length = 0.0, sum_x = 0.0, sum_xx = 0.0, sum_d = 0.0, sum_xd = 0.0, sum_dd = 0.0, sum_xa = 0.0, sum_a = 0.0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double h = x[i + 1] - x[i], xm = 0.5 * (x[i] + x[i + 1]), dm = 0.5 * (d[i] + d[i + 1]);
+    const double a0 = interpolate(a, x[i]), a1 = interpolate(a, x[i + 1]), am = 0.5 * (a0 + a1);
+    const auto simpson = [h](double f0, double fm, double f1) { return h * (f0 + 4.0 * fm + f1) / 6.0; };
+    length += h;
+    sum_x += h * xm;
+    sum_xx += simpson(x[i] * x[i], xm * xm, x[i + 1] * x[i + 1]);
+    sum_d += h * dm;
+    sum_xd += simpson(x[i] * d[i], xm * dm, x[i + 1] * d[i + 1]);
+    sum_dd += simpson(d[i] * d[i], dm * dm, d[i + 1] * d[i + 1]);
+    sum_a += h * am;
+    sum_xa += simpson(x[i] * a0, xm * am, x[i + 1] * a1);
+  }
+  const double mean_x = sum_x / length, variance_x = sum_xx / length - mean_x * mean_x;
+  ProfileGapParts parts;
+  parts.level_offset = sum_d / length;
+  const double gap_slope = (sum_xd / length - mean_x * parts.level_offset) / variance_x;
+  const double slope_a = (sum_xa / length - mean_x * sum_a / length) / variance_x;
+  parts.angle_difference_deg = (std::atan(slope_a) - std::atan(slope_a - gap_slope)) * 180.0 / M_PI;
+  const double mean_square = sum_dd / length;
+  parts.rms = std::sqrt(mean_square);
+  parts.tilt_rms = std::abs(gap_slope) * std::sqrt(variance_x);
+  const double shape_square = mean_square - parts.level_offset * parts.level_offset - parts.tilt_rms * parts.tilt_rms;
+  parts.shape_rms = std::sqrt(std::max(0.0, shape_square));  // round-off can leave -1e-20
+  return parts;
+}
+
 SurfaceLine fit_surface_line(const SurfaceProfile& profile) {
   check_profile(profile, "to fit");
   const double n = static_cast<double>(profile.x.size());

@@ -177,3 +177,30 @@ TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and 
   CHECK(fs::exists(options.base.out_dir / "published_rpm15_s1_free_surface_image.csv"));
   CHECK(fs::exists(options.base.out_dir / "published_rpm45_s6_free_surface_image.csv"));
 }
+
+TEST_CASE("The granudrum report splits each gap into level tilt and shape and names a level difference no fill removes",
+          "[granudrum]") {
+  const identify::StudySpec spec = identify::load_study_file(kSource / "cases" / "granudrum_calibration_quick.json");
+  REQUIRE(spec.targets.size() == 2);
+  // One speed's bed 1 mm below its photo, the other's 1.5 mm above: a pure level split.
+  identify::CurveSet split = shifted_targets(spec, -1.0);
+  for (double& z : split.at(spec.targets[1].curve).y) z += 2.5;
+  const auto errors = cases::surface_errors(spec, split);
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].level_offset_mm == Approx(-1.0).epsilon(1e-9));
+  CHECK(errors[1].level_offset_mm == Approx(1.5).epsilon(1e-9));
+  for (const auto& e : errors) {
+    CHECK(std::abs(e.angle_difference_deg) < 1e-9);
+    CHECK(e.tilt_rms_mm < 1e-6);
+    CHECK(e.shape_rms_mm < 1e-6);
+  }
+  const std::string note = cases::level_split_note(errors);
+  CHECK(note.find("1.00 mm below the photo's in " + spec.targets[0].name) != std::string::npos);
+  CHECK(note.find("1.50 mm above it in " + spec.targets[1].name + ": 2.50 mm apart") != std::string::npos);
+  const std::string text = cases::granudrum_report(spec, identify::StudyResult{}, errors, cases::AnchorResult{}, {});
+  CHECK(text.find("| " + spec.targets[1].name + " | demfit calibrated | +1.50 | +0.0 | 0.00 | 0.00 |") !=
+        std::string::npos);
+  CHECK(text.find(note) != std::string::npos);
+  // Both beds above their photos: one fill lowers both, so no note.
+  CHECK(cases::level_split_note(cases::surface_errors(spec, shifted_targets(spec, 2.0))).empty());
+}

@@ -61,3 +61,28 @@ TEST_CASE("profiles without a common x-range or with fewer than two points canno
   single.z = {0.0};
   CHECK_THROWS_WITH(profile_differing_area(left, single), Catch::Contains("fewer than 2 points"));
 }
+
+TEST_CASE("a gap made of a level offset a tilt and an even bump splits into exactly those three parts") {
+  // Measured: z_b = 0.01 - 1.2 x on [-L, L]. Simulated: z_b + c + t x + k (|x| - L/2). The three
+  // added parts are orthogonal on the symmetric range (|x| - L/2 has zero mean and is even), so the
+  // split is exact: level c, tilt RMS |t| L / sqrt(3), shape RMS k L / (2 sqrt(3)).
+  const double half = 0.02, c = -0.0012, t = 0.05, k = 0.08;
+  const auto measured = [](double x) { return 0.01 - 1.2 * x; };
+  const SurfaceProfile b = sampled(-half, half, 21, measured);
+  const SurfaceProfile a =
+      sampled(-half, half, 41, [&](double x) { return measured(x) + c + t * x + k * (std::abs(x) - 0.5 * half); });
+  const ProfileGapParts parts = profile_gap_parts(a, b);
+  CHECK(parts.level_offset == Approx(c).epsilon(1e-12));
+  CHECK(parts.tilt_rms == Approx(t * half / std::sqrt(3.0)).epsilon(1e-10));
+  CHECK(parts.shape_rms == Approx(k * half / (2.0 * std::sqrt(3.0))).epsilon(1e-8));
+  CHECK(parts.angle_difference_deg == Approx((std::atan(-1.2 + t) - std::atan(-1.2)) * 180.0 / M_PI).epsilon(1e-10));
+  CHECK(parts.rms == Approx(profile_rms_distance(a, b)).epsilon(1e-14));
+  CHECK(parts.rms * parts.rms == Approx(parts.level_offset * parts.level_offset + parts.tilt_rms * parts.tilt_rms +
+                                        parts.shape_rms * parts.shape_rms)
+                                     .epsilon(1e-12));
+  // Swapping the profiles flips the level and the angle, not the sizes.
+  const ProfileGapParts swapped = profile_gap_parts(b, a);
+  CHECK(swapped.level_offset == Approx(-c).epsilon(1e-12));
+  CHECK(swapped.angle_difference_deg == Approx(-parts.angle_difference_deg).epsilon(1e-10));
+  CHECK(swapped.shape_rms == Approx(parts.shape_rms).epsilon(1e-8));
+}

@@ -2,6 +2,7 @@
 // and overlay.png; bad input exits != 0 with one "demfit: error:" line and leaves no output folder.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -114,4 +115,40 @@ TEST_CASE("target from-image with a diameter lacking its unit or an unknown unit
   CHECK(run_demfit("target from-image '" + photo.string() + "' --diameter 0.084 --out '" + (dir / "out").string() + "'",
                    dir)
             .status == 0);
+}
+
+TEST_CASE("target compare prints a profile raised by 1.5 mm as a 1.5 mm level offset with no tilt or shape") {
+  const fs::path dir = scratch("compare");
+  std::ofstream measured(dir / "measured.csv"), simulated(dir / "simulated.csv");
+  measured << "# a photo's profile\nx_mm,z_mm\n";
+  simulated << "x_mm,z_mm\n";
+  for (int k = 0; k <= 40; ++k) {
+    const double x_mm = -20.0 + k;  // simulated: -20..20 mm; measured only -20..10 mm
+    const double z_mm = 1e3 * kSurface(1e-3 * x_mm);
+    if (x_mm <= 10.0) measured << x_mm << ',' << z_mm << '\n';
+    simulated << x_mm << ',' << z_mm + 1.5 << '\n';
+  }
+  measured.close();
+  simulated.close();
+  const CliRun run = run_demfit(
+      "target compare '" + (dir / "simulated.csv").string() + "' '" + (dir / "measured.csv").string() + "'", dir);
+  INFO("stdout: " << run.output << "stderr: " << run.error);
+  REQUIRE(run.status == 0);
+  CHECK(run.output.find("common x-range -20.00 .. 10.00 mm") != std::string::npos);
+  CHECK(run.output.find("RMS gap 1.500 mm, differing area 45.0 mm2") != std::string::npos);
+  CHECK(run.output.find("level offset +1.500 mm") != std::string::npos);
+  // The angle difference is 0 up to round-off (printed +0.00 or -0.00).
+  CHECK(run.output.find("0.00 deg, tilt 0.000 mm RMS, shape 0.000 mm RMS") != std::string::npos);
+}
+
+TEST_CASE("target compare refuses a profile whose x does not increase naming the file and row") {
+  const fs::path dir = scratch("compare_unsorted");
+  std::ofstream(dir / "a.csv") << "x_mm,z_mm\n0,1\n2,1\n1,1\n";
+  std::ofstream(dir / "b.csv") << "x_mm,z_mm\n0,1\n2,1\n";
+  const CliRun run =
+      run_demfit("target compare '" + (dir / "a.csv").string() + "' '" + (dir / "b.csv").string() + "'", dir);
+  CHECK(run.status != 0);
+  CHECK(run.error.find("a.csv") != std::string::npos);
+  CHECK(run.error.find("row 3") != std::string::npos);
+  CHECK(std::count(run.error.begin(), run.error.end(), '\n') == 1);
 }

@@ -29,7 +29,18 @@ struct SurfaceError {
   std::string target;     // "<experiment>.<target>"
   double rms_mm = 0.0;    // RMS gap over the common x-range [mm]
   double area_mm2 = 0.0;  // differing area (area between the surfaces) [mm^2]
+  // The gap simulated - photo split as imaging::profile_gap_parts does.
+  double level_offset_mm = 0.0;       // mean gap [mm], > 0: simulated bed above the photo's
+  double angle_difference_deg = 0.0;  // simulated minus photo surface angle [deg]
+  double tilt_rms_mm = 0.0;           // RMS of the gap's linear trend [mm]
+  double shape_rms_mm = 0.0;          // RMS left after level and tilt [mm]
 };
+
+// The report's paragraph on the experiments' level offsets, empty when there is nothing to say:
+// when the simulated bed lies below the photo in one experiment and above it in another, and that
+// level difference is larger than every experiment's shape part, it states that a shared fill
+// cannot remove it (raising the fill raises every experiment's bed together).
+std::string level_split_note(const std::vector<SurfaceError>& errors);
 
 // Errors of every image target of `spec` against the curves of one design point (keys
 // "<experiment>/<curve>"). Throws when a curve is missing or does not overlap its target.

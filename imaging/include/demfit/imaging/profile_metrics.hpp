@@ -15,6 +15,21 @@ double profile_rms_distance(const SurfaceProfile& a, const SurfaceProfile& b);
 // (pixels beyond the common x-range are not counted). Same errors as profile_rms_distance.
 double profile_differing_area(const SurfaceProfile& a, const SurfaceProfile& b);
 
+// The gap a - b split into three orthogonal parts over the common range (L2 projection onto 1 and
+// x): RMS^2 = level_offset^2 + tilt^2 + shape_rms^2, where tilt is the RMS of the gap's linear
+// trend. Why: a drum study that shares one fill between experiments can move every experiment's
+// level together, not one against another; telling a level difference from a wrong angle or a
+// wrong shape says which of them the calibration can still reach. Same errors as
+// profile_rms_distance.
+struct ProfileGapParts {
+  double rms = 0.0;                   // [m] profile_rms_distance(a, b)
+  double level_offset = 0.0;          // [m] mean of z_a - z_b (a above b when > 0)
+  double angle_difference_deg = 0.0;  // atan(slope_a) - atan(slope_b), least-squares slopes on the common range
+  double tilt_rms = 0.0;              // [m] RMS of the gap's least-squares linear trend (mean removed)
+  double shape_rms = 0.0;             // [m] RMS of the gap left after removing its mean and linear trend
+};
+ProfileGapParts profile_gap_parts(const SurfaceProfile& a, const SurfaceProfile& b);
+
 // Least-squares line z = intercept + slope x through the profile points.
 struct SurfaceLine {
   double slope = 0.0;         // dz/dx [-]
