@@ -182,10 +182,11 @@ std::string level_split_note(const std::vector<SurfaceError>& errors) {
          low->target + " and " + fmt("%.2f", high->level_offset_mm) + " mm above it in " + high->target + ": " +
          fmt("%.2f", spread) +
          " mm apart, more than any experiment's shape part. The experiments share the fill, and more or fewer "
-         "particles raise or lower every experiment's bed together, so no value of the variables that set the fill "
-         "removes this difference: the model's bed changes its level between these experiments differently from the "
+         "particles move every experiment's bed the same way, so the variables that set the fill cannot bring both "
+         "levels to the photos': the model's bed changes its level between these experiments differently from the "
          "measured one (in a drum, e.g. how much the flowing layer dilates as the speed rises). The calibration can "
-         "only split it between the experiments.\n";
+         "only split this difference between the experiments; how it splits it is the objective's choice (the "
+         "targets' weights).\n";
 }
 
 namespace {

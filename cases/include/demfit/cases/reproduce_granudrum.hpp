@@ -39,7 +39,8 @@ struct SurfaceError {
 // The report's paragraph on the experiments' level offsets, empty when there is nothing to say:
 // when the simulated bed lies below the photo in one experiment and above it in another, and that
 // level difference is larger than every experiment's shape part, it states that a shared fill
-// cannot remove it (raising the fill raises every experiment's bed together).
+// cannot bring both levels to the photos' (more particles raise every experiment's bed; measured
+// in docs/granudrum.md, "Where the 45 rpm gap lies").
 std::string level_split_note(const std::vector<SurfaceError>& errors);
 
 // Errors of every image target of `spec` against the curves of one design point (keys
