@@ -1,5 +1,6 @@
 // Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
 #include "demfit/diagnose/report.hpp"
+#include "demfit/diagnose/target_levels.hpp"
 #include "text_format.hpp"
 #include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/safe_output.hpp"
@@ -79,9 +80,12 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
   std::ostringstream f;
   f << "# x data base_fit augmented_fit base_residual augmented_residual\n";
   f.precision(10);
+  // In y units: whitened residuals (model scatter in the noise model) are mapped back, not scaled.
+  const auto n = static_cast<Eigen::Index>(target.data.x.size());
+  const Eigen::VectorXd base = raw_residual(target, d.base.residual.segment(offset, n));
+  const Eigen::VectorXd augmented_fit = aug ? raw_residual(target, aug->fit.residual.segment(offset, n)) : base;
   for (std::size_t i = 0; i < target.data.x.size(); ++i) {
-    const double rb = d.base.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma;
-    const double ra = aug ? aug->fit.residual(offset + static_cast<Eigen::Index>(i)) * target.sigma : rb;
+    const double rb = base(static_cast<Eigen::Index>(i)), ra = augmented_fit(static_cast<Eigen::Index>(i));
     f << target.data.x[i] << ' ' << target.data.y[i] << ' ' << target.data.y[i] + rb << ' ' << target.data.y[i] + ra
       << ' ' << rb << ' ' << ra << '\n';
   }
@@ -101,6 +105,21 @@ std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, 
      << "unset multiplot";
   const std::string problem = identify::gnuplot_png(out / png, gp.str(), 800);
   return problem.empty() ? std::string() : "warning: " + problem + "\n";
+}
+
+// The base fit's mean residual per target (target_levels.hpp), in the target's units and its noise.
+std::string level_table(const Diagnosis& d) {
+  Eigen::Index points = 0;
+  for (const auto& t : d.targets) points += static_cast<Eigen::Index>(t.data.x.size());
+  if (d.base.residual.size() != points) return "";
+  std::string md =
+      "\n## Level per target (mean of base fit - data: the part of the misfit a vertical shift of the curve would "
+      "remove)\n\n| target | mean residual (y units) | mean/sigma | share of the squared residual |\n"
+      "|---|---|---|---|\n";
+  for (const auto& l : target_levels(d.targets, d.base.residual))
+    md += format("| %s | %+.4g | %+.3g | %.0f %% |\n", l.target.c_str(), l.mean, l.mean_over_sigma,
+                 100.0 * l.level_share);
+  return md;
 }
 
 }  // namespace
@@ -191,6 +210,7 @@ std::string markdown_report(const Diagnosis& d) {
   if (d.scatter_in_noise_model) md << tests_row("base, against the data noise alone", d.base_analysis_data_noise);
   md << tests_row("base", d.base_analysis);
   for (const auto& r : d.refits) md << tests_row("base + " + r.effect, r.analysis);
+  md << level_table(d);
   md << "\n## Gap per region (RMS and max of the residual / the noise level of the region's target)\n\n"
         "| region | base RMS/sigma | base max/sigma";
   for (const auto& r : d.refits) md << " | +" << r.effect << " RMS/sigma | +" << r.effect << " max/sigma";

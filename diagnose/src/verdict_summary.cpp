@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "demfit/diagnose/target_levels.hpp"
 #include "text_format.hpp"
 
 namespace demfit::diagnose::detail {
@@ -100,9 +101,18 @@ std::string summarise_verdict(const Diagnosis& d) {
 
 }  // namespace
 
+// Opposite levels of the base fit between targets (target_levels.hpp); empty when the base residual
+// is missing (a failed base fit) or the levels do not disagree.
+std::string levels_text(const Diagnosis& d) {
+  Eigen::Index points = 0;
+  for (const auto& t : d.targets) points += static_cast<Eigen::Index>(t.data.x.size());
+  if (d.targets.size() < 2 || d.base.residual.size() != points) return "";
+  return opposite_levels_text(target_levels(d.targets, d.base.residual));
+}
+
 std::string summarise(const Diagnosis& d) {
   const std::string verdict = summarise_verdict(d);
-  return d.verdict == Verdict::effect_identified ? verdict : verdict + undetectable_text(d);
+  return d.verdict == Verdict::effect_identified ? verdict : verdict + levels_text(d) + undetectable_text(d);
 }
 
 }  // namespace demfit::diagnose::detail
