@@ -99,8 +99,6 @@ std::string summarise_verdict(const Diagnosis& d) {
   return "";
 }
 
-}  // namespace
-
 // Opposite levels of the base fit between targets (target_levels.hpp); empty when the base residual
 // is missing (a failed base fit) or the levels do not disagree.
 std::string levels_text(const Diagnosis& d) {
@@ -109,6 +107,8 @@ std::string levels_text(const Diagnosis& d) {
   if (d.targets.size() < 2 || d.base.residual.size() != points) return "";
   return opposite_levels_text(target_levels(d.targets, d.base.residual));
 }
+
+}  // namespace
 
 std::string summarise(const Diagnosis& d) {
   const std::string verdict = summarise_verdict(d);
