@@ -191,6 +191,19 @@ std::string level_split_note(const std::vector<SurfaceError>& errors) {
 
 namespace {
 
+// How the photos enter the objective: a study chooses how the speeds share a misfit that no
+// variable removes (the level note), so the report states it.
+std::string objective_text(const identify::StudySpec& spec) {
+  std::string t = "Objective: the sum over the photos of weight x (mean gap / scale)^2 (metric profile_area);";
+  for (const auto& target : spec.targets) {
+    if (!target.image) continue;
+    t += " " + target.name + ": weight " + fmt("%g", target.weight) + ", scale " +
+         (target.scale > 0.0 ? fmt("%g mm", target.scale) : std::string("max |z| of the photo profile")) + ";";
+  }
+  t.back() = '.';
+  return t + "\n";
+}
+
 std::string gap_rows(const std::vector<SurfaceError>& errors, const std::string& who) {
   std::string t;
   for (const auto& e : errors)
@@ -235,6 +248,7 @@ std::string granudrum_report(const identify::StudySpec& spec, const identify::St
   t += "Runs: " + std::to_string(r.runs) + " evaluations (each = both speeds; " + std::to_string(r.failed_runs) +
        " failed), " + std::to_string(r.iterations) + " iterations, wall time " + fmt("%.0f", r.wall_seconds) +
        " s.\n\n";
+  t += objective_text(spec) + "\n";
   t += "| target | demfit calibrated RMS [mm] | differing area [mm²] |";
   t += anchor.empty() ? "\n|---|---|---|\n"
                       : " source's parameters at s = 1: RMS [mm] | differing area [mm²] |\n|---|---|---|---|---|\n";

@@ -201,6 +201,12 @@ TEST_CASE("The granudrum report splits each gap into level tilt and shape and na
   CHECK(text.find("| " + spec.targets[1].name + " | demfit calibrated | +1.50 | +0.0 | 0.00 | 0.00 |") !=
         std::string::npos);
   CHECK(text.find(note) != std::string::npos);
+  // The report states how the photos enter the objective (the split between them is its choice).
+  identify::StudySpec scaled = spec;
+  scaled.targets[1].scale = 1.35;
+  const std::string scaled_text = cases::granudrum_report(scaled, identify::StudyResult{}, errors, {}, {});
+  CHECK(scaled_text.find(spec.targets[0].name + ": weight 1, scale max |z| of the photo profile; " +
+                         spec.targets[1].name + ": weight 1, scale 1.35 mm.") != std::string::npos);
   // Both beds above their photos: one fill lowers both, so no note.
   CHECK(cases::level_split_note(cases::surface_errors(spec, shifted_targets(spec, 2.0))).empty());
 }
