@@ -103,18 +103,7 @@ struct TargetCompareOptions {
 // A profile CSV (x_mm, z_mm) in metres; x must increase (both of demfit's profile writers sort it).
 imaging::SurfaceProfile read_profile(const std::string& file) {
   const identify::Curve curve = identify::read_curve_csv(file, "x_mm", "z_mm");
-  imaging::SurfaceProfile profile;
-  for (std::size_t i = 0; i < curve.x.size(); ++i) {
-    if (!std::isfinite(curve.x[i]) || !std::isfinite(curve.y[i]))
-      throw std::runtime_error(file + ": point " + std::to_string(i + 1) +
-                               " is not a finite number; give numbers in mm in both columns");
-    if (i > 0 && !(curve.x[i] > curve.x[i - 1]))
-      throw std::runtime_error(file + ": x_mm must increase from row to row (row " + std::to_string(i + 1) +
-                               "); sort the profile by x");
-    profile.x.push_back(1e-3 * curve.x[i]);
-    profile.z.push_back(1e-3 * curve.y[i]);
-  }
-  return profile;
+  return imaging::profile_from_mm(curve.x, curve.y, file);
 }
 
 void run_target_compare(const TargetCompareOptions& o) {

@@ -35,11 +35,7 @@ std::string fmt(const char* pattern, double value) {
 
 // A curve x_mm, z_mm (drum frame) as an imaging profile in metres.
 imaging::SurfaceProfile profile_of(const identify::Curve& curve, double compared_radius) {
-  imaging::SurfaceProfile p;
-  for (std::size_t i = 0; i < curve.x.size(); ++i) {
-    p.x.push_back(1e-3 * curve.x[i]);
-    p.z.push_back(1e-3 * curve.y[i]);
-  }
+  imaging::SurfaceProfile p = imaging::profile_from_mm(curve.x, curve.y, "granudrum report: free-surface curve");
   p.compared_radius = compared_radius;
   return p;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace demfit::imaging {
 namespace {
@@ -100,6 +101,23 @@ ProfileGapParts profile_gap_parts(const SurfaceProfile& a, const SurfaceProfile&
   const double shape_square = mean_square - parts.level_offset * parts.level_offset - parts.tilt_rms * parts.tilt_rms;
   parts.shape_rms = std::sqrt(std::max(0.0, shape_square));  // round-off can leave -1e-20
   return parts;
+}
+
+SurfaceProfile profile_from_mm(const std::vector<double>& x_mm, const std::vector<double>& z_mm,
+                               const std::string& source) {
+  if (x_mm.size() != z_mm.size())
+    throw std::runtime_error(source + ": x_mm and z_mm differ in length; give one height per abscissa");
+  SurfaceProfile profile;
+  for (std::size_t i = 0; i < x_mm.size(); ++i) {
+    const std::string row = " (row " + std::to_string(i + 1) + ")";
+    if (!std::isfinite(x_mm[i]) || !std::isfinite(z_mm[i]))
+      throw std::runtime_error(source + ": a value is not a finite number" + row + "; give numbers in mm in both columns");
+    if (i > 0 && !(x_mm[i] > x_mm[i - 1]))
+      throw std::runtime_error(source + ": x_mm must increase from row to row" + row + "; sort the profile by x");
+    profile.x.push_back(1e-3 * x_mm[i]);  // mm -> m: the profile metrics work in SI units
+    profile.z.push_back(1e-3 * z_mm[i]);
+  }
+  return profile;
 }
 
 SurfaceLine fit_surface_line(const SurfaceProfile& profile) {

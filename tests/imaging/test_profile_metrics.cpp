@@ -86,3 +86,16 @@ TEST_CASE("a gap made of a level offset a tilt and an even bump splits into exac
   CHECK(swapped.angle_difference_deg == Approx(-parts.angle_difference_deg).epsilon(1e-10));
   CHECK(swapped.shape_rms == Approx(parts.shape_rms).epsilon(1e-8));
 }
+
+TEST_CASE("a profile in millimetres becomes metres and an unsorted or non-finite one is refused by row") {
+  const SurfaceProfile p = profile_from_mm({-20.0, 0.0, 12.5}, {3.0, -1.5, 0.25}, "photo.csv");
+  REQUIRE(p.x.size() == 3);
+  CHECK(p.x[0] == Approx(-0.020).epsilon(1e-15));
+  CHECK(p.x[2] == Approx(0.0125).epsilon(1e-15));
+  CHECK(p.z[1] == Approx(-0.0015).epsilon(1e-15));
+  CHECK_THROWS_WITH(profile_from_mm({0.0, 2.0, 1.0}, {1.0, 1.0, 1.0}, "photo.csv"),
+                    Catch::Contains("photo.csv") && Catch::Contains("row 3") && Catch::Contains("sort"));
+  CHECK_THROWS_WITH(profile_from_mm({0.0, 1.0}, {1.0, std::nan("")}, "sim.csv"),
+                    Catch::Contains("sim.csv") && Catch::Contains("row 2") && Catch::Contains("finite"));
+  CHECK_THROWS_WITH(profile_from_mm({0.0, 1.0}, {1.0}, "sim.csv"), Catch::Contains("differ in length"));
+}

@@ -2,6 +2,9 @@
 // Distances between two free-surface profiles (drum frame, metres). Both are read as piecewise
 // linear functions z(x) and compared on their common x-range [max(a.x0, b.x0), min(a.xn, b.xn)];
 // the integrals are exact for piecewise linear functions (breakpoints of both profiles merged).
+#include <string>
+#include <vector>
+
 #include "demfit/imaging/surface.hpp"
 
 namespace demfit::imaging {
@@ -29,6 +32,13 @@ struct ProfileGapParts {
   double shape_rms = 0.0;             // [m] RMS of the gap left after removing its mean and linear trend
 };
 ProfileGapParts profile_gap_parts(const SurfaceProfile& a, const SurfaceProfile& b);
+
+// A profile given in millimetres (the x_mm, z_mm curves of `demfit target from-image` and of the
+// drum cases) as a SurfaceProfile in metres, for the comparisons above. `source` names the curve
+// in errors. Throws std::runtime_error (one line naming the source, the row and the fix) when the
+// columns differ in length, a value is not finite, or x does not increase from row to row.
+SurfaceProfile profile_from_mm(const std::vector<double>& x_mm, const std::vector<double>& z_mm,
+                               const std::string& source);
 
 // Least-squares line z = intercept + slope x through the profile points.
 struct SurfaceLine {
