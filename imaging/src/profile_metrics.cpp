@@ -111,7 +111,8 @@ SurfaceProfile profile_from_mm(const std::vector<double>& x_mm, const std::vecto
   for (std::size_t i = 0; i < x_mm.size(); ++i) {
     const std::string row = " (row " + std::to_string(i + 1) + ")";
     if (!std::isfinite(x_mm[i]) || !std::isfinite(z_mm[i]))
-      throw std::runtime_error(source + ": a value is not a finite number" + row + "; give numbers in mm in both columns");
+      throw std::runtime_error(source + ": a value is not a finite number" + row +
+                               "; give numbers in mm in both columns");
     if (i > 0 && !(x_mm[i] > x_mm[i - 1]))
       throw std::runtime_error(source + ": x_mm must increase from row to row" + row + "; sort the profile by x");
     profile.x.push_back(1e-3 * x_mm[i]);  // mm -> m: the profile metrics work in SI units
