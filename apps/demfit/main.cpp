@@ -3,10 +3,58 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
+
+namespace {
+
+// The command path the user named ("demfit reproduce"), walked along argv's leading words, and the
+// first word after it that names no command (empty when there is none).
+struct NamedCommand {
+  const CLI::App* app = nullptr;
+  std::string path = "demfit";
+  std::string stray;
+};
+
+NamedCommand named_command(const CLI::App& root, int argc, char** argv) {
+  NamedCommand named;
+  named.app = &root;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') break;
+    const auto found = named.app->get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); });
+    if (found.empty()) {
+      named.stray = word;
+      break;
+    }
+    named.app = found.front();
+    named.path += " " + word;
+  }
+  return named;
+}
+
+// A command-line mistake as one line naming it and the fix, exit status 1 like every other error
+// (CLI11's own text spans two lines and exits 105-109). Help and --version keep CLI11's output.
+int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
+  if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(error);
+  const NamedCommand named = named_command(app, argc, argv);
+  std::string message = error.what();
+  const auto commands = named.app->get_subcommands([](const CLI::App*) { return true; });
+  const bool command_missing = named.stray.empty() && dynamic_cast<const CLI::RequiredError*>(&error) != nullptr &&
+                               named.app->get_subcommands().empty();
+  if (!commands.empty() && (!named.stray.empty() || command_missing)) {
+    message = named.stray.empty() ? "a command is required" : "unknown command '" + named.stray + "'";
+    message += "; the commands are";
+    for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
+  }
+  std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";
+  return 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Idle OpenMP threads spin briefly, then sleep (dem_core/openmp_waiting.hpp: measured between
@@ -30,7 +78,9 @@ int main(int argc, char** argv) {
   demfit::apps::register_parameters(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) { return app.exit(e); } catch (const std::exception& e) {
+  } catch (const CLI::ParseError& e) {
+    return report_parse_error(app, e, argc, argv);
+  } catch (const std::exception& e) {
     std::cerr << "demfit: error: " << e.what() << '\n';
     return 1;
   }

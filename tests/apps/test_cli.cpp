@@ -112,6 +112,30 @@ TEST_CASE("simulate with an unknown --set parameter path fails naming it and wri
       "drum.rpmm", dir);
 }
 
+TEST_CASE("an unknown command fails in one line listing the commands and writes nothing") {
+  const fs::path dir = scratch("unknown_command");
+  const CliRun top = run_demfit("frobnicate", dir);
+  check_clean_failure(top, "unknown command 'frobnicate'", dir);
+  CHECK(top.status == 1);
+  CHECK(top.error.find("simulate, identify") != std::string::npos);
+  const CliRun nested = run_demfit("reproduce table9", dir);
+  check_clean_failure(nested, "unknown command 'table9'", dir);
+  CHECK(nested.error.find("table1") != std::string::npos);
+  CHECK(nested.error.find("'demfit reproduce --help'") != std::string::npos);
+}
+
+TEST_CASE("a missing argument or option mistake fails in one line naming it with exit status 1") {
+  const fs::path dir = scratch("usage");
+  const CliRun missing = run_demfit("identify", dir);
+  check_clean_failure(missing, "study is required", dir);
+  CHECK(missing.status == 1);
+  CHECK(missing.error.find("'demfit identify --help'") != std::string::npos);
+  check_clean_failure(
+      run_demfit(std::string("identify '") + DEMFIT_SOURCE_DIR + "/cases/table1_study.json' --bogus", dir), "--bogus",
+      dir);
+  check_clean_failure(run_demfit("reproduce", dir), "a command is required", dir);
+}
+
 namespace {
 
 // stderr of `demfit --version` with OpenMP's start-up settings displayed (OMP_DISPLAY_ENV is
