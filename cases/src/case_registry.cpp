@@ -66,8 +66,12 @@ bool option_on(const CaseSpec& spec, CurveCondition produced) {
 
 std::vector<identify::CurveDescriptor> produced_curves(const CaseSpec& spec) {
   std::vector<identify::CurveDescriptor> out;
-  for (const CaseCurve& c : case_kind_row(spec.kind).curves)
-    if (option_on(spec, c.produced)) out.push_back(c.curve);
+  for (const CaseCurve& c : case_kind_row(spec.kind).curves) {
+    if (!option_on(spec, c.produced)) continue;
+    out.push_back(c.curve);
+    // The occupancy picture spans the drum's inner diameter (drum_case.cpp), like the photo's frame.
+    if (c.produced == CurveCondition::drum_image) out.back().picture_span = spec.drum.diameter;
+  }
   return out;
 }
 

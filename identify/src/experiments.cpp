@@ -51,7 +51,7 @@ std::vector<CurveDescriptor> ExperimentSetModel::curves() const {
   for (const auto& e : experiments_) {
     const auto declared = e.model->curves();
     if (declared.empty()) return {};
-    for (const CurveDescriptor& c : declared) out.push_back({e.name + "/" + c.name, c.x_label, c.y_label});
+    for (const CurveDescriptor& c : declared) out.push_back({e.name + "/" + c.name, c.x_label, c.y_label, c.picture_span});
   }
   return out;
 }

@@ -81,6 +81,31 @@ void check_parameter_names(const StudySpec& spec, const Model& model) {
   check_parameter_bounds(spec, model);
 }
 
+namespace {
+
+// Relative mismatch allowed between a photo's frame and the model's picture: a frame measured to
+// a few pixels (0.2 mm of 84 mm per pixel in the GranuDrum photos) passes; a unit slip or
+// another drum does not.
+constexpr double kPictureSpanTolerance = 0.02;
+
+// A photo target's frame against the model's picture of the same curve: a photo read as 84 m
+// across (image_diameter in mm by mistake) or of another drum would be compared in other
+// millimetres than the model's, a unit error no objective value reveals.
+void check_picture_span(const TargetSpec& t, const CurveDescriptor& curve, const std::string& field) {
+  if (!t.image || !(curve.picture_span > 0.0)) return;
+  const double photo = t.image->diameter;
+  if (std::abs(photo / curve.picture_span - 1.0) <= kPictureSpanTolerance) return;
+  char text[240];
+  std::snprintf(text, sizeof text,
+                ".image_diameter ('%s'): the photo is read as %g m across, but the model's picture of '%s' spans %g m "
+                "(its drum's inner diameter); give the inner diameter of the simulated drum in metres (e.g. 0.084 "
+                "for 84 mm)",
+                t.name.c_str(), photo, t.curve.c_str(), curve.picture_span);
+  throw std::runtime_error(field + text);
+}
+
+}  // namespace
+
 void check_declared_curves(const StudySpec& spec, const Model& model) {
   const std::vector<CurveDescriptor> declared = model.curves();
   if (declared.empty()) return;
@@ -102,6 +127,7 @@ void check_declared_curves(const StudySpec& spec, const Model& model) {
     // unit_factor throws, naming the column, when the target's unit cannot convert to the curve's.
     unit_factor(t.data.x_label, found->x_label, field + ".x_column");
     unit_factor(t.data.y_label, found->y_label, field + ".y_column");
+    check_picture_span(t, *found, field);
   }
 }
 

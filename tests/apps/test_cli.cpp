@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -134,6 +136,24 @@ TEST_CASE("a missing argument or option mistake fails in one line naming it with
       run_demfit(std::string("identify '") + DEMFIT_SOURCE_DIR + "/cases/table1_study.json' --bogus", dir), "--bogus",
       dir);
   check_clean_failure(run_demfit("reproduce", dir), "a command is required", dir);
+}
+
+TEST_CASE("identify refuses a photo target whose image_diameter is not the simulated drum's naming the field") {
+  const fs::path dir = scratch("photo_diameter");
+  std::ifstream in(fs::path(DEMFIT_SOURCE_DIR) / "cases" / "granudrum_calibration_quick.json");
+  nlohmann::json study = nlohmann::json::parse(in);
+  for (auto& experiment : study["experiments"]) {
+    experiment["model"]["case"] = std::string(DEMFIT_SOURCE_DIR) + "/cases/granudrum_mcc.json";
+    auto& target = experiment["targets"][0];
+    target["image"] = std::string(DEMFIT_SOURCE_DIR) + "/" + target["image"].get<std::string>().substr(3);
+  }
+  study["experiments"][1]["targets"][0]["image_diameter"] = 84;  // mm written where metres are meant
+  write(dir / "study.json", study.dump());
+  const CliRun run =
+      run_demfit("identify '" + (dir / "study.json").string() + "' --out '" + (dir / "out").string() + "'", dir);
+  check_clean_failure(run, "image_diameter ('rpm45.surface')", dir);
+  CHECK(run.error.find("84 m across") != std::string::npos);
+  CHECK(run.error.find("spans 0.084 m") != std::string::npos);
 }
 
 namespace {

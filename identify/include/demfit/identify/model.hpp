@@ -24,6 +24,10 @@ struct CurveDescriptor {
   std::string name;
   std::string x_label;
   std::string y_label;
+  // [m] For a curve read from a picture of the model's own frame (a drum's free_surface_image):
+  // the length the picture spans, which a photo target of that curve must span too, or its
+  // millimetres are not the model's. 0 = not a picture curve.
+  double picture_span = 0.0;
 };
 
 // Parameter values by name, in the units the model declares (SI unless the name says otherwise).
