@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/units.hpp"
+#include "demfit/imaging/profile_metrics.hpp"
 #include "study_support.hpp"
 
 namespace demfit::identify {
@@ -22,6 +23,34 @@ std::string range_text(const std::vector<double>& x, const std::string& label) {
 void convert(std::vector<double>& values, double factor) {
   if (factor != 1.0)
     for (double& v : values) v *= factor;
+}
+
+// Least-squares surface angle [deg] of a profile curve (x and z in one unit, so the slope is a ratio).
+double surface_angle_deg(const Curve& curve) {
+  imaging::SurfaceProfile profile;
+  profile.x = curve.x;
+  profile.z = curve.y;
+  return imaging::fit_surface_line(profile).angle_deg;
+}
+
+// A bed in a turning drum is lifted on the side its wall moves up, so a photo and a model bed
+// that slope opposite ways turn opposite ways (or the photo is mirrored): a fit would then trade
+// friction for a flatter bed and report it with confidence. Beds flatter than this angle are
+// not judged (a slow or slippery bed may be nearly level).
+constexpr double kJudgedBedAngleDeg = 10.0;
+
+void check_rotation_sense(const TargetSpec& t, const Curve& model_curve, const std::string& field) {
+  if (!t.image || t.data.x.size() < 2 || model_curve.x.size() < 2) return;
+  const double photo = surface_angle_deg(t.data), model = surface_angle_deg(model_curve);
+  if (std::abs(photo) < kJudgedBedAngleDeg || std::abs(model) < kJudgedBedAngleDeg || (photo > 0.0) == (model > 0.0))
+    return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                ".image ('%s'): the photo's surface slopes %.1f deg and the model's at the initial point %.1f deg "
+                "(negative = lifted on the left), so the model turns the other way; flip the sign of the model's "
+                "rotation (e.g. drum.rpm) or mirror the photo",
+                t.name.c_str(), photo, model);
+  throw std::runtime_error(field + text);
 }
 
 StudySpec checked_against(const StudySpec& spec, const Model& model,
@@ -68,6 +97,7 @@ StudySpec checked_against(const StudySpec& spec, const Model& model,
       throw std::runtime_error(field + ".x_column: the target's x " + range_text(t.data.x, t.data.x_label) +
                                " does not overlap the model's x at the initial point " + range_text(m.x, m.x_label) +
                                "; check the units and the fill (docs/study_format.md, \"Matching the fill\")");
+    check_rotation_sense(t, m, field);
   }
   if (initial) *initial = InitialRun{parameters, outcome};
   return out;

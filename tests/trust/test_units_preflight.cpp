@@ -16,9 +16,7 @@ namespace dc = demfit::dem_core;
 // Pressure [MPa] = k * volume change [cm3] on volumes 10..20 cm3 (a stand-in for the pellet case).
 class LinearPelletModel final : public id::Model {
  public:
-  std::vector<id::ParameterDescriptor> parameters() const override {
-    return id::unbounded_descriptors({"k"});
-  }
+  std::vector<id::ParameterDescriptor> parameters() const override { return id::unbounded_descriptors({"k"}); }
   id::ParameterSet default_parameters() const override { return {{"k", 1.0}}; }
   id::CurveSet evaluate(const id::ParameterSet& p, const id::EvaluationContext&) const override {
     id::Curve c{"volume_cm3", "pressure_MPa", {}, {}};
@@ -43,7 +41,59 @@ id::StudySpec study(const std::string& x_label, const std::string& y_label, std:
   return spec;
 }
 
+// A drum-like model whose picture profile is a straight bed at `angle_deg` (x, z in mm, a picture
+// spanning 84 mm), for the photo-target checks.
+class TiltedBedModel final : public id::Model {
+ public:
+  std::vector<id::ParameterDescriptor> parameters() const override { return id::unbounded_descriptors({"angle_deg"}); }
+  id::ParameterSet default_parameters() const override { return {{"angle_deg", 30.0}}; }
+  std::vector<id::CurveDescriptor> curves() const override { return {{"free_surface_image", "x_mm", "z_mm", 0.084}}; }
+  id::CurveSet evaluate(const id::ParameterSet& p, const id::EvaluationContext&) const override {
+    return {{"free_surface_image", bed(p.at("angle_deg"))}};
+  }
+  static id::Curve bed(double angle_deg) {
+    id::Curve c{"x_mm", "z_mm", {}, {}};
+    for (int i = -20; i <= 20; i += 2) {
+      c.x.push_back(i);
+      c.y.push_back(std::tan(angle_deg * M_PI / 180.0) * i);
+    }
+    return c;
+  }
+};
+
+// A photo target lifted on the left (-38 deg) framed `diameter` m across; the model starts at `initial_deg`.
+id::StudySpec photo_study(double initial_deg, double diameter) {
+  id::StudySpec spec;
+  spec.model_reference = "tilted";
+  spec.variables.push_back({"angle_deg", -60.0, 60.0, initial_deg, false, 1.0});
+  id::TargetSpec t;
+  t.name = "rpm15.surface";
+  t.curve = "free_surface_image";
+  t.data = TiltedBedModel::bed(-38.0);
+  t.image = id::ImageTargetSpec{};
+  t.image->diameter = diameter;
+  spec.targets.push_back(t);
+  return spec;
+}
+
 }  // namespace
+
+TEST_CASE("a photo target whose bed slopes the other way from the model's initial bed is refused") {
+  const TiltedBedModel model;
+  CHECK_THROWS_WITH(id::preflight_study(photo_study(40.0, 0.084), model, {}),
+                    Catch::Contains("targets[0].image ('rpm15.surface')") && Catch::Contains("-38.0 deg") &&
+                        Catch::Contains("40.0 deg") && Catch::Contains("turns the other way"));
+  CHECK_NOTHROW(id::preflight_study(photo_study(-25.0, 0.084), model, {}));
+  CHECK_NOTHROW(id::preflight_study(photo_study(5.0, 0.084), model, {}));  // a nearly level bed is not judged
+}
+
+TEST_CASE("a photo target framed at another diameter than the model's picture is refused naming image_diameter") {
+  const TiltedBedModel model;
+  CHECK_THROWS_WITH(id::preflight_study(photo_study(-25.0, 84.0), model, {}),
+                    Catch::Contains("targets[0].image_diameter ('rpm15.surface')") && Catch::Contains("84 m across") &&
+                        Catch::Contains("spans 0.084 m"));
+  CHECK_NOTHROW(id::preflight_study(photo_study(-25.0, 0.0845), model, {}));  // 0.6 %: a frame measured to a pixel
+}
 
 TEST_CASE("column units are read from the label and converted within a dimension") {
   CHECK(id::unit_factor("volume_mm3", "volume_cm3", "f") == Approx(1e-3).epsilon(1e-14));
