@@ -37,7 +37,13 @@ std::size_t column_index(const std::vector<std::string>& header, const std::stri
   if (known.size() > 200) known = known.substr(0, 200) + "...";
   for (char& c : known)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name + "'; the header has: " + known);
+  // A spreadsheet export with another separator (';' or tab, often with decimal commas) reads as
+  // one column: say so, since the printed header then looks right.
+  std::string hint;
+  if (header.size() == 1 && header[0].find_first_of(";\t") != std::string::npos)
+    hint = "; the columns are separated by ';' or tabs: save the file with comma separators and decimal points";
+  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name + "'; the header has: " + known +
+                           hint);
 }
 
 double parse_number(const std::string& text, const std::filesystem::path& path, int line) {

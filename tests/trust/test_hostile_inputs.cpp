@@ -204,6 +204,8 @@ TEST_CASE("a bad curve file is refused naming the file and the line") {
       {"no header", study_and_csv("# only a comment\n"), kIdentify, "no header"},
       {"one point only", study_and_csv("x_1,y_1\n0,0\n"), kIdentify, "fewer than 2 points"},
       {"a column missing", study_and_csv("x_1,z_1\n0,0\n1,1\n"), kIdentify, "no column 'y_1'"},
+      {"a semicolon-separated spreadsheet export", study_and_csv("x_1;y_1\n0;0\n0,5;0,25\n1;1\n"), kIdentify,
+       "separated by ';' or tabs"},
       {"a 5000-byte line", study_and_csv("x_1,y_1\n0," + std::string(5000, '1') + "\n1,1\n"), kIdentify, "longer than"},
       {"more points than the documented limit", study_and_csv(long_csv(100001)), kIdentify, "more than 100000 points"},
       {"infinite value", study_and_csv("x_1,y_1\n0,0\n0.5,inf\n1,1\n"), kIdentify, "targets[0]"},
