@@ -90,7 +90,9 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
     }
     if (fields.size() != header.size())
       throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) + ": " +
-                               std::to_string(fields.size()) + " fields, header has " + std::to_string(header.size()));
+                               std::to_string(fields.size()) + " fields, header has " + std::to_string(header.size()) +
+                               (fields.size() > header.size() ? "; a decimal comma splits a number in two: use points"
+                                                              : "; give one value per column"));
     if (curve.x.size() >= kMaxCurvePoints)
       throw std::runtime_error("curve file '" + path.string() + "': more than " + std::to_string(kMaxCurvePoints) +
                                " points; thin the curve (a few hundred points describe it)");

@@ -201,6 +201,7 @@ TEST_CASE("a bad curve file is refused naming the file and the line") {
        kIdentify, "is a folder"},
       {"non-number in a row", study_and_csv("x_1,y_1\n0,0\n0.5,abc\n1,1\n"), kIdentify, "line 3"},
       {"row with too few fields", study_and_csv("x_1,y_1\n0,0\n0.5\n1,1\n"), kIdentify, "line 3"},
+      {"decimal commas", study_and_csv("x_1,y_1\n0,0\n0,5,0,25\n1,1\n"), kIdentify, "decimal comma"},
       {"no header", study_and_csv("# only a comment\n"), kIdentify, "no header"},
       {"one point only", study_and_csv("x_1,y_1\n0,0\n"), kIdentify, "fewer than 2 points"},
       {"a column missing", study_and_csv("x_1,z_1\n0,0\n1,1\n"), kIdentify, "no column 'y_1'"},
