@@ -50,6 +50,8 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
     message += "; the commands are";
     for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
   }
+  for (char& c : message)  // an argument may hold a newline or an escape sequence: keep one plain line
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";
   return 1;
 }
