@@ -44,13 +44,11 @@ void check_rotation_sense(const TargetSpec& t, const Curve& model_curve, const s
   const double photo = surface_angle_deg(t.data), model = surface_angle_deg(model_curve);
   if (std::abs(photo) < kJudgedBedAngleDeg || std::abs(model) < kJudgedBedAngleDeg || (photo > 0.0) == (model > 0.0))
     return;
-  char text[320];
-  std::snprintf(text, sizeof text,
-                ".image ('%s'): the photo's surface slopes %.1f deg and the model's at the initial point %.1f deg "
-                "(negative = lifted on the left), so the model turns the other way; flip the sign of the model's "
-                "rotation (e.g. drum.rpm) or mirror the photo",
-                t.name.c_str(), photo, model);
-  throw std::runtime_error(field + text);
+  char angles[96];
+  std::snprintf(angles, sizeof angles, "slopes %.1f deg and the model's at the initial point %.1f deg", photo, model);
+  throw std::runtime_error(field + ".image ('" + t.name + "'): the photo's surface " + angles +
+                           " (negative = lifted on the left), so the model turns the other way; flip the sign of "
+                           "the model's rotation (e.g. drum.rpm) or mirror the photo");
 }
 
 StudySpec checked_against(const StudySpec& spec, const Model& model,

@@ -95,13 +95,13 @@ void check_picture_span(const TargetSpec& t, const CurveDescriptor& curve, const
   if (!t.image || !(curve.picture_span > 0.0)) return;
   const double photo = t.image->diameter;
   if (std::abs(photo / curve.picture_span - 1.0) <= kPictureSpanTolerance) return;
-  char text[240];
-  std::snprintf(text, sizeof text,
-                ".image_diameter ('%s'): the photo is read as %g m across, but the model's picture of '%s' spans %g m "
-                "(its drum's inner diameter); give the inner diameter of the simulated drum in metres (e.g. 0.084 "
-                "for 84 mm)",
-                t.name.c_str(), photo, t.curve.c_str(), curve.picture_span);
-  throw std::runtime_error(field + text);
+  char photo_text[32], model_text[32];
+  std::snprintf(photo_text, sizeof photo_text, "%g", photo);
+  std::snprintf(model_text, sizeof model_text, "%g", curve.picture_span);
+  throw std::runtime_error(field + ".image_diameter ('" + t.name + "'): the photo is read as " + photo_text +
+                           " m across, but the model's picture of '" + t.curve + "' spans " + model_text +
+                           " m (its drum's inner diameter); give the inner diameter of the simulated drum in metres "
+                           "(e.g. 0.084 for 84 mm)");
 }
 
 }  // namespace
