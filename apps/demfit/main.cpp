@@ -4,6 +4,8 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "demfit/dem_core/memory_retention.hpp"
@@ -11,20 +13,42 @@
 
 namespace {
 
-// The command path the user named ("demfit reproduce"), walked along argv's leading words, and the
-// first word after it that names no command (empty when there is none).
+// The command path the user named ("demfit reproduce"), walked along argv's words (its own options
+// and their values stepped over), and the first word after it that names no command or an option
+// that belongs to one of its commands (both empty when there is none).
 struct NamedCommand {
   const CLI::App* app = nullptr;
   std::string path = "demfit";
   std::string stray;
+  std::pair<std::string, std::string> misplaced;  // an option written before its command, and that command
 };
+
+// Of the commands that own a misplaced option, the first one named later on the line, else the first.
+const CLI::App* owner_named_later(const std::vector<const CLI::App*>& owners, int from, int argc, char** argv) {
+  for (int later = from; later < argc; ++later)
+    for (const CLI::App* owner : owners)
+      if (owner->check_name(argv[later])) return owner;
+  return owners.front();
+}
 
 NamedCommand named_command(const CLI::App& root, int argc, char** argv) {
   NamedCommand named;
   named.app = &root;
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
-    if (word.empty() || word[0] == '-') break;
+    if (word.empty() || word == "--") break;
+    if (word[0] == '-') {  // an option of this command: step over it and its value
+      const std::string name = word.substr(0, word.find('='));
+      const CLI::Option* option = named.app->get_option_no_throw(name);
+      if (option == nullptr) {  // "reproduce --jobs 2 table1": an option of the command that should follow
+        const auto owners =
+            named.app->get_subcommands([&](const CLI::App* sub) { return sub->get_option_no_throw(name) != nullptr; });
+        if (!owners.empty()) named.misplaced = {name, owner_named_later(owners, i + 1, argc, argv)->get_name()};
+        break;
+      }
+      if (name == word && option->get_items_expected_max() > 0) ++i;
+      continue;
+    }
     const auto found = named.app->get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); });
     if (found.empty()) {
       named.stray = word;
@@ -50,6 +74,9 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
     message += "; the commands are";
     for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
   }
+  if (!named.misplaced.first.empty())
+    message = "option '" + named.misplaced.first + "' belongs after the command (e.g. '" + named.path + " " +
+              named.misplaced.second + " " + named.misplaced.first + " ...')";
   for (char& c : message)  // an argument may hold a newline or an escape sequence: keep one plain line
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";

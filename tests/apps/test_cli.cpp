@@ -126,6 +126,14 @@ TEST_CASE("an unknown command fails in one line listing the commands and writes 
   CHECK(nested.error.find("'demfit reproduce --help'") != std::string::npos);
 }
 
+TEST_CASE("an option written before its command is named with where it belongs") {
+  const fs::path dir = scratch("misplaced_option");
+  // before, the option's value was reported as an unknown command ('2')
+  check_clean_failure(run_demfit("reproduce --jobs 2 table1", dir),
+                      "option '--jobs' belongs after the command (e.g. 'demfit reproduce table1 --jobs ...')", dir);
+  check_clean_failure(run_demfit("reproduce --jobs=2 table9", dir), "option '--jobs' belongs after the command", dir);
+}
+
 TEST_CASE("a missing argument or option mistake fails in one line naming it with exit status 1") {
   const fs::path dir = scratch("usage");
   const CliRun missing = run_demfit("identify", dir);
