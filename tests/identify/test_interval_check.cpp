@@ -107,6 +107,33 @@ TEST_CASE("An interval end whose first check fits worse than the spread is kept"
   CHECK(r.checked.size() == 4);
 }
 
+TEST_CASE("An end closer to the best point than the first step is run itself when the first step fits worse",
+          "[identify][interval_check]") {
+  // Flat within 0.015 of 0.5 along a, steep beyond; the posterior claims a in [0.495, 0.505], inside
+  // the first step (0.02). The first checks, at 0.48 and 0.52, fit worse; the ends themselves fit,
+  // so the data cannot exclude them and the interval reaches to the runs that fitted worse.
+  Recorder r;
+  r.objective = [](const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::max(0.0, std::abs(u(0) - 0.5) - 0.015); };
+  r.replicate_value = 1.01;
+  const auto out =
+      check_interval_ends(kTwo, input(1.0, {}, {0.495, 0.0}, {0.505, 1.0}), settings(6), flat_profile(), r.evaluate());
+  CHECK(out.lower[0].end == Approx(0.48).margin(1e-12));
+  CHECK(out.upper[0].end == Approx(0.52).margin(1e-12));
+  CHECK(out.lower[0].widened);
+  REQUIRE(out.lower[0].values.size() == 2);  // the first step (its retry repeats it, not run), then the end
+  CHECK(out.lower[0].values[1] == Approx(0.495).margin(1e-12));
+  CHECK(out.lower[0].fits[1]);
+  // Where the end itself fits worse too, it stands: a steeper bowl.
+  Recorder steep;
+  steep.objective = [](const Eigen::VectorXd& u) { return 1.0 + 100.0 * std::abs(u(0) - 0.5); };
+  steep.replicate_value = 1.01;
+  const auto kept = check_interval_ends(kTwo, input(1.0, {}, {0.495, 0.0}, {0.505, 1.0}), settings(6), flat_profile(),
+                                        steep.evaluate());
+  CHECK(kept.lower[0].end == 0.495);
+  CHECK(kept.upper[0].end == 0.505);
+  CHECK_FALSE(kept.upper[0].widened);
+}
+
 TEST_CASE("A rejected check is retried once with a re-drawn profile that can find the valley",
           "[identify][interval_check]") {
   // A valley b = a: only the profile along it fits. Each distance's first attempt (the other where
