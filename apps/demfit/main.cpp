@@ -4,7 +4,6 @@
 #include <exception>
 #include <iostream>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -20,7 +19,8 @@ struct NamedCommand {
   const CLI::App* app = nullptr;
   std::string path = "demfit";
   std::string stray;
-  std::pair<std::string, std::string> misplaced;  // an option written before its command, and that command
+  std::string misplaced_option;  // an option written before the command it belongs to ("--jobs")
+  std::string owner;             // that command ("table1")
 };
 
 // Of the commands that own a misplaced option, the first one named later on the line, else the first.
@@ -43,7 +43,10 @@ NamedCommand named_command(const CLI::App& root, int argc, char** argv) {
       if (option == nullptr) {  // "reproduce --jobs 2 table1": an option of the command that should follow
         const auto owners =
             named.app->get_subcommands([&](const CLI::App* sub) { return sub->get_option_no_throw(name) != nullptr; });
-        if (!owners.empty()) named.misplaced = {name, owner_named_later(owners, i + 1, argc, argv)->get_name()};
+        if (!owners.empty()) {
+          named.misplaced_option = name;
+          named.owner = owner_named_later(owners, i + 1, argc, argv)->get_name();
+        }
         break;
       }
       if (name == word && option->get_items_expected_max() > 0) ++i;
@@ -74,9 +77,9 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
     message += "; the commands are";
     for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
   }
-  if (!named.misplaced.first.empty())
-    message = "option '" + named.misplaced.first + "' belongs after the command (e.g. '" + named.path + " " +
-              named.misplaced.second + " " + named.misplaced.first + " ...')";
+  if (!named.misplaced_option.empty())
+    message = "option '" + named.misplaced_option + "' belongs after the command (e.g. '" + named.path + " " +
+              named.owner + " " + named.misplaced_option + " ...')";
   for (char& c : message)  // an argument may hold a newline or an escape sequence: keep one plain line
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";

@@ -10,12 +10,7 @@
 set -eu
 demfit=$1 work=$2 seed=$3
 shift 3
-here=$(cd "$(dirname "$0")" && pwd)
-repo=$(cd "$here/../.." && pwd)
-rm -rf "$work/cases" "$work/data" "$work/out"
-mkdir -p "$work"
-cp -r "$repo/cases" "$work/cases"
-ln -s "$repo/data" "$work/data"
+source "$(dirname "$0")/copy_cases.sh"
 study="$work/cases/table1_study.json"
 python3 - "$study" "$seed" "$@" <<'PY'
 import json, sys

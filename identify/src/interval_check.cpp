@@ -33,12 +33,12 @@ struct EndWalk {
 
 constexpr double kSamePoint = 1e-3;  // unit: a retry this close to the rejected run would repeat it
 
-// Closes an end whose run at `unit` fitted worse than the spread: the first such distance bounds
-// the interval; at the first distance the posterior's own end stands.
-// When the first distance lay beyond the posterior's end (the end closer to the best point than
-// first_step), the end itself has not been run yet: it is run next, and if it fits the interval
-// reaches to the first distance (Table 1 set-up, seed 6: NORMK end 0.886 "confirmed" by runs at
-// 0.813, the generating 0.875 between them).
+// Closes an end whose run at `unit` fitted worse than the spread: a later distance bounds the
+// interval there; at the first distance the posterior's own end stands. Except when that first
+// distance lay beyond the end (the end closer to the best point than first_step): the end itself
+// has not been run, so the walk reopens once to run it, and decide() extends the interval to `unit`
+// if it fits (Table 1 set-up, seed 6: NORMK end 0.886 "confirmed" by runs at 0.813, the generating
+// 0.875 between them).
 void close_rejected(EndWalk& walk, double unit, const VariableSpec& v) {
   if (walk.step == 0 && walk.rejected_unit < 0.0 && walk.end_distance >= kSamePoint &&
       walk.end_distance < walk.distance - 1e-12) {
