@@ -13,8 +13,8 @@
 namespace demfit::cases {
 namespace {
 
+// "nan" and "inf" spelled out: a rejected value must show in its message.
 std::string number(double value) {
-  if (std::isnan(value)) return "";
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
   return text;

@@ -28,7 +28,7 @@ std::string fmt(const char* pattern, double value) {
 std::string percent(double value, double truth) { return fmt("%+.2f", 100.0 * (value - truth) / truth) + " %"; }
 
 // One "demfit" cell: the identified value and its 95 % interval as best_parameters.json, report.md
-// and the LS-DYNA export give them (identify/reported_interval.hpp: the best run, the posterior
+// and the LS-DYNA export give them (identify/reported_interval.hpp: the study's answer, the posterior
 // interval, widened by interval-end runs where they say so), then the local least-squares centre
 // (identify/uncertainty.hpp), which averages the noise of the runs near the optimum.
 std::string identified_cell(const identify::StudyResult& r, const identify::VariableSpec& v, double truth) {
@@ -71,14 +71,15 @@ std::string reproduce_table1(const ReproduceOptions& o) {
        " |\n\n";
   t += "Identified from data/pellet_pressure_volume_synthetic.csv (SYNTHETIC: simulated by demfit at the\n"
        "paper's NORMK and SHEARK plus 1 % Gaussian noise, seed 2026; the experimental curve of Fig. 2 is not\n"
-       "published). Start: LS-DYNA defaults NORMK = 0.01, SHEARK = 2/7. Bold: the best run, as in\n"
-       "best_parameters.json; 95 %: its reported interval (posterior on the runs near the optimum, checked by\n"
+       "published). Start: LS-DYNA defaults NORMK = 0.01, SHEARK = 2/7. Bold: the study's answer, as in\n"
+       "best_parameters.json (final_selection predicted_optimum: the run at the surrogate's final predicted\n"
+       "optimum; without it the best run); 95 %: its reported interval (posterior on the runs near the optimum, checked by\n"
        "runs at its ends; docs/study_format.md \"Interval-end checks\"); percentages are the error against the\n"
        "generating values.\n";
   t += "Runs used: " + std::to_string(r.runs - r.interval_check_runs) + " to the answer, " +
        std::to_string(r.interval_check_runs) + " more to check the intervals (" + std::to_string(r.failed_runs) +
        " failed), " + std::to_string(r.iterations) + " iterations, " + (r.converged ? "converged" : "iteration limit") +
-       ", best objective " + fmt("%.3g", r.best_objective) + ", wall time in this session " +
+       ", the answer's objective " + fmt("%.3g", r.best_objective) + ", wall time in this session " +
        fmt("%.0f", r.wall_seconds) + " s with " + std::to_string(o.jobs) + " parallel runs.\n";
   return t;
 }

@@ -5,8 +5,8 @@
 # the posterior median and the least-squares centre, each with its error against the generating
 # value 0.875046 (SPEC 2.1), and the posterior interval (before and after the interval check when
 # the study has one; the check runs after the answer and never moves it).
-# Usage: table1_variant.sh DEMFIT WORK SEED [no_interval_check]
-#   e.g. table1_variant.sh build/apps/demfit /tmp/t1v/s2 2 no_interval_check
+# Usage: table1_variant.sh DEMFIT WORK SEED [no_interval_check] [strategy=NAME] [points=N] [iterations=N]
+#   e.g. table1_variant.sh build/apps/demfit /tmp/t1v/s2 2 no_interval_check strategy=expected_improvement
 set -eu
 demfit=$1 work=$2 seed=$3
 shift 3
@@ -18,10 +18,17 @@ path, seed, edits = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
 study = json.load(open(path))
 study["seed"] = seed
 for edit in edits:
+    key, _, value = edit.partition("=")
     if edit == "no_interval_check":
         study.pop("interval_check", None)
+    elif key == "strategy":
+        study["sampling"]["strategy"] = value
+    elif key == "points":
+        study["sampling"]["points_per_iteration"] = int(value)
+    elif key == "iterations":
+        study["stopping"]["max_iterations"] = int(value)
     else:
-        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check)" % edit)
+        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check, strategy=, points=, iterations=)" % edit)
 json.dump(study, open(path, "w"), indent=1)
 PY
 "$demfit" identify "$study" --jobs 2 --out "$work/out" > "$work/log" 2>&1

@@ -242,10 +242,25 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
         "`demfit export study.db --lsdyna out.k` writes LS-DYNA cards)\n";
 }
 
+// The answer at the predicted optimum, or why the best run stayed the answer.
+std::string predicted_optimum_line(const nlohmann::json& s) {
+  const nlohmann::json& lowest = s.at("best_run");
+  std::ostringstream line;
+  if (s.contains("fallback"))
+    line << "- final selection at the predicted optimum not made: " << s.at("fallback").get<std::string>() << "\n";
+  else
+    line << "- the verification run " << s.at("iteration").get<int>() << "/" << s.at("point").get<int>()
+         << " at the surrogate's final predicted optimum is the answer (final selection `predicted_optimum`); "
+         << "the lowest single run, " << lowest.at("iteration").get<int>() << "/" << lowest.at("point").get<int>()
+         << ", had " << format_number(lowest.at("objective").get<double>()) << "\n";
+  return line.str();
+}
+
 // The final selection's choice (final_selection.hpp), when the study made one.
 std::string selection_line(const std::optional<nlohmann::json>& result) {
   if (!result || !result->contains("final_selection") || !(*result)["final_selection"].is_object()) return "";
   const nlohmann::json& s = (*result)["final_selection"];
+  if (s.value("method", "") == "predicted_optimum") return predicted_optimum_line(s);
   const nlohmann::json& candidates = s.at("candidates");
   const nlohmann::json& chosen = candidates.at(s.at("chosen").get<std::size_t>());
   const nlohmann::json& lowest = candidates.at(0);

@@ -212,7 +212,10 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   // A copy: the selection and the interval check append runs.
   nlohmann::json selection = nullptr;
   const bool selecting = spec_.final_selection.candidates > 0;
-  const Run best = selecting ? select_by_replicates(verification_iteration + 1, selection) : *best_run();
+  const Run best = selecting ? select_by_replicates(verification_iteration + 1, selection)
+                   : spec_.final_selection.method == FinalSelectionMethod::predicted_optimum
+                       ? predicted_optimum_run(verification_iteration, selection)
+                       : *best_run();
   const int check_iteration = verification_iteration + (selecting ? 2 : 1);
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;

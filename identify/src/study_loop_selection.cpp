@@ -1,4 +1,5 @@
-// The answer chosen by round-off replicates of the best runs (final_selection.hpp).
+// The answer chosen by round-off replicates of the best runs (final_selection.hpp), or the run at
+// the surrogate's final predicted optimum (FinalSelectionMethod::predicted_optimum).
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -62,6 +63,24 @@ Run StudyLoop::select_by_replicates(int iteration, nlohmann::json& record) {
                  format_number(candidate_mean(scored[chosen])).c_str(), replicates + 1, runs_[candidates[0]].iteration,
                  runs_[candidates[0]].point, format_number(candidate_mean(scored[0])).c_str());
   return runs_[candidates[chosen]];
+}
+
+Run StudyLoop::predicted_optimum_run(int verification_iteration, nlohmann::json& record) const {
+  const Run& lowest = *best_run();
+  record = {{"method", "predicted_optimum"},
+            {"best_run", {{"iteration", lowest.iteration}, {"point", lowest.point}, {"objective", lowest.objective}}}};
+  // Failed runs are not in runs_: no match means the verification run failed.
+  const auto verification = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) {
+    return r.iteration == verification_iteration && r.point == 0 && !r.replicate;
+  });
+  if (verification == runs_.end()) {
+    record["fallback"] = "the verification run at the predicted optimum failed: the best run is the answer";
+    return lowest;
+  }
+  record["iteration"] = verification->iteration;
+  record["point"] = verification->point;
+  record["objective"] = verification->objective;
+  return *verification;
 }
 
 }  // namespace demfit::identify::detail

@@ -91,6 +91,8 @@ nlohmann::json to_json(const StudySpec& spec) {
   if (spec.final_selection.candidates > 0)  // written only when on: older resolved studies stay unchanged
     json["final_selection"] = {{"candidates", spec.final_selection.candidates},
                                {"replicates", spec.final_selection.replicates}};
+  if (spec.final_selection.method == FinalSelectionMethod::predicted_optimum)
+    json["final_selection"] = {{"method", "predicted_optimum"}};
   json["seed"] = spec.seed;
   return json;
 }

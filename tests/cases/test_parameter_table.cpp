@@ -161,6 +161,15 @@ TEST_CASE("An unknown parameter name is refused with the table's names listed", 
   for (const ParameterRow& row : parameter_table()) CHECK_THAT(message, Catch::Contains(std::string(" ") + row.name));
 }
 
+TEST_CASE("A NaN parameter value is refused with nan shown in the message", "[cases][parameters]") {
+  const CaseSpec base = parse_case(document_for(*find_parameter("normk")));
+  std::string message;
+  try {
+    detail::with_parameters(base, {{"normk", std::numeric_limits<double>::quiet_NaN()}});
+  } catch (const std::exception& e) { message = e.what(); }
+  CHECK_THAT(message, Catch::Contains("'normk' = nan must lie in"));
+}
+
 TEST_CASE(
     "parameters_of gives the parameters of the case's contact law and the fill amount in the form the case gives it",
     "[cases][parameters]") {

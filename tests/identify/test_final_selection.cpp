@@ -1,12 +1,17 @@
 // Final selection (final_selection.hpp): on a noisy objective the answer is the best run by its
-// mean over round-off replicates, not the luckiest single run.
+// mean over round-off replicates, or the run at the surrogate's predicted optimum, not the luckiest
+// single run.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/final_selection.hpp"
@@ -144,4 +149,110 @@ TEST_CASE("After a final selection the interval check measures the spread on tra
   REQUIRE(check_replicates.size() == 2);
   for (const auto& c : check_replicates)
     CHECK(std::none_of(selection_points.begin(), selection_points.end(), [&](const auto& s) { return s == c; }));
+}
+
+TEST_CASE("A study with final selection at the predicted optimum answers with its verification run",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["seed"] = 1;  // a study seed whose verification run is not its lowest run (seed 11's is)
+  json["final_selection"] = {{"method", "predicted_optimum"}};
+  json["interval_check"] = {{"max_steps", 1}, {"replicates", 2}};
+  const StudySpec spec = parse_study(json, ".");
+  REQUIRE(spec.final_selection.method == FinalSelectionMethod::predicted_optimum);
+  REQUIRE(spec.final_selection.candidates == 0);
+  const ChaoticAnalyticModel model;
+  const auto dir = test::fresh_dir("final_selection_predicted_optimum");
+  const StudyResult result = run_study(spec, model, quiet_options(dir));
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  std::vector<EvaluationRecord> verification;
+  double lowest_decision = std::numeric_limits<double>::infinity();
+  for (const auto& e : store.evaluations()) {
+    if (e.kind == "verification") verification.push_back(e);
+    if (e.iteration <= result.iterations) lowest_decision = std::min(lowest_decision, e.objective);
+  }
+  REQUIRE(verification.size() == 1);
+  const EvaluationRecord& answer = verification.front();
+  CHECK(answer.iteration == result.iterations);
+  const auto stored = store.result();
+  REQUIRE(stored);
+  CHECK((*stored)["best_iteration"].get<int>() == answer.iteration);
+  CHECK((*stored)["best_point"].get<int>() == answer.point);
+  CHECK(result.best_objective == answer.objective);
+  CHECK((*stored)["final_selection"]["best_run"]["objective"].get<double>() == lowest_decision);
+  // On this noise the verification run is not the lowest run (else the test would not tell).
+  CHECK(answer.objective > lowest_decision);
+  for (const char* name : {"amplitude", "rate"}) {
+    INFO(name);
+    CHECK(result.best.at(name) == answer.parameters.at(name));
+    // The reported value and its interval are one object: the interval holds the answer.
+    CHECK(result.intervals.at(name).lower <= result.best.at(name));
+    CHECK(result.best.at(name) <= result.intervals.at(name).upper);
+  }
+  std::ifstream report_file(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
+  CHECK(report.find("at the surrogate's final predicted optimum is the answer") != std::string::npos);
+  // A resume repeats no run and keeps the answer.
+  RunOptions resume = quiet_options(dir);
+  resume.resume = true;
+  int evaluated = 0;
+  resume.after_evaluation = [&](int done) { evaluated = done; };
+  const StudyResult again = run_study(spec, model, resume);
+  CHECK(evaluated == 0);
+  CHECK(again.best == result.best);
+}
+
+namespace {
+
+// The chaotic analytic model whose n-th evaluation fails (as a DEM run can).
+class FailingNthModel final : public Model {
+ public:
+  explicit FailingNthModel(int failing_call) : failing_call_(failing_call) {}
+  std::vector<ParameterDescriptor> parameters() const override { return inner_.parameters(); }
+  std::vector<CurveDescriptor> curves() const override { return inner_.curves(); }
+  ParameterSet default_parameters() const override { return inner_.default_parameters(); }
+  CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override {
+    if (++calls_ == failing_call_) throw std::runtime_error("simulated failure");
+    return inner_.evaluate(parameters, context);
+  }
+
+ private:
+  ChaoticAnalyticModel inner_;
+  int failing_call_;
+  mutable std::atomic<int> calls_{0};
+};
+
+}  // namespace
+
+TEST_CASE("When the verification run fails the predicted-optimum selection falls back to the best run and says so",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["final_selection"] = {{"method", "predicted_optimum"}};
+  const StudySpec spec = parse_study(json, ".");
+  // 4 iterations of points_per_iteration runs, then the verification run: the last call (jobs 1).
+  const FailingNthModel model(4 * spec.points_per_iteration + 1);
+  const auto dir = test::fresh_dir("final_selection_predicted_optimum_failed");
+  const StudyResult result = run_study(spec, model, quiet_options(dir));
+  const auto store = StudyStore::open_existing(dir / "study.db");
+  double lowest = std::numeric_limits<double>::infinity();
+  bool verification_failed = false;
+  for (const auto& e : store.evaluations()) {
+    if (e.kind == "verification") verification_failed = !e.ok;
+    if (e.ok) lowest = std::min(lowest, e.objective);
+  }
+  REQUIRE(verification_failed);
+  CHECK(result.best_objective == lowest);
+  const auto stored = store.result();
+  REQUIRE(stored);
+  CHECK_THAT((*stored)["final_selection"]["fallback"].get<std::string>(), Catch::Contains("failed"));
+}
+
+TEST_CASE("A final selection at the predicted optimum refuses the replicate method's fields and unknown methods",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["final_selection"] = {{"method", "predicted_optimum"}, {"candidates", 4}};
+  CHECK_THROWS_WITH(parse_study(json, "."),
+                    Catch::Contains("final_selection.candidates") && Catch::Contains("belongs to method 'replicates'"));
+  json["final_selection"] = {{"method", "posterior_mean"}};
+  CHECK_THROWS_WITH(parse_study(json, "."),
+                    Catch::Contains("final_selection.method") && Catch::Contains("'predicted_optimum'"));
 }

@@ -102,7 +102,13 @@ inline constexpr int kMaxReplicates = 20;
 
 // The answer chosen among the best runs by round-off replicates (final_selection.hpp): on a noisy
 // objective the lowest single run is partly the luckiest trajectory. Off when candidates is 0.
+// Or, with method predicted_optimum, the answer is the verification run at the surrogate's final
+// predicted optimum: the surrogate's curves pool the noise of the runs around it, where the lowest
+// run keeps its own (Table 1 with expected improvement, 16 seeds: docs/reproduce.md reading 11).
+enum class FinalSelectionMethod { replicates, predicted_optimum };
+
 struct FinalSelectionSpec {
+  FinalSelectionMethod method = FinalSelectionMethod::replicates;
   int candidates = 0;  // the best distinct runs re-run; 0 = off (the best single run is the answer)
   int replicates = 3;  // nudged re-runs of each candidate (roundoff_replicates.hpp)
 };
