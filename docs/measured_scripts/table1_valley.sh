@@ -26,7 +26,7 @@ printf '%s\n' "${jobs[@]}" | xargs -P 2 -L 1 bash -c '
   [ -f "$out/pressure_volume.csv" ] && exit 0
   rm -rf "$out"
   "'"$demfit"'" simulate "'"$repo"'/cases/pellet_compression.json" --threads 1 --out "$out" \
-    --set normk=$3 sheark=$1 pellet.max_travel=0.0045 > /dev/null'
+    --set normk=$3 sheark=$1 pellet.max_travel=0.0045 > "$out.log" 2>&1 || { echo "simulate failed: $out.log" >&2; exit 255; }'
 python3 - "$work" "$repo/data/pellet_pressure_volume_synthetic.csv" "$normks" "$shearks" "$replicates" <<'PY'
 import bisect, csv, statistics, sys
 work, target_csv, normks, shearks, replicates = sys.argv[1], sys.argv[2], sys.argv[3].split(), sys.argv[4].split(), int(sys.argv[5])
