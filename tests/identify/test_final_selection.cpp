@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -52,6 +53,18 @@ class ChaoticAnalyticModel final : public Model {
 };
 
 using test::quiet_options;
+
+// A resume of a finished study repeats no run and keeps the answer.
+void check_resume_repeats_nothing(const StudySpec& spec, const Model& model, const std::filesystem::path& dir,
+                                  const StudyResult& finished) {
+  RunOptions resume = quiet_options(dir);
+  resume.resume = true;
+  int evaluated = 0;
+  resume.after_evaluation = [&](int done) { evaluated = done; };
+  const StudyResult again = run_study(spec, model, resume);
+  CHECK(evaluated == 0);
+  CHECK(again.best == finished.best);
+}
 
 }  // namespace
 
@@ -110,14 +123,7 @@ TEST_CASE("A study with a final selection answers with the candidate whose repli
   CHECK(lowest != 0);
   INFO("means " << means[0] << " " << means[1] << " " << means[2] << " " << means[3]);
   CHECK(means[lowest] < means[0]);
-  // A resume repeats no run and keeps the answer.
-  RunOptions resume = quiet_options(dir);
-  resume.resume = true;
-  int evaluated = 0;
-  resume.after_evaluation = [&](int done) { evaluated = done; };
-  const StudyResult again = run_study(spec, model, resume);
-  CHECK(evaluated == 0);
-  CHECK(again.best == result.best);
+  check_resume_repeats_nothing(spec, model, dir, result);
 }
 
 TEST_CASE("A final selection with candidates out of range is refused naming the field", "[identify][selection]") {
@@ -191,14 +197,7 @@ TEST_CASE("A study with final selection at the predicted optimum answers with it
   std::ifstream report_file(dir / "report.md");
   const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
   CHECK(report.find("at the surrogate's final predicted optimum is the answer") != std::string::npos);
-  // A resume repeats no run and keeps the answer.
-  RunOptions resume = quiet_options(dir);
-  resume.resume = true;
-  int evaluated = 0;
-  resume.after_evaluation = [&](int done) { evaluated = done; };
-  const StudyResult again = run_study(spec, model, resume);
-  CHECK(evaluated == 0);
-  CHECK(again.best == result.best);
+  check_resume_repeats_nothing(spec, model, dir, result);
 }
 
 namespace {
