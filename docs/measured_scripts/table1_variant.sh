@@ -1,8 +1,9 @@
 #!/bin/bash
 # Runs the shipped Table 1 study (cases/table1_study.json) on a copy that differs only in the study
-# seed and the given edits, with `demfit identify --jobs 2`, for docs/reproduce.md reading 10 (which
-# point estimate of NORMK is right most often). Prints, from the study store, the answer's NORMK (the best run, or the run the study's final_selection names),
-# the posterior median and the least-squares centre, each with its error against the generating
+# seed and the given edits, with `demfit identify --jobs 2`, for docs/reproduce.md readings 10 and 11
+# (which point estimate of NORMK is right most often). Prints, from the study store, the answer's
+# NORMK (the best run, or the run the study's final_selection names), the posterior median and the
+# least-squares centre, each with its error against the generating
 # value 0.875046 (SPEC 2.1), and the posterior interval (before and after the interval check when
 # the study has one; the check runs after the answer and never moves it).
 # Usage: table1_variant.sh DEMFIT WORK SEED [no_interval_check] [strategy=NAME] [points=N] [iterations=N]
