@@ -58,8 +58,10 @@ std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
 
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result,
                    const std::filesystem::path& out) {
-  std::printf("best objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective, result.runs,
-              result.failed_runs, result.iterations, result.converged ? "converged" : "iteration limit reached");
+  // "the answer's": with a final selection the answer need not be the lowest run (final_selection.hpp).
+  std::printf("the answer's objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective,
+              result.runs, result.failed_runs, result.iterations,
+              result.converged ? "converged" : "iteration limit reached");
   // The same interval as report.md, best_parameters.json and the export (reported_interval.hpp).
   for (const auto& v : spec.variables) {
     const auto found = result.intervals.find(v.name);

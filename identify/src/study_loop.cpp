@@ -271,7 +271,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);
   if (options_.progress) {
     if (!report.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", report.plot_warning.c_str());
-    std::fprintf(stderr, "demfit: study done: best objective %s after %d runs (%d failed), %s; results in %s\n",
+    std::fprintf(stderr, "demfit: study done: the answer's objective %s after %d runs (%d failed), %s; results in %s\n",
                  detail::format_number(best.objective).c_str(), result.runs, result.failed_runs,
                  converged ? "converged" : "iteration limit reached", options_.output_dir.string().c_str());
   }
