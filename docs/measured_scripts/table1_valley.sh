@@ -11,21 +11,28 @@
 set -eu
 demfit=$1 work=$2 normks=$3 shearks=$4 replicates=$5
 repo=$(cd "$(dirname "$0")/../.." && pwd)
+# Only plain numbers reach the commands below (they become file names and --set values).
+number='^[0-9]+([.][0-9]+)?$'
+for value in $normks $shearks $replicates; do
+  [[ $value =~ $number ]] || { echo "table1_valley.sh: '$value' is not a plain number" >&2; exit 1; }
+done
 mkdir -p "$work"
 jobs=()
 for n in $normks; do
   for s in $shearks; do
     for k in $(seq 0 $((replicates - 1))); do
-      nudged=$(python3 -c "print(repr($n + $k * 1e-7))")
+      nudged=$(python3 -c 'import sys; print(repr(float(sys.argv[1]) + int(sys.argv[2]) * 1e-7))' "$n" "$k")
       jobs+=("$n $s $k $nudged")
     done
   done
 done
+# The paths go to the child shells as environment variables, not spliced into their script.
+export VALLEY_WORK=$work VALLEY_DEMFIT=$demfit VALLEY_REPO=$repo
 printf '%s\n' "${jobs[@]}" | xargs -P 2 -L 1 bash -c '
-  out="'"$work"'/n$0_s$1_r$2"
+  out="$VALLEY_WORK/n$0_s$1_r$2"
   [ -f "$out/pressure_volume.csv" ] && exit 0
   rm -rf "$out"
-  "'"$demfit"'" simulate "'"$repo"'/cases/pellet_compression.json" --threads 1 --out "$out" \
+  "$VALLEY_DEMFIT" simulate "$VALLEY_REPO/cases/pellet_compression.json" --threads 1 --out "$out" \
     --set normk=$3 sheark=$1 pellet.max_travel=0.0045 > "$out.log" 2>&1 || { echo "simulate failed: $out.log" >&2; exit 255; }'
 python3 - "$work" "$repo/data/pellet_pressure_volume_synthetic.csv" "$normks" "$shearks" "$replicates" <<'PY'
 import bisect, csv, statistics, sys
