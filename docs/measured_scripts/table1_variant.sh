@@ -7,6 +7,7 @@
 # value 0.875046 (SPEC 2.1), and the posterior interval (before and after the interval check when
 # the study has one; the check runs after the answer and never moves it).
 # Usage: table1_variant.sh DEMFIT WORK SEED [no_interval_check] [strategy=NAME] [points=N] [iterations=N]
+#                          [lowest_run]   (lowest_run: no final_selection, the best single run is the answer)
 #   e.g. table1_variant.sh build/apps/demfit /tmp/t1v/s2 2 no_interval_check strategy=expected_improvement
 set -eu
 demfit=$1 work=$2 seed=$3
@@ -22,6 +23,8 @@ for edit in edits:
     key, _, value = edit.partition("=")
     if edit == "no_interval_check":
         study.pop("interval_check", None)
+    elif edit == "lowest_run":
+        study.pop("final_selection", None)
     elif key == "strategy":
         study["sampling"]["strategy"] = value
     elif key == "points":
@@ -29,7 +32,7 @@ for edit in edits:
     elif key == "iterations":
         study["stopping"]["max_iterations"] = int(value)
     else:
-        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check, strategy=, points=, iterations=)" % edit)
+        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check, lowest_run, strategy=, points=, iterations=)" % edit)
 json.dump(study, open(path, "w"), indent=1)
 PY
 "$demfit" identify "$study" --jobs 2 --out "$work/out" > "$work/log" 2>&1

@@ -29,12 +29,12 @@ ReportedInterval reported_interval(const nlohmann::json& uncertainty, const std:
       out.upper = v["upper_95"].get<double>();
       out.identifiable = !v.value("unidentifiable", false);
       if (value < out.lower || value > out.upper) {
-        // The best run can sit in the tail of a wide, bound-truncated marginal (GranuDrum quick study:
+        // The answer can sit in the tail of a wide, bound-truncated marginal (GranuDrum quick study:
         // fricr 0.0570 against [0.0578, 0.567]); a report must not print a value outside its own
         // interval, so the interval is widened to it (covering more than 95 %) and says so.
         out.lower = std::min(out.lower, value);
         out.upper = std::max(out.upper, value);
-        out.method += ", widened to the best run";
+        out.method += ", widened to the answer";
       }
       return out;
     }

@@ -211,12 +211,21 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   decision_runs_ = runs_.size();
   // A copy: the selection and the interval check append runs.
   nlohmann::json selection = nullptr;
-  const bool selecting = spec_.final_selection.candidates > 0;
-  const Run best = selecting ? select_by_replicates(verification_iteration + 1, selection)
-                   : spec_.final_selection.method == FinalSelectionMethod::predicted_optimum
-                       ? predicted_optimum_run(verification_iteration, selection)
-                       : *best_run();
-  const int check_iteration = verification_iteration + (selecting ? 2 : 1);
+  // The replicates, when there are any, take the iteration after the verification; the interval
+  // check the next free one.
+  int check_iteration = verification_iteration + 1;
+  const Run best = [&] {
+    switch (spec_.final_selection.method) {
+      case FinalSelectionMethod::lowest_run:
+        return *best_run();
+      case FinalSelectionMethod::replicates:
+        ++check_iteration;
+        return select_by_replicates(verification_iteration + 1, selection);
+      case FinalSelectionMethod::predicted_optimum:
+        return predicted_optimum_run(verification_iteration, selection);
+    }
+    throw std::logic_error("unknown final selection method");
+  }();
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;

@@ -295,6 +295,7 @@ void parse_final_selection(JsonReader in, StudySpec& spec) {
     in.fail("candidates", "must be 0 (off: the best single run is the answer) to 20");
   if (selection.replicates < 1 || selection.replicates > kMaxReplicates)
     in.fail("replicates", "must be 1 to " + std::to_string(kMaxReplicates));
+  selection.method = selection.candidates > 0 ? FinalSelectionMethod::replicates : FinalSelectionMethod::lowest_run;
 }
 
 }  // namespace

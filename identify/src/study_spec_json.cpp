@@ -88,11 +88,17 @@ nlohmann::json to_json(const StudySpec& spec) {
                               {"replicates", spec.interval_check.replicates},
                               {"first_step", spec.interval_check.first_step},
                               {"all_variables", spec.interval_check.all_variables}};
-  if (spec.final_selection.candidates > 0)  // written only when on: older resolved studies stay unchanged
-    json["final_selection"] = {{"candidates", spec.final_selection.candidates},
-                               {"replicates", spec.final_selection.replicates}};
-  if (spec.final_selection.method == FinalSelectionMethod::predicted_optimum)
-    json["final_selection"] = {{"method", "predicted_optimum"}};
+  switch (spec.final_selection.method) {  // written only when on: older resolved studies stay unchanged
+    case FinalSelectionMethod::lowest_run:
+      break;
+    case FinalSelectionMethod::replicates:
+      json["final_selection"] = {{"candidates", spec.final_selection.candidates},
+                                 {"replicates", spec.final_selection.replicates}};
+      break;
+    case FinalSelectionMethod::predicted_optimum:
+      json["final_selection"] = {{"method", "predicted_optimum"}};
+      break;
+  }
   json["seed"] = spec.seed;
   return json;
 }

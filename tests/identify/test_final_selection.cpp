@@ -136,6 +136,26 @@ TEST_CASE("A final selection with candidates out of range is refused naming the 
   CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("replicate"));
 }
 
+TEST_CASE("A final selection with zero candidates is the lowest run and keeps the study hash of a study without one",
+          "[identify][selection]") {
+  auto json = test::analytic_study(0.0, 4);
+  const StudySpec plain = parse_study(json, ".");
+  CHECK(plain.final_selection.method == FinalSelectionMethod::lowest_run);
+  json["final_selection"] = {{"candidates", 0}};
+  const StudySpec off = parse_study(json, ".");
+  CHECK(off.final_selection.method == FinalSelectionMethod::lowest_run);
+  CHECK(study_hash(off) == study_hash(plain));
+  json["final_selection"] = {{"candidates", 2}};
+  const StudySpec replicated = parse_study(json, ".");
+  CHECK(replicated.final_selection.method == FinalSelectionMethod::replicates);
+  json["final_selection"] = {{"method", "predicted_optimum"}};
+  const StudySpec predicted = parse_study(json, ".");
+  // Three different answers, three different studies: a store of one does not resume as another.
+  CHECK(study_hash(replicated) != study_hash(plain));
+  CHECK(study_hash(predicted) != study_hash(plain));
+  CHECK(study_hash(predicted) != study_hash(replicated));
+}
+
 TEST_CASE("After a final selection the interval check measures the spread on trajectories the selection did not use",
           "[identify][selection]") {
   auto json = test::analytic_study(0.0, 4);

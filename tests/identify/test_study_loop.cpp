@@ -250,7 +250,7 @@ TEST_CASE("The reported interval falls back to the linearised one only without a
   CHECK(interval_text(reported_interval(nullptr, "k", 2.0)) == "-");
 }
 
-TEST_CASE("A best run outside the posterior interval widens the reported interval to it, and says so",
+TEST_CASE("An answer outside the posterior interval widens the reported interval to it and says so",
           "[identify][report]") {
   const nlohmann::json uncertainty = {
       {"posterior",
@@ -258,7 +258,7 @@ TEST_CASE("A best run outside the posterior interval widens the reported interva
   const ReportedInterval below = reported_interval(uncertainty, "fricr", 0.0570);
   CHECK(below.lower == 0.0570);
   CHECK(below.upper == 0.567);
-  CHECK(below.method == "posterior, widened to the best run");
+  CHECK(below.method == "posterior, widened to the answer");
   const ReportedInterval above = reported_interval(uncertainty, "fricr", 0.6);
   CHECK(above.lower == 0.0578);
   CHECK(above.upper == 0.6);

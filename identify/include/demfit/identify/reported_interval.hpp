@@ -18,12 +18,12 @@ namespace demfit::identify {
 
 struct ReportedInterval {
   bool available = false;  // false: the study has no uncertainty (not finished, or too few runs)
-  double value = std::numeric_limits<double>::quiet_NaN();  // the best run's value (model units)
+  double value = std::numeric_limits<double>::quiet_NaN();  // the answer's value (model units)
   double lower = std::numeric_limits<double>::quiet_NaN();  // 95 % interval, model units
   double upper = std::numeric_limits<double>::quiet_NaN();
   bool identifiable = true;  // false: the data cannot pin the variable down
   // "posterior", "posterior, widened by interval-end runs" (interval_check.hpp), either with
-  // ", widened to the best run" (the best run lay outside the posterior's
+  // ", widened to the answer" (the answer, the best run or a final selection's choice, lay outside the posterior's
   // 95 % interval, which is then stretched to it) or "linearised"
   std::string method;
 };

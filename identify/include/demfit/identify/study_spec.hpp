@@ -100,17 +100,22 @@ struct IntervalCheckSpec {
 // Most round-off replicates a selection or an interval check may ask for (roundoff_replicates.hpp).
 inline constexpr int kMaxReplicates = 20;
 
-// The answer chosen among the best runs by round-off replicates (final_selection.hpp): on a noisy
-// objective the lowest single run is partly the luckiest trajectory. Off when candidates is 0.
-// Or, with method predicted_optimum, the answer is the verification run at the surrogate's final
-// predicted optimum: the surrogate's curves pool the noise of the runs around it, where the lowest
-// run keeps its own (Table 1 with expected improvement, 16 seeds: docs/reproduce.md reading 11).
-enum class FinalSelectionMethod { replicates, predicted_optimum };
+// How the study picks its answer after the loop ("final_selection" in a study file). On a noisy
+// objective the lowest single run is partly the luckiest trajectory, so two alternatives exist:
+// re-run the best runs as round-off replicates and take the lowest mean (final_selection.hpp), or
+// answer with the verification run at the surrogate's final predicted optimum, whose curves pool
+// the noise of the runs around it (Table 1 with expected improvement, 16 seeds: docs/reproduce.md
+// reading 11).
+enum class FinalSelectionMethod {
+  lowest_run,         // no final_selection, or candidates 0: the best single run is the answer
+  replicates,         // the best `candidates` runs, `replicates` nudged re-runs each
+  predicted_optimum,  // the verification run at the final predicted optimum
+};
 
 struct FinalSelectionSpec {
-  FinalSelectionMethod method = FinalSelectionMethod::replicates;
-  int candidates = 0;  // the best distinct runs re-run; 0 = off (the best single run is the answer)
-  int replicates = 3;  // nudged re-runs of each candidate (roundoff_replicates.hpp)
+  FinalSelectionMethod method = FinalSelectionMethod::lowest_run;
+  int candidates = 0;  // method replicates only: the best distinct runs re-run (1 to 20)
+  int replicates = 3;  // method replicates only: nudged re-runs of each candidate (roundoff_replicates.hpp)
 };
 
 struct StudySpec {
