@@ -280,14 +280,16 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
 void parse_final_selection(JsonReader in, StudySpec& spec) {
   FinalSelectionSpec& selection = spec.final_selection;
   const std::string method = in.text_or("method", "replicates");
-  if (method == "predicted_optimum") {
-    selection.method = FinalSelectionMethod::predicted_optimum;
+  if (method == "predicted_optimum" || method == "lowest_run") {
+    selection.method =
+        method == "lowest_run" ? FinalSelectionMethod::lowest_run : FinalSelectionMethod::predicted_optimum;
     for (const char* key : {"candidates", "replicates"})
       if (in.has(key)) in.fail(key, "belongs to method 'replicates'; remove it or set method to 'replicates'");
     in.finish();
     return;
   }
-  if (method != "replicates") in.fail("method", "must be 'replicates' or 'predicted_optimum', not '" + method + "'");
+  if (method != "replicates")
+    in.fail("method", "must be 'replicates', 'predicted_optimum' or 'lowest_run', not '" + method + "'");
   selection.candidates = in.integer_or("candidates", 4);
   selection.replicates = in.integer_or("replicates", selection.replicates);
   in.finish();

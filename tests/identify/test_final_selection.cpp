@@ -136,7 +136,7 @@ TEST_CASE("A final selection with candidates out of range is refused naming the 
   CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("replicate"));
 }
 
-TEST_CASE("A final selection with zero candidates is the lowest run and keeps the study hash of a study without one",
+TEST_CASE("A final selection with zero candidates or method lowest_run keeps the study hash of a study without one",
           "[identify][selection]") {
   auto json = test::analytic_study(0.0, 4);
   const StudySpec plain = parse_study(json, ".");
@@ -145,6 +145,10 @@ TEST_CASE("A final selection with zero candidates is the lowest run and keeps th
   const StudySpec off = parse_study(json, ".");
   CHECK(off.final_selection.method == FinalSelectionMethod::lowest_run);
   CHECK(study_hash(off) == study_hash(plain));
+  json["final_selection"] = {{"method", "lowest_run"}};
+  const StudySpec named = parse_study(json, ".");
+  CHECK(named.final_selection.method == FinalSelectionMethod::lowest_run);
+  CHECK(study_hash(named) == study_hash(plain));
   json["final_selection"] = {{"candidates", 2}};
   const StudySpec replicated = parse_study(json, ".");
   CHECK(replicated.final_selection.method == FinalSelectionMethod::replicates);
