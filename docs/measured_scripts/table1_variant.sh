@@ -32,7 +32,8 @@ for edit in edits:
     elif key == "iterations":
         study["stopping"]["max_iterations"] = int(value)
     else:
-        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check, lowest_run, strategy=, points=, iterations=)" % edit)
+        sys.exit("table1_variant.sh: unknown edit '%s' (no_interval_check, lowest_run, strategy=, points=, "
+                 "iterations=)" % edit)
 json.dump(study, open(path, "w"), indent=1)
 PY
 "$demfit" identify "$study" --jobs 2 --out "$work/out" > "$work/log" 2>&1
