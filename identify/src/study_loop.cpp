@@ -211,21 +211,10 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   decision_runs_ = runs_.size();
   // A copy: the selection and the interval check append runs.
   nlohmann::json selection = nullptr;
-  // The replicates, when there are any, take the iteration after the verification; the interval
-  // check the next free one.
-  int check_iteration = verification_iteration + 1;
-  const Run best = [&] {
-    switch (spec_.final_selection.method) {
-      case FinalSelectionMethod::lowest_run:
-        return *best_run();
-      case FinalSelectionMethod::replicates:
-        ++check_iteration;
-        return select_by_replicates(verification_iteration + 1, selection);
-      case FinalSelectionMethod::predicted_optimum:
-        return predicted_optimum_run(verification_iteration, selection);
-    }
-    throw std::logic_error("unknown final selection method");
-  }();
+  const Run best = answer_run(verification_iteration, selection);
+  // A selection's replicates take the iteration after the verification; the interval check the next free one.
+  const int check_iteration =
+      verification_iteration + (spec_.final_selection.method == FinalSelectionMethod::replicates ? 2 : 1);
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;

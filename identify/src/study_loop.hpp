@@ -68,6 +68,9 @@ class StudyLoop {
                            std::uint64_t seed) const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
+  // The study's answer by its final_selection method; `record` describes the choice for the store
+  // (null for lowest_run).
+  Run answer_run(int verification_iteration, nlohmann::json& record);
   // The best distinct decision runs, best first (at most `count`).
   std::vector<int> selection_candidates(int count) const;
   // Re-runs the candidates as round-off replicates in `iteration` and returns the one with the

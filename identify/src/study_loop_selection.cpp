@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 #include "demfit/identify/final_selection.hpp"
 #include "demfit/identify/roundoff_replicates.hpp"
@@ -63,6 +64,18 @@ Run StudyLoop::select_by_replicates(int iteration, nlohmann::json& record) {
                  format_number(candidate_mean(scored[chosen])).c_str(), replicates + 1, runs_[candidates[0]].iteration,
                  runs_[candidates[0]].point, format_number(candidate_mean(scored[0])).c_str());
   return runs_[candidates[chosen]];
+}
+
+Run StudyLoop::answer_run(int verification_iteration, nlohmann::json& record) {
+  switch (spec_.final_selection.method) {
+    case FinalSelectionMethod::lowest_run:
+      return *best_run();
+    case FinalSelectionMethod::replicates:
+      return select_by_replicates(verification_iteration + 1, record);
+    case FinalSelectionMethod::predicted_optimum:
+      return predicted_optimum_run(verification_iteration, record);
+  }
+  throw std::logic_error("unknown final selection method");
 }
 
 Run StudyLoop::predicted_optimum_run(int verification_iteration, nlohmann::json& record) const {
