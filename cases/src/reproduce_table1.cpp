@@ -76,7 +76,7 @@ std::string reproduce_table1(const ReproduceOptions& o) {
        "optimum; without it the best run); 95 %: its reported interval (posterior on the runs near the\n" +
        std::string(spec.interval_check.max_steps > 0
                        ? "optimum, checked by runs at its ends; docs/study_format.md \"Interval-end checks\")"
-                       : "optimum, NOT checked by runs at its ends: the quick study skips that check)") +
+                       : "optimum, NOT checked by runs at its ends: this study has no interval_check)") +
        "; percentages are\nthe error against the generating values.\n";
   t += "Runs used: " + std::to_string(r.runs - r.interval_check_runs) + " to the answer, " +
        std::to_string(r.interval_check_runs) + " more to check the intervals (" + std::to_string(r.failed_runs) +

@@ -80,7 +80,7 @@ Run StudyLoop::answer_run(int verification_iteration, nlohmann::json& record) {
 
 Run StudyLoop::predicted_optimum_run(int verification_iteration, nlohmann::json& record) const {
   const Run& lowest = *best_run();
-  record = {{"method", "predicted_optimum"},
+  record = {{"method", final_selection_method_name(FinalSelectionMethod::predicted_optimum)},
             {"best_run", {{"iteration", lowest.iteration}, {"point", lowest.point}, {"objective", lowest.objective}}}};
   // Failed runs are not in runs_: no match means the verification run failed.
   const auto verification = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) {

@@ -279,16 +279,17 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
 
 void parse_final_selection(JsonReader in, StudySpec& spec) {
   FinalSelectionSpec& selection = spec.final_selection;
-  const std::string method = in.text_or("method", "replicates");
-  if (method == "predicted_optimum" || method == "lowest_run") {
-    selection.method =
-        method == "lowest_run" ? FinalSelectionMethod::lowest_run : FinalSelectionMethod::predicted_optimum;
+  const std::string method = in.text_or("method", final_selection_method_name(FinalSelectionMethod::replicates));
+  const auto named = [&](FinalSelectionMethod m) { return method == final_selection_method_name(m); };
+  if (named(FinalSelectionMethod::predicted_optimum) || named(FinalSelectionMethod::lowest_run)) {
+    selection.method = named(FinalSelectionMethod::lowest_run) ? FinalSelectionMethod::lowest_run
+                                                               : FinalSelectionMethod::predicted_optimum;
     for (const char* key : {"candidates", "replicates"})
       if (in.has(key)) in.fail(key, "belongs to method 'replicates'; remove it or set method to 'replicates'");
     in.finish();
     return;
   }
-  if (method != "replicates")
+  if (!named(FinalSelectionMethod::replicates))
     in.fail("method", "must be 'replicates', 'predicted_optimum' or 'lowest_run', not '" + method + "'");
   selection.candidates = in.integer_or("candidates", 4);
   selection.replicates = in.integer_or("replicates", selection.replicates);

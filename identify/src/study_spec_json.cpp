@@ -96,7 +96,7 @@ nlohmann::json to_json(const StudySpec& spec) {
                                  {"replicates", spec.final_selection.replicates}};
       break;
     case FinalSelectionMethod::predicted_optimum:
-      json["final_selection"] = {{"method", "predicted_optimum"}};
+      json["final_selection"] = {{"method", final_selection_method_name(FinalSelectionMethod::predicted_optimum)}};
       break;
   }
   json["seed"] = spec.seed;

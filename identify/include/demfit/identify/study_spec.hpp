@@ -112,6 +112,19 @@ enum class FinalSelectionMethod {
   predicted_optimum,  // the verification run at the final predicted optimum
 };
 
+// The method's name in a study file, the resolved study and the stored result: the one spelling.
+constexpr const char* final_selection_method_name(FinalSelectionMethod method) {
+  switch (method) {
+    case FinalSelectionMethod::lowest_run:
+      return "lowest_run";
+    case FinalSelectionMethod::replicates:
+      return "replicates";
+    case FinalSelectionMethod::predicted_optimum:
+      return "predicted_optimum";
+  }
+  return "";
+}
+
 struct FinalSelectionSpec {
   FinalSelectionMethod method = FinalSelectionMethod::lowest_run;
   int candidates = 0;  // method replicates only: the best distinct runs re-run (1 to 20)
