@@ -260,8 +260,7 @@ std::string predicted_optimum_line(const nlohmann::json& s) {
 std::string selection_line(const std::optional<nlohmann::json>& result) {
   if (!result || !result->contains("final_selection") || !(*result)["final_selection"].is_object()) return "";
   const nlohmann::json& s = (*result)["final_selection"];
-  if (s.value("method", "") == final_selection_method_name(FinalSelectionMethod::predicted_optimum))
-    return predicted_optimum_line(s);
+  if (s.value("method", "") == PredictedOptimumSelection::name) return predicted_optimum_line(s);
   const nlohmann::json& candidates = s.at("candidates");
   const nlohmann::json& chosen = candidates.at(s.at("chosen").get<std::size_t>());
   const nlohmann::json& lowest = candidates.at(0);

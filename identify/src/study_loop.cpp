@@ -214,7 +214,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   const Run best = answer_run(verification_iteration, selection);
   // A selection's replicates take the iteration after the verification; the interval check the next free one.
   const int check_iteration =
-      verification_iteration + (spec_.final_selection.method == FinalSelectionMethod::replicates ? 2 : 1);
+      verification_iteration + (std::holds_alternative<ReplicateSelection>(spec_.final_selection) ? 2 : 1);
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;

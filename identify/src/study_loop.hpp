@@ -75,9 +75,9 @@ class StudyLoop {
   std::vector<int> selection_candidates(int count) const;
   // Re-runs the candidates as round-off replicates in `iteration` and returns the one with the
   // lowest mean objective (final_selection.hpp); `record` describes the choice for the store.
-  Run select_by_replicates(int iteration, nlohmann::json& record);
+  Run select_by_replicates(const ReplicateSelection& selection, int iteration, nlohmann::json& record);
   // The verification run (the final predicted optimum), or the best run when it failed; `record`
-  // says which (final_selection method predicted_optimum).
+  // says which (PredictedOptimumSelection).
   Run predicted_optimum_run(int verification_iteration, nlohmann::json& record) const;
   RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
   // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.

@@ -1,9 +1,10 @@
 // The answer chosen by round-off replicates of the best runs (final_selection.hpp), or the run at
-// the surrogate's final predicted optimum (FinalSelectionMethod::predicted_optimum).
+// the surrogate's final predicted optimum (PredictedOptimumSelection).
 #include <algorithm>
 #include <cstdio>
 #include <limits>
-#include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "demfit/identify/final_selection.hpp"
 #include "demfit/identify/roundoff_replicates.hpp"
@@ -26,9 +27,9 @@ std::vector<int> StudyLoop::selection_candidates(int count) const {
   return chosen;
 }
 
-Run StudyLoop::select_by_replicates(int iteration, nlohmann::json& record) {
-  const int replicates = spec_.final_selection.replicates;
-  const std::vector<int> candidates = selection_candidates(spec_.final_selection.candidates);
+Run StudyLoop::select_by_replicates(const ReplicateSelection& selection, int iteration, nlohmann::json& record) {
+  const int replicates = selection.replicates;
+  const std::vector<int> candidates = selection_candidates(selection.candidates);
   MatrixXd points(static_cast<Eigen::Index>(candidates.size()) * replicates, dims_);
   for (std::size_t c = 0; c < candidates.size(); ++c)
     for (int r = 0; r < replicates; ++r)
@@ -67,20 +68,24 @@ Run StudyLoop::select_by_replicates(int iteration, nlohmann::json& record) {
 }
 
 Run StudyLoop::answer_run(int verification_iteration, nlohmann::json& record) {
-  switch (spec_.final_selection.method) {
-    case FinalSelectionMethod::lowest_run:
-      return *best_run();
-    case FinalSelectionMethod::replicates:
-      return select_by_replicates(verification_iteration + 1, record);
-    case FinalSelectionMethod::predicted_optimum:
-      return predicted_optimum_run(verification_iteration, record);
-  }
-  throw std::logic_error("unknown final selection method");
+  return std::visit(
+      [&](const auto& method) -> Run {
+        using Method = std::decay_t<decltype(method)>;
+        if constexpr (std::is_same_v<Method, LowestRunSelection>) {
+          return *best_run();
+        } else if constexpr (std::is_same_v<Method, ReplicateSelection>) {
+          return select_by_replicates(method, verification_iteration + 1, record);
+        } else {  // a new method fails to compile here until it is handled
+          static_assert(std::is_same_v<Method, PredictedOptimumSelection>);
+          return predicted_optimum_run(verification_iteration, record);
+        }
+      },
+      spec_.final_selection);
 }
 
 Run StudyLoop::predicted_optimum_run(int verification_iteration, nlohmann::json& record) const {
   const Run& lowest = *best_run();
-  record = {{"method", final_selection_method_name(FinalSelectionMethod::predicted_optimum)},
+  record = {{"method", PredictedOptimumSelection::name},
             {"best_run", {{"iteration", lowest.iteration}, {"point", lowest.point}, {"objective", lowest.objective}}}};
   // Failed runs are not in runs_: no match means the verification run failed.
   const auto verification = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) {

@@ -55,8 +55,8 @@ IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSam
   input.best_unit = best.unit;
   input.best_objective = best.objective;
   input.fitted_runs = sample.unit_points;
-  if (spec_.final_selection.method == FinalSelectionMethod::replicates)
-    input.first_replicate = spec_.final_selection.replicates;
+  if (const auto* replicated = std::get_if<ReplicateSelection>(&spec_.final_selection))
+    input.first_replicate = replicated->replicates;
   for (const auto& v : spec_.variables) {
     input.lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
     input.upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());

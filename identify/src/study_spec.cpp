@@ -278,27 +278,31 @@ void parse_interval_check(JsonReader in, StudySpec& spec) {
 }
 
 void parse_final_selection(JsonReader in, StudySpec& spec) {
-  FinalSelectionSpec& selection = spec.final_selection;
-  const std::string method = in.text_or("method", final_selection_method_name(FinalSelectionMethod::replicates));
-  const auto named = [&](FinalSelectionMethod m) { return method == final_selection_method_name(m); };
-  if (named(FinalSelectionMethod::predicted_optimum) || named(FinalSelectionMethod::lowest_run)) {
-    selection.method = named(FinalSelectionMethod::lowest_run) ? FinalSelectionMethod::lowest_run
-                                                               : FinalSelectionMethod::predicted_optimum;
+  const std::string method = in.text_or("method", ReplicateSelection::name);
+  if (method == LowestRunSelection::name || method == PredictedOptimumSelection::name) {
     for (const char* key : {"candidates", "replicates"})
       if (in.has(key)) in.fail(key, "belongs to method 'replicates'; remove it or set method to 'replicates'");
     in.finish();
+    if (method == LowestRunSelection::name)
+      spec.final_selection = LowestRunSelection{};
+    else
+      spec.final_selection = PredictedOptimumSelection{};
     return;
   }
-  if (!named(FinalSelectionMethod::replicates))
+  if (method != ReplicateSelection::name)
     in.fail("method", "must be 'replicates', 'predicted_optimum' or 'lowest_run', not '" + method + "'");
-  selection.candidates = in.integer_or("candidates", 4);
+  ReplicateSelection selection;
+  selection.candidates = in.integer_or("candidates", selection.candidates);
   selection.replicates = in.integer_or("replicates", selection.replicates);
   in.finish();
   if (selection.candidates < 0 || selection.candidates > 20)
     in.fail("candidates", "must be 0 (off: the best single run is the answer) to 20");
   if (selection.replicates < 1 || selection.replicates > kMaxReplicates)
     in.fail("replicates", "must be 1 to " + std::to_string(kMaxReplicates));
-  selection.method = selection.candidates > 0 ? FinalSelectionMethod::replicates : FinalSelectionMethod::lowest_run;
+  if (selection.candidates == 0)
+    spec.final_selection = LowestRunSelection{};
+  else
+    spec.final_selection = selection;
 }
 
 }  // namespace

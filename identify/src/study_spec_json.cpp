@@ -1,6 +1,8 @@
 // The resolved study as JSON (study_resolved.json, the store's record) and its hash, the study's
 // identity for resume (study_spec.hpp).
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "demfit/identify/study_spec.hpp"
 
@@ -88,17 +90,19 @@ nlohmann::json to_json(const StudySpec& spec) {
                               {"replicates", spec.interval_check.replicates},
                               {"first_step", spec.interval_check.first_step},
                               {"all_variables", spec.interval_check.all_variables}};
-  switch (spec.final_selection.method) {  // written only when on: older resolved studies stay unchanged
-    case FinalSelectionMethod::lowest_run:
-      break;
-    case FinalSelectionMethod::replicates:
-      json["final_selection"] = {{"candidates", spec.final_selection.candidates},
-                                 {"replicates", spec.final_selection.replicates}};
-      break;
-    case FinalSelectionMethod::predicted_optimum:
-      json["final_selection"] = {{"method", final_selection_method_name(FinalSelectionMethod::predicted_optimum)}};
-      break;
-  }
+  // Written only when on: older resolved studies, and so their hashes, stay unchanged.
+  std::visit(
+      [&](const auto& method) {
+        using Method = std::decay_t<decltype(method)>;
+        if constexpr (std::is_same_v<Method, ReplicateSelection>) {
+          json["final_selection"] = {{"candidates", method.candidates}, {"replicates", method.replicates}};
+        } else if constexpr (std::is_same_v<Method, PredictedOptimumSelection>) {
+          json["final_selection"] = {{"method", Method::name}};
+        } else {  // a new method fails to compile here until it is written
+          static_assert(std::is_same_v<Method, LowestRunSelection>);
+        }
+      },
+      spec.final_selection);
   json["seed"] = spec.seed;
   return json;
 }

@@ -13,6 +13,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <variant>
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/final_selection.hpp"
@@ -84,7 +85,7 @@ TEST_CASE("A study with a final selection answers with the candidate whose repli
   auto json = test::analytic_study(0.0, 4);
   json["final_selection"] = {{"candidates", 4}, {"replicates", 3}};
   const StudySpec spec = parse_study(json, ".");
-  REQUIRE(spec.final_selection.candidates == 4);
+  REQUIRE(std::get<ReplicateSelection>(spec.final_selection).candidates == 4);
   const ChaoticAnalyticModel model;
   const auto dir = test::fresh_dir("final_selection_study");
   const StudyResult result = run_study(spec, model, quiet_options(dir));
@@ -140,18 +141,20 @@ TEST_CASE("A final selection with zero candidates or method lowest_run keeps the
           "[identify][selection]") {
   auto json = test::analytic_study(0.0, 4);
   const StudySpec plain = parse_study(json, ".");
-  CHECK(plain.final_selection.method == FinalSelectionMethod::lowest_run);
+  CHECK(std::holds_alternative<LowestRunSelection>(plain.final_selection));
   json["final_selection"] = {{"candidates", 0}};
   const StudySpec off = parse_study(json, ".");
-  CHECK(off.final_selection.method == FinalSelectionMethod::lowest_run);
+  CHECK(std::holds_alternative<LowestRunSelection>(off.final_selection));
   CHECK(study_hash(off) == study_hash(plain));
   json["final_selection"] = {{"method", "lowest_run"}};
   const StudySpec named = parse_study(json, ".");
-  CHECK(named.final_selection.method == FinalSelectionMethod::lowest_run);
+  CHECK(std::holds_alternative<LowestRunSelection>(named.final_selection));
   CHECK(study_hash(named) == study_hash(plain));
   json["final_selection"] = {{"candidates", 2}};
   const StudySpec replicated = parse_study(json, ".");
-  CHECK(replicated.final_selection.method == FinalSelectionMethod::replicates);
+  REQUIRE(std::holds_alternative<ReplicateSelection>(replicated.final_selection));
+  CHECK(std::get<ReplicateSelection>(replicated.final_selection).candidates == 2);
+  CHECK(std::get<ReplicateSelection>(replicated.final_selection).replicates == 3);  // the default
   json["final_selection"] = {{"method", "predicted_optimum"}};
   const StudySpec predicted = parse_study(json, ".");
   // Three different answers, three different studies: a store of one does not resume as another.
@@ -188,8 +191,7 @@ TEST_CASE("A study with final selection at the predicted optimum answers with it
   json["final_selection"] = {{"method", "predicted_optimum"}};
   json["interval_check"] = {{"max_steps", 1}, {"replicates", 2}};
   const StudySpec spec = parse_study(json, ".");
-  REQUIRE(spec.final_selection.method == FinalSelectionMethod::predicted_optimum);
-  REQUIRE(spec.final_selection.candidates == 0);
+  REQUIRE(std::holds_alternative<PredictedOptimumSelection>(spec.final_selection));
   const ChaoticAnalyticModel model;
   const auto dir = test::fresh_dir("final_selection_predicted_optimum");
   const StudyResult result = run_study(spec, model, quiet_options(dir));

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -105,31 +106,21 @@ inline constexpr int kMaxReplicates = 20;
 // re-run the best runs as round-off replicates and take the lowest mean (final_selection.hpp), or
 // answer with the verification run at the surrogate's final predicted optimum, whose curves pool
 // the noise of the runs around it (Table 1 with expected improvement, 16 seeds: docs/reproduce.md
-// reading 11).
-enum class FinalSelectionMethod {
-  lowest_run,         // no final_selection, or candidates 0: the best single run is the answer
-  replicates,         // the best `candidates` runs, `replicates` nudged re-runs each
-  predicted_optimum,  // the verification run at the final predicted optimum
+// reading 11). One alternative per method, each carrying only its own settings: a count of
+// candidates cannot exist beside a method that ignores it. `name` is the method's one spelling in a study file, the
+// resolved study and the stored result.
+struct LowestRunSelection {  // no final_selection, or candidates 0: the best single run is the answer
+  static constexpr const char* name = "lowest_run";
 };
-
-// The method's name in a study file, the resolved study and the stored result: the one spelling.
-constexpr const char* final_selection_method_name(FinalSelectionMethod method) {
-  switch (method) {
-    case FinalSelectionMethod::lowest_run:
-      return "lowest_run";
-    case FinalSelectionMethod::replicates:
-      return "replicates";
-    case FinalSelectionMethod::predicted_optimum:
-      return "predicted_optimum";
-  }
-  return "";
-}
-
-struct FinalSelectionSpec {
-  FinalSelectionMethod method = FinalSelectionMethod::lowest_run;
-  int candidates = 0;  // method replicates only: the best distinct runs re-run (1 to 20)
-  int replicates = 3;  // method replicates only: nudged re-runs of each candidate (roundoff_replicates.hpp)
+struct ReplicateSelection {  // the best `candidates` runs, `replicates` nudged re-runs each
+  static constexpr const char* name = "replicates";
+  int candidates = 4;  // the best distinct runs re-run (1 to 20)
+  int replicates = 3;  // nudged re-runs of each candidate (roundoff_replicates.hpp)
 };
+struct PredictedOptimumSelection {  // the verification run at the final predicted optimum
+  static constexpr const char* name = "predicted_optimum";
+};
+using FinalSelectionSpec = std::variant<LowestRunSelection, ReplicateSelection, PredictedOptimumSelection>;
 
 struct StudySpec {
   int version = kStudyFormatVersion;
