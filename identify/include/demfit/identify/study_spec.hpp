@@ -107,8 +107,8 @@ inline constexpr int kMaxReplicates = 20;
 // answer with the verification run at the surrogate's final predicted optimum, whose curves pool
 // the noise of the runs around it (Table 1 with expected improvement, 16 seeds: docs/reproduce.md
 // reading 11). One alternative per method, each carrying only its own settings: a count of
-// candidates cannot exist beside a method that ignores it. `name` is the method's one spelling in a study file, the
-// resolved study and the stored result.
+// candidates cannot exist beside a method that ignores it. `name` is the method's one spelling in
+// a study file, the resolved study and the stored result.
 struct LowestRunSelection {  // no final_selection, or candidates 0: the best single run is the answer
   static constexpr const char* name = "lowest_run";
 };
