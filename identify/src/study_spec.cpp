@@ -290,7 +290,8 @@ void parse_final_selection(JsonReader in, StudySpec& spec) {
     return;
   }
   if (method != ReplicateSelection::name)
-    in.fail("method", "must be 'replicates', 'predicted_optimum' or 'lowest_run', not '" + method + "'");
+    in.fail("method", std::string("must be '") + ReplicateSelection::name + "', '" + PredictedOptimumSelection::name +
+                          "' or '" + LowestRunSelection::name + "', not '" + method + "'");
   ReplicateSelection selection;
   selection.candidates = in.integer_or("candidates", selection.candidates);
   selection.replicates = in.integer_or("replicates", selection.replicates);
