@@ -43,6 +43,9 @@ def choose(pairs_file, valley):
     for line in open(pairs_file):
         seed = line.split()[0]
         po = replicated(os.path.join(valley, "s%s_po.txt" % seed))
+        if po is None:
+            sys.exit("table1_replicate_choice.py: %s has no s%s_po.txt; run table1_valley.sh there first"
+                     % (valley, seed))
         best = replicated(os.path.join(valley, "s%s_best.txt" % seed)) or po  # the same point: no choice
         by_mean = po if statistics.mean(po[1]) <= statistics.mean(best[1]) else best
         by_median = po if statistics.median(po[1]) <= statistics.median(best[1]) else best

@@ -7,10 +7,12 @@
 set -u
 demfit=$1
 for i in 1 2 3; do
-  cache=$(mktemp -d) out=$(mktemp -d)
+  run=$(mktemp -d)  # everything of this run stays in it: cache, output folder, log
+  cache=$run/cache out=$run/out
+  mkdir "$cache"
   load=$(cut -d' ' -f1-3 /proc/loadavg)
   start=$(date +%s.%N)
-  DEMFIT_CACHE_DIR=$cache "$demfit" reproduce all --quick --out "$out" > "$out.log" 2>&1
+  DEMFIT_CACHE_DIR=$cache "$demfit" reproduce all --quick --out "$out" > "$run/log" 2>&1
   status=$?
   end=$(date +%s.%N)
   echo "run $i exit $status wall $(python3 -c 'import sys; print("%.0f" % (float(sys.argv[2]) - float(sys.argv[1])))' "$start" "$end") s," \

@@ -209,12 +209,9 @@ MatrixXd StudyLoop::infill(const VectorXd& optimum, int count, const Box& region
 
 StudyResult StudyLoop::finish(int verification_iteration, bool converged, const Box& final_region) {
   decision_runs_ = runs_.size();
-  // A copy: the selection and the interval check append runs.
-  nlohmann::json selection = nullptr;
-  const Run best = answer_run(verification_iteration, selection);
-  // A selection's replicates take the iteration after the verification; the interval check the next free one.
-  const int check_iteration =
-      verification_iteration + (std::holds_alternative<ReplicateSelection>(spec_.final_selection) ? 2 : 1);
+  // The answer holds a copy of its run: the selection and the interval check append to runs_.
+  const Answer answer = this->answer(verification_iteration);
+  const Run& best = answer.run;
   StudyResult result;
   result.best = store_.find_evaluation(best.iteration, best.point)->parameters;
   result.best_objective = best.objective;
@@ -235,7 +232,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
       std::fprintf(stderr, "demfit: warning: posterior: %s\n", posterior_warning.c_str());
     const int runs_before_check = total_runs_;  // after the selection: its replicates lead to the answer
     if (spec_.interval_check.max_steps > 0 && uncertainty["posterior"].is_object())
-      check_intervals(best, sample, check_iteration, uncertainty);
+      check_intervals(answer, sample, uncertainty);
     result.interval_check_runs = total_runs_ - runs_before_check;
     for (std::size_t j = 0; j < spec_.variables.size(); ++j) {
       const std::string& name = spec_.variables[j].name;
@@ -263,7 +260,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
                      {"failed_runs", result.failed_runs},
                      {"iterations", result.iterations},
                      {"converged", converged},
-                     {"final_selection", selection},
+                     {"final_selection", answer.record},
                      {"wall_seconds", result.wall_seconds},
                      {"uncertainty", uncertainty}});
   const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);

@@ -36,6 +36,15 @@ struct Run {
   bool replicate = false;  // a nudged re-run (selection, interval check): kept out of surrogate fits (a near-duplicate)
 };
 
+// The study's answer (final_selection) and what choosing it used up, which the interval check
+// after it must not reuse: the selection's iteration and its replicates' round-off nudges.
+struct Answer {
+  Run run;
+  nlohmann::json record = nullptr;  // the choice, for the store (null for lowest_run)
+  int next_free_iteration = 0;      // the first iteration after the verification and the selection
+  int nudges_used = 0;              // round-off nudges 0 .. nudges_used - 1 went to the selection
+};
+
 class StudyLoop {
  public:
   StudyLoop(const StudySpec& spec, const Model& model, const RunOptions& options)
@@ -68,9 +77,8 @@ class StudyLoop {
                            std::uint64_t seed) const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
-  // The study's answer by its final_selection method; `record` describes the choice for the store
-  // (null for lowest_run).
-  Run answer_run(int verification_iteration, nlohmann::json& record);
+  // The study's answer by its final_selection method.
+  Answer answer(int verification_iteration);
   // The best distinct decision runs, best first (at most `count`).
   std::vector<int> selection_candidates(int count) const;
   // Re-runs the candidates as round-off replicates in `iteration` and returns the one with the
@@ -81,8 +89,8 @@ class StudyLoop {
   Run predicted_optimum_run(int verification_iteration, nlohmann::json& record) const;
   RunSample uncertainty_sample(const Run& best, const Box& final_region) const;
   // Runs at the posterior intervals' ends (interval_check.hpp); widens uncertainty.posterior.
-  void check_intervals(const Run& best, const RunSample& sample, int first_iteration, nlohmann::json& uncertainty);
-  IntervalCheckInput interval_check_input(const Run& best, const RunSample& sample,
+  void check_intervals(const Answer& answer, const RunSample& sample, nlohmann::json& uncertainty);
+  IntervalCheckInput interval_check_input(const Answer& answer, const RunSample& sample,
                                           const nlohmann::json& posterior) const;
   VectorXd profile_point(const VectorXd& best_unit, int variable, double unit_value) const;
   void progress_iteration(int iteration, const IterationRecord& record, const Box& region) const;

@@ -67,18 +67,25 @@ Run StudyLoop::select_by_replicates(const ReplicateSelection& selection, int ite
   return runs_[candidates[chosen]];
 }
 
-Run StudyLoop::answer_run(int verification_iteration, nlohmann::json& record) {
+Answer StudyLoop::answer(int verification_iteration) {
+  const int after_verification = verification_iteration + 1;
   return std::visit(
-      [&](const auto& method) -> Run {
+      [&](const auto& method) {
         using Method = std::decay_t<decltype(method)>;
+        Answer answer;
         if constexpr (std::is_same_v<Method, LowestRunSelection>) {
-          return *best_run();
+          answer.run = *best_run();
+          answer.next_free_iteration = after_verification;
         } else if constexpr (std::is_same_v<Method, ReplicateSelection>) {
-          return select_by_replicates(method, verification_iteration + 1, record);
+          answer.run = select_by_replicates(method, after_verification, answer.record);
+          answer.next_free_iteration = after_verification + 1;
+          answer.nudges_used = method.replicates;
         } else {  // a new method fails to compile here until it is handled
           static_assert(std::is_same_v<Method, PredictedOptimumSelection>);
-          return predicted_optimum_run(verification_iteration, record);
+          answer.run = predicted_optimum_run(verification_iteration, answer.record);
+          answer.next_free_iteration = after_verification;
         }
+        return answer;
       },
       spec_.final_selection);
 }

@@ -49,14 +49,14 @@ VectorXd StudyLoop::profile_point(const VectorXd& best_unit, int variable, doubl
   return minimize_prediction(*surrogate, objective_, box, seed, HeldCoordinate{variable, unit_value}).x;
 }
 
-IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSample& sample,
+IntervalCheckInput StudyLoop::interval_check_input(const Answer& answer, const RunSample& sample,
                                                    const nlohmann::json& posterior) const {
+  const Run& best = answer.run;
   IntervalCheckInput input;
   input.best_unit = best.unit;
   input.best_objective = best.objective;
   input.fitted_runs = sample.unit_points;
-  if (const auto* replicated = std::get_if<ReplicateSelection>(&spec_.final_selection))
-    input.first_replicate = replicated->replicates;
+  input.first_replicate = answer.nudges_used;  // trajectories the selection did not use
   for (const auto& v : spec_.variables) {
     input.lower.push_back(posterior["variables"][v.name]["lower_95"].get<double>());
     input.upper.push_back(posterior["variables"][v.name]["upper_95"].get<double>());
@@ -69,10 +69,11 @@ IntervalCheckInput StudyLoop::interval_check_input(const Run& best, const RunSam
   return input;
 }
 
-void StudyLoop::check_intervals(const Run& best, const RunSample& sample, int first_iteration,
-                                nlohmann::json& uncertainty) {
+void StudyLoop::check_intervals(const Answer& answer, const RunSample& sample, nlohmann::json& uncertainty) {
+  const Run& best = answer.run;
+  const int first_iteration = answer.next_free_iteration;
   nlohmann::json& posterior = uncertainty["posterior"];
-  const IntervalCheckInput input = interval_check_input(best, sample, posterior);
+  const IntervalCheckInput input = interval_check_input(answer, sample, posterior);
   const std::vector<double>&lower = input.lower, &upper = input.upper;
   // Each profile is a fresh fit (profile_point), so a retried end's profile knows the run that missed.
   const auto profile = [&](int variable, double unit_value) { return profile_point(best.unit, variable, unit_value); };
