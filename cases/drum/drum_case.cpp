@@ -19,6 +19,7 @@
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/cases/free_surface.hpp"
+#include "demfit/dem_core/overlap_statistics.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "demfit/imaging/occupancy.hpp"
@@ -68,6 +69,7 @@ struct RotationRun {
   CurveTable particles;
   double time_step = 0.0;
   std::uint64_t steps = 0;
+  dem_core::OverlapStatistics overlaps{};  // at the end time
 };
 
 RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill, const CaseRunOptions& options) {
@@ -136,6 +138,7 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
                                                  imaging::occupancy_profile_options(photo));
   }
   run.steps = sim.step_count();
+  run.overlaps = dem_core::pair_overlap_statistics(sim);
   run.particles = CurveTable{{"particle centres at the end time; drum axis z, gravity -y"},
                              {"x_mm", "y_mm", "z_mm", "radius_mm"},
                              std::vector<std::vector<double>>(4)};
@@ -234,6 +237,9 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
         "x < 0)",
         fmt("%.2f", image_surface_angle(*run.image_surface, 0.5 * rd)));
   }
+  sum.emplace_back("particle overlap at the end, mean / max [% of the smaller radius]",
+                   fmt("%.2f", 100.0 * run.overlaps.mean_relative_overlap) + " / " +
+                       fmt("%.2f", 100.0 * run.overlaps.max_relative_overlap));
   sum.emplace_back("time step [s]", fmt("%.3e", run.time_step));
   sum.emplace_back("rotation steps", std::to_string(run.steps));
   sum.emplace_back("rotation wall time [s] (one evaluation)", fmt("%.1f", rotate_seconds));

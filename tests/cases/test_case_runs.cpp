@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <utility>
 
 #include "case_test_options.hpp"
 #include "demfit/cases/case_registry.hpp"
@@ -165,6 +167,60 @@ TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and rad
   double mean_torque = 0.0;
   for (double t : torque.y) mean_torque += t / static_cast<double>(torque.y.size());
   CHECK(mean_torque > 0.0);
+}
+
+namespace {
+
+// Mean and max pair overlap [% of the smaller radius] recomputed from a particles_end table (mm).
+std::pair<double, double> overlaps_from_table(const CurveTable& particles) {
+  const auto& c = particles.values;
+  double sum = 0.0, largest = 0.0;
+  int contacts = 0;
+  for (std::size_t i = 0; i < c[0].size(); ++i) {
+    for (std::size_t j = i + 1; j < c[0].size(); ++j) {
+      const double distance = std::hypot(c[0][j] - c[0][i], c[1][j] - c[1][i], c[2][j] - c[2][i]);
+      const double overlap = c[3][i] + c[3][j] - distance;
+      if (overlap <= 0.0) continue;
+      ++contacts;
+      sum += 100.0 * overlap / std::min(c[3][i], c[3][j]);
+      largest = std::max(largest, 100.0 * overlap / std::min(c[3][i], c[3][j]));
+    }
+  }
+  return {contacts ? sum / contacts : 0.0, largest};
+}
+
+std::pair<double, double> summary_overlaps(const CaseResult& result) {
+  for (const auto& [label, value] : result.summary) {
+    double mean = 0.0, largest = 0.0;
+    if (label.rfind("particle overlap", 0) == 0 && std::sscanf(value.c_str(), "%lf / %lf", &mean, &largest) == 2)
+      return {mean, largest};
+  }
+  FAIL("no particle overlap line in the summary");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("A drum summary reports the end-time particle overlap and a softer spring overlaps more") {
+  json document = read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json");
+  document["drum"]["scale_factor"] = 4.0;
+  document["drum"]["coarse_graining"] = "scg";
+  document["drum"]["duration"] = 0.3;
+  document["drum"]["surface_window"] = 0.05;
+  document["drum"]["torque_interval"] = 0.05;
+  const CaseSpec spec = parse_case(document);
+  const CaseResult stiff = run_case(spec, {}, test_options());
+  const CaseResult soft = run_case(spec, {{"normk", 1e-5}}, test_options());
+  for (const CaseResult* result : {&stiff, &soft}) {
+    const auto [mean, largest] = summary_overlaps(*result);
+    const auto [mean_again, largest_again] = overlaps_from_table(result->tables.at("particles_end"));
+    // Printed with two decimals; the table's centres are the same positions in mm.
+    CHECK(mean == Approx(mean_again).margin(0.006));
+    CHECK(largest == Approx(largest_again).margin(0.006));
+  }
+  // Under the same weight the overlap scales as 1/NORMK (k_n = NORMK K R / 2): 1000x softer.
+  CHECK(summary_overlaps(soft).first > 100.0 * summary_overlaps(stiff).first);
+  CHECK(summary_overlaps(stiff).first < 1.0);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include "demfit/dem_core/contact_law_linear.hpp"
 #include "demfit/dem_core/contact_laws.hpp"
 #include "demfit/dem_core/neighbor_list.hpp"
+#include "demfit/dem_core/overlap_statistics.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/particle_state.hpp"
