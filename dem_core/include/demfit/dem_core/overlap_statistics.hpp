@@ -2,7 +2,7 @@
 // How far the spheres interpenetrate. A soft normal spring (small NORMK) lets a bed reach a
 // density by overlap instead of by arrangement, and an identification may exploit that (the
 // Table 3 coarse bed, docs/reproduce.md reading 13); these figures let a user judge an answer's
-// physics. DEM practice keeps overlaps to about 1 % of the radius.
+// physics (a common DEM guideline keeps overlaps near 1 % of the radius).
 #include <cstddef>
 
 namespace demfit::dem_core {
