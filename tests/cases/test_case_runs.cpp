@@ -138,14 +138,24 @@ TEST_CASE(
   check_end_of_loading_statics(lean, b);
 }
 
-TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and radius, and resists the rotation") {
+namespace {
+
+// The shipped drum coarse-grained at s = 4 and turned for 0.3 s only: cheap enough for a unit test.
+json short_coarse_drum(const std::string& coarse_graining) {
   json document = read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json");
   document["drum"]["scale_factor"] = 4.0;
-  document["drum"]["coarse_graining"] = "cvf";
+  document["drum"]["coarse_graining"] = coarse_graining;
   document["drum"]["duration"] = 0.3;
-  document["drum"]["densify_time"] = 0.6;
   document["drum"]["surface_window"] = 0.05;
   document["drum"]["torque_interval"] = 0.05;
+  return document;
+}
+
+}  // namespace
+
+TEST_CASE("A small CVF s = 4 drum runs, holds the Table 2 particle count and radius, and resists the rotation") {
+  json document = short_coarse_drum("cvf");
+  document["drum"]["densify_time"] = 0.6;
   document["drum"]["image"] = {{"pixels", 120}};
   const CaseSpec spec = parse_case(document);
   const CaseResult result = run_case(spec, {}, test_options());
@@ -202,13 +212,7 @@ std::pair<double, double> summary_overlaps(const CaseResult& result) {
 }  // namespace
 
 TEST_CASE("A drum summary reports the end-time particle overlap and a softer spring overlaps more") {
-  json document = read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/rotary_drum.json");
-  document["drum"]["scale_factor"] = 4.0;
-  document["drum"]["coarse_graining"] = "scg";
-  document["drum"]["duration"] = 0.3;
-  document["drum"]["surface_window"] = 0.05;
-  document["drum"]["torque_interval"] = 0.05;
-  const CaseSpec spec = parse_case(document);
+  const CaseSpec spec = parse_case(short_coarse_drum("scg"));
   const CaseResult stiff = run_case(spec, {}, test_options());
   const CaseResult soft = run_case(spec, {{"normk", 1e-5}}, test_options());
   for (const CaseResult* result : {&stiff, &soft}) {
