@@ -14,7 +14,6 @@ import json, sys
 answer = json.load(open(sys.argv[1]))
 for name, v in sorted(answer['variables'].items()):
     print('%s=%.17g' % (name, v['value']))" "$study/best_parameters.json")
-rm -rf "$work"
 "$demfit" simulate "$cases/rotary_drum.json" --set drum.coarse_graining=scg drum.scale_factor=4 "${values[@]}" \
   --out "$work" > /dev/null 2>&1
 printf '%s  ' "$(printf '%s\n' "${values[@]}" | grep '^normk=')"
