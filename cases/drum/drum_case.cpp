@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "dem_setup.hpp"
+#include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
 #include "demfit/cases/free_surface.hpp"
@@ -237,9 +238,8 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
         "x < 0)",
         fmt("%.2f", image_surface_angle(*run.image_surface, 0.5 * rd)));
   }
-  sum.emplace_back("particle overlap at the end, mean / max [% of the smaller radius]",
-                   fmt("%.2f", 100.0 * run.overlaps.mean_relative_overlap) + " / " +
-                       fmt("%.2f", 100.0 * run.overlaps.max_relative_overlap));
+  sum.emplace_back(kParticleOverlapLabel, fmt("%.2f", 100.0 * run.overlaps.mean_relative_overlap) + " / " +
+                                              fmt("%.2f", 100.0 * run.overlaps.max_relative_overlap));
   sum.emplace_back("time step [s]", fmt("%.3e", run.time_step));
   sum.emplace_back("rotation steps", std::to_string(run.steps));
   sum.emplace_back("rotation wall time [s] (one evaluation)", fmt("%.1f", rotate_seconds));

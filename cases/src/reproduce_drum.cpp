@@ -163,7 +163,7 @@ std::string overlap_text(const json& study, const identify::ParameterSet& best, 
   run.threads = o.threads_per_job;
   const CaseResult answer = run_case(drum_spec(study, CoarseGraining::scg, 4.0), best, run);
   for (const auto& [label, value] : answer.summary)
-    if (label.rfind("particle overlap", 0) == 0)
+    if (label == kParticleOverlapLabel)
       return "Particle overlap at the identified values (one run, end time): mean / max " + value +
              " % of the smaller radius (a common DEM guideline keeps it near 1 %; far more means the bed's density "
              "comes from interpenetration).\n";

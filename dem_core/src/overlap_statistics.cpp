@@ -1,7 +1,7 @@
 #include "demfit/dem_core/overlap_statistics.hpp"
 
 #include <algorithm>
-#include <cmath>
+#include <cstdint>
 
 #include "demfit/dem_core/neighbor_list.hpp"
 #include "demfit/dem_core/simulation.hpp"

@@ -11,7 +11,9 @@ demfit=$1 study=$2 target=$3 work=$4
 shift 4
 here=$(cd "$(dirname "$0")" && pwd)
 if [ "$study" = initial ]; then
-  values=(0.50000000)  # the case default, written to 8 digits like an answer
+  # the case's own NDAMP, written to 8 digits like an answer's
+  values=("$(python3 -c "import json, sys; print('%.8f' % json.load(open(sys.argv[1]))['contact']['ndamp'])" \
+    "$here/../../cases/rotary_drum.json")")
 else
   mapfile -t values < <(python3 -c "
 import json, sys

@@ -202,7 +202,7 @@ std::pair<double, double> overlaps_from_table(const CurveTable& particles) {
 std::pair<double, double> summary_overlaps(const CaseResult& result) {
   for (const auto& [label, value] : result.summary) {
     double mean = 0.0, largest = 0.0;
-    if (label.rfind("particle overlap", 0) == 0 && std::sscanf(value.c_str(), "%lf / %lf", &mean, &largest) == 2)
+    if (label == kParticleOverlapLabel && std::sscanf(value.c_str(), "%lf / %lf", &mean, &largest) == 2)
       return {mean, largest};
   }
   FAIL("no particle overlap line in the summary");

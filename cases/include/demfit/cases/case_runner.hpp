@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "demfit/cases/case_spec.hpp"
@@ -19,6 +20,11 @@ struct CaseRunOptions {
   std::filesystem::path snapshot_dir;  // VTK snapshots at spec.output.snapshot_times; empty = none
   std::filesystem::path cache_dir;     // settled fills; empty = default_cache_dir()
 };
+
+// A drum summary's overlap line (dem_core/overlap_statistics.hpp): its label, and a value "mean / max"
+// in % of the smaller radius. Spelt once: `reproduce table3` reads the line back.
+inline constexpr std::string_view kParticleOverlapLabel =
+    "particle overlap at the end, mean / max [% of the smaller radius]";
 
 struct CaseResult {
   identify::CurveSet curves;                                 // named curves (the Model's output)
