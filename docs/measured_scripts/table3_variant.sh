@@ -4,7 +4,7 @@
 # log vs linear particle friction, final-selection candidates). The copy lives in WORK/cases with
 # WORK/data linked to the repository's data/, because reproduce reads its studies from --data's
 # sibling cases/. Prints the report's Surface RMS and How sure lines.
-# Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [replicates=N] [iterations=N] [normk_lower=X] [quick]
+# Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [replicates=N] [iterations=N] [normk_lower=X] [strategy=S] [points=N] [smoothing=X] [quick]
 #   e.g. table3_variant.sh build/apps/demfit /tmp/t3v/lin2 2 frics_log_scale=false
 set -eu
 demfit=$1 work=$2 seed=$3
@@ -38,8 +38,14 @@ for edit in edits:
         study["stopping"]["max_iterations"] = int(value)
     elif key == "normk_lower":
         next(v for v in study["variables"] if v["name"] == "normk")["lower"] = float(value)
+    elif key == "strategy":
+        study["sampling"]["strategy"] = value
+    elif key == "points":
+        study["sampling"]["points_per_iteration"] = int(value)
+    elif key == "smoothing":
+        study.setdefault("surrogate", {})["smoothing"] = float(value)
     else:
-        sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=, replicates=, iterations=, normk_lower=)" % key)
+        sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=, replicates=, iterations=, normk_lower=, strategy=, points=, smoothing=)" % key)
 json.dump(study, open(path, "w"), indent=1)
 PY
 "$demfit" reproduce table3 "${quick[@]}" --jobs 2 --data "$work/data" --out "$work/out" > "$work/log" 2>&1
