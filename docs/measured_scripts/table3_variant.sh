@@ -1,7 +1,7 @@
 #!/bin/bash
 # Runs `demfit reproduce table3` on a copy of cases/ whose Table 3 study differs from the shipped
-# one only in the study seed and the given edits, for docs/reproduce.md reading 8 (seeds 1-3,
-# log vs linear particle friction, final-selection candidates). The copy lives in WORK/cases with
+# one only in the study seed and the given edits, for docs/reproduce.md readings 8, 9, 12, 13 and 16
+# (study seeds, friction scale, final selection, budgets, NORMK bound, sampling strategy). The copy lives in WORK/cases with
 # WORK/data linked to the repository's data/, because reproduce reads its studies from --data's
 # sibling cases/. Prints the report's Surface RMS and How sure lines.
 # Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [replicates=N] [iterations=N] [normk_lower=X] [strategy=S] [points=N] [smoothing=X] [quick]
@@ -48,5 +48,6 @@ for edit in edits:
         sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=, replicates=, iterations=, normk_lower=, strategy=, points=, smoothing=)" % key)
 json.dump(study, open(path, "w"), indent=1)
 PY
-"$demfit" reproduce table3 "${quick[@]}" --jobs 2 --data "$work/data" --out "$work/out" > "$work/log" 2>&1
+"$demfit" reproduce table3 "${quick[@]}" --jobs 2 --data "$work/data" --out "$work/out" > "$work/log" 2>&1 ||
+  { tail -n 3 "$work/log" >&2; exit 1; }
 grep -E "^Surface RMS|^How sure|final selection: run" "$work/log"
