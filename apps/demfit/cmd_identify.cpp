@@ -17,6 +17,7 @@
 #include "demfit/identify/lsdyna_export.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/store_lock.hpp"
+#include "demfit/identify/study_answer.hpp"
 #include "demfit/identify/study_preflight.hpp"
 #include "demfit/identify/study_warnings.hpp"
 #include "demfit/identify/relative_axis.hpp"
@@ -61,7 +62,7 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
   // "the answer's": with a final selection the answer need not be the lowest run (final_selection.hpp).
   std::printf("the answer's objective %.6g after %d runs (%d failed), %d iterations, %s\n", result.best_objective,
               result.runs, result.failed_runs, result.iterations,
-              result.converged ? "converged" : "iteration limit reached");
+              result.stop_reason.c_str());
   // The same interval as report.md, best_parameters.json and the export (reported_interval.hpp).
   for (const auto& v : spec.variables) {
     const auto found = result.intervals.find(v.name);
@@ -240,6 +241,10 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
 
 void run_export(const std::string& db, const std::string& keyword_file) {
   identify::check_user_text("--lsdyna", keyword_file);
+  std::error_code error;
+  if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
+      std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
+    throw std::runtime_error("--lsdyna: '" + keyword_file + "' is the study store itself; give a new .k file name");
   const auto store = identify::StudyStore::open_existing(db);
   const nlohmann::json study = store.study_json();
   const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
@@ -253,15 +258,12 @@ void run_export(const std::string& db, const std::string& keyword_file) {
     throw std::runtime_error("export: study store '" + db +
                              "' is a study with several experiments; export needs a "
                              "single-model study (one case, one full parameter set)");
-  std::error_code error;
-  if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
-      std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
-    throw std::runtime_error("--lsdyna: '" + keyword_file + "' is the study store itself; give a new .k file name");
-  const identify::EvaluationRecord* best = nullptr;
   const auto runs = store.evaluations();
-  for (const auto& r : runs)
-    if (r.ok && (!best || r.objective < best->objective)) best = &r;
+  // The study's answer, the same run as report.md and best_parameters.json (study_answer.hpp).
+  const identify::StudyAnswer answer = identify::study_answer(runs, store.result(), db);
+  const identify::EvaluationRecord* best = answer.run;
   if (!best) throw std::runtime_error("study store '" + db + "' has no successful run to export");
+  if (!answer.finished) std::fprintf(stderr, "demfit: warning: export: %s\n", answer.why.c_str());
   char objective[32];
   std::snprintf(objective, sizeof objective, "%.6g", best->objective);
   const std::string title = "study '" + study.value("name", std::string("study")) + "', run " +

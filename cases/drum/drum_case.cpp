@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "dem_setup.hpp"
+#include "run_budget.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
@@ -111,7 +112,11 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
   // Drive torque: minus the moment the particles exert on the drum about its axis, signed with
   // the rotation direction, so a bed resisting the rotation gives a positive torque (Fig. 5).
   const double sense = omega >= 0.0 ? 1.0 : -1.0;
+  std::uint64_t steps_done = 0;
   auto callback = [&](dem_core::Simulation& s) {
+    // Progress at least every 256 steps (the printer throttles by wall time), also when a
+    // torque sample spans millions of steps.
+    if (options.progress && (++steps_done & 255u) == 0) options.progress("rotate", s.time(), d.duration);
     torque_sum -= sense * (s.wall_torque(shell) + s.wall_torque(shell + 1) + s.wall_torque(shell + 2));
     snapshots.maybe_write(s, s.time());
     while (profiles.size() < surface_times.size() && s.time() >= surface_times[profiles.size()] - 1e-12)
@@ -171,8 +176,28 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   bool generated = false;
   const Powder powder = powder_of(spec);
   precheck_user_time_step(spec, powder.particle.radius, powder.particle.density);
+  {  // Before any work: the shell must not jump over contacts, and the run must fit the budget.
+    const double time_step = planned_time_step(spec, powder.particle.radius, powder.particle.density);
+    const double shell_speed = spec.drum.rpm * 2.0 * std::numbers::pi / 60.0 * 0.5 * spec.drum.diameter;
+    check_wall_travel_per_step("drum.rpm", shell_speed, powder.particle.radius * (1.0 - spec.material.radius_spread),
+                               time_step);
+    check_run_budget("drum", static_cast<double>(powder.count), spec.drum.duration, time_step, options);
+  }
+  // A cached fill is used only with every particle inside the drum (frame: axis = z from 0 to length).
+  const double drum_radius = 0.5 * fill_spec.drum.diameter, drum_length = fill_spec.drum.length;
+  const auto inside_drum = [&](const Fill& f) {
+    for (std::size_t i = 0; i < f.radii.size(); ++i) {
+      const auto& p = f.positions[i];
+      const double slack = 0.1 * f.radii[i];  // a settled contact overlaps the wall by ~1 % of a radius
+      if (std::hypot(p[0], p[1]) + f.radii[i] > drum_radius + slack || p[2] - f.radii[i] < -slack ||
+          p[2] + f.radii[i] > drum_length + slack)
+        return false;
+    }
+    return true;
+  };
   const Fill fill = cached_fill(
-      options.cache_dir, "drum", fill_key(fill_spec), [&] { return pack_and_densify(fill_spec, options); }, &generated);
+      options.cache_dir, "drum", fill_key(fill_spec), [&] { return pack_and_densify(fill_spec, options); }, &generated,
+      inside_drum);
   const double fill_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const auto rotate_start = Clock::now();
   const RotationRun run = rotate(spec, powder, fill, options);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "dem_setup.hpp"
+#include "run_budget.hpp"
 #include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
@@ -121,11 +122,29 @@ identify::Curve resample_by_volume(const std::vector<Sample>& s, std::size_t end
 
 CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options) {
   precheck_user_time_step(spec, spec.material.radius, spec.material.density);
+  {  // Before any work: the wall must not jump over contacts, and the run must fit the budget.
+    const double time_step = planned_time_step(spec, spec.material.radius, spec.material.density);
+    check_wall_travel_per_step("pellet.piston_speed", spec.pellet.piston_speed,
+                               spec.material.radius * (1.0 - spec.material.radius_spread), time_step);
+    check_run_budget("pellet compression", static_cast<double>(spec.pellet.particle_count),
+                     spec.pellet.settle_time + spec.pellet.max_travel / spec.pellet.piston_speed, time_step, options);
+  }
   const auto start = Clock::now();
   bool generated = false;
+  // A cached fill is used only with every pellet inside the container (axis z, bottom at z = 0).
+  const double container = container_radius(fill_spec);
+  const auto inside_container = [&](const Fill& f) {
+    for (std::size_t i = 0; i < f.radii.size(); ++i) {
+      const double slack = 0.1 * f.radii[i];  // a settled contact overlaps a wall by ~1 % of a radius
+      if (std::hypot(f.positions[i][0], f.positions[i][1]) + f.radii[i] > container + slack ||
+          f.positions[i][2] - f.radii[i] < -slack)
+        return false;
+    }
+    return true;
+  };
   const Fill fill = cached_fill(
       options.cache_dir, "pellet", fill_key(fill_spec), [&] { return pour_and_settle(fill_spec, options); },
-      &generated);
+      &generated, inside_container);
   const double fill_seconds = seconds_since(start);
   const auto compress_start = Clock::now();
   const CompressionRun run = compress(spec, fill, options);
@@ -229,7 +248,12 @@ CompressionRun compress(const CaseSpec& spec, const Fill& fill, const CaseRunOpt
   Sample sum;
   std::uint64_t in_sample = 0;
   bool unloading = false;
+  std::uint64_t steps_done = 0;
   auto callback = [&](dem_core::Simulation& s) {
+    // Progress at least every 256 steps (the printer throttles by wall time), also when a
+    // sample spans millions of steps.
+    if (options.progress && (++steps_done & 255u) == 0)
+      options.progress(unloading ? "unload" : "compress", s.time(), end_time);
     sum.piston_force += s.wall_force(piston).z;  // particles push the piston up (+z)
     sum.bottom_force -= s.wall_force(0).z;       // and the bottom plate down (-z)
     if (++in_sample < steps_per_sample) return true;

@@ -10,6 +10,7 @@
 #include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/study_answer.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/rbf_surrogate/bounds.hpp"
 #include "report_plots.hpp"
@@ -29,19 +30,6 @@ std::string csv_text(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-const EvaluationRecord* find_best(const std::vector<EvaluationRecord>& runs,
-                                  const std::optional<nlohmann::json>& result) {
-  if (result) {
-    for (const auto& r : runs)
-      if (r.iteration == result->at("best_iteration").get<int>() && r.point == result->at("best_point").get<int>())
-        return &r;
-  }
-  const EvaluationRecord* best = nullptr;
-  for (const auto& r : runs)
-    if (r.ok && (!best || r.objective < best->objective)) best = &r;
-  return best;
 }
 
 std::string evaluations_csv(const StudySpec& spec, const std::vector<EvaluationRecord>& runs) {
@@ -126,7 +114,7 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
   const auto runs = store.evaluations();
   const auto iterations = store.iterations();
   const auto result = store.result();
-  const EvaluationRecord* best = find_best(runs, result);
+  const EvaluationRecord* best = study_answer(runs, result, store.path().string()).run;
   ReportSummary summary;
   std::filesystem::create_directories(output_dir);
   write_file_atomically(output_dir / "evaluations.csv", evaluations_csv(spec, runs));

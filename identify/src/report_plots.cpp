@@ -246,13 +246,15 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
 std::string predicted_optimum_line(const nlohmann::json& s) {
   const nlohmann::json& lowest = s.at("best_run");
   std::ostringstream line;
-  if (s.contains("fallback"))
+  if (s.contains("fallback")) {
     line << "- final selection at the predicted optimum not made: " << s.at("fallback").get<std::string>() << "\n";
-  else
+  } else {
     line << "- the verification run " << s.at("iteration").get<int>() << "/" << s.at("point").get<int>()
          << " at the surrogate's final predicted optimum is the answer (final selection `predicted_optimum`); "
          << "the lowest single run, " << lowest.at("iteration").get<int>() << "/" << lowest.at("point").get<int>()
          << ", had " << format_number(lowest.at("objective").get<double>()) << "\n";
+    if (s.contains("note")) line << "- answer rule: " << s.at("note").get<std::string>() << "\n";
+  }
   return line.str();
 }
 
@@ -284,10 +286,11 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   for (const auto& r : runs) failed += r.ok ? 0 : 1;
   md << "# demfit identification report: " << spec.name << "\n\n"
      << model_lines(spec) << "- status: "
-     << (result
-             ? (result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
-                                                  : "finished, iteration limit reached")
-             : "NOT finished (report built from the runs stored so far)")
+     << (result ? (result->contains("stop_reason") ? "finished, " + result->value("stop_reason", std::string())
+                   : result->value("converged", false)
+                       ? std::string("finished, converged (design and objective change below tolerance)")
+                       : std::string("finished, iteration limit reached"))
+                : std::string("NOT finished (report built from the runs stored so far)"))
      << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
      << ", points per iteration: " << spec.points_per_iteration << "\n"
      << "- strategy: "

@@ -15,6 +15,7 @@
 #include "demfit/rbf_surrogate/adaptive_infill.hpp"
 #include "demfit/rbf_surrogate/design.hpp"
 #include "study_loop.hpp"
+#include "demfit/identify/stop_reason.hpp"
 
 namespace demfit::identify {
 namespace detail {
@@ -217,7 +218,10 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.best_objective = best.objective;
   result.best_curves = store_.find_evaluation(best.iteration, best.point)->curves;
   result.iterations = verification_iteration;
-  result.converged = converged;
+  // The tolerance rule alone does not make a study converged (stop_reason.hpp).
+  const StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
+  result.converged = stopped.converged;
+  result.stop_reason = stopped.text;
   nlohmann::json uncertainty = nullptr;
   // Uncertainty at the best run (issue #4): Jacobian and simulation noise from a linear
   // regression of the evaluated residuals over the runs near the optimum (see uncertainty.hpp).
@@ -259,7 +263,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
                      {"runs", result.runs},
                      {"failed_runs", result.failed_runs},
                      {"iterations", result.iterations},
-                     {"converged", converged},
+                     {"converged", stopped.converged},
+                     {"stop_reason", stopped.text},
                      {"final_selection", answer.record},
                      {"wall_seconds", result.wall_seconds},
                      {"uncertainty", uncertainty}});
@@ -267,8 +272,8 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   if (options_.progress) {
     if (!report.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", report.plot_warning.c_str());
     std::fprintf(stderr, "demfit: study done: the answer's objective %s after %d runs (%d failed), %s; results in %s\n",
-                 detail::format_number(best.objective).c_str(), result.runs, result.failed_runs,
-                 converged ? "converged" : "iteration limit reached", options_.output_dir.string().c_str());
+                 detail::format_number(best.objective).c_str(), result.runs, result.failed_runs, stopped.text.c_str(),
+                 options_.output_dir.string().c_str());
   }
   return result;
 }

@@ -84,6 +84,10 @@ class StudyLoop {
   // Re-runs the candidates as round-off replicates in `iteration` and returns the one with the
   // lowest mean objective (final_selection.hpp); `record` describes the choice for the store.
   Run select_by_replicates(const ReplicateSelection& selection, int iteration, nlohmann::json& record);
+  // Re-runs the runs_ at `candidates` `replicates` times each in `iteration`; the lowest mean wins.
+  Run replicate_and_choose(const std::vector<int>& candidates, int replicates, int iteration, nlohmann::json& record);
+  // The answer rule when the verification run is much worse than the best run (final_selection.hpp).
+  Run settle_much_worse_answer(int iteration, nlohmann::json& record);
   // The verification run (the final predicted optimum), or the best run when it failed; `record`
   // says which (PredictedOptimumSelection).
   Run predicted_optimum_run(int verification_iteration, nlohmann::json& record) const;

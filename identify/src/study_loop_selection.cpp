@@ -28,8 +28,11 @@ std::vector<int> StudyLoop::selection_candidates(int count) const {
 }
 
 Run StudyLoop::select_by_replicates(const ReplicateSelection& selection, int iteration, nlohmann::json& record) {
-  const int replicates = selection.replicates;
-  const std::vector<int> candidates = selection_candidates(selection.candidates);
+  return replicate_and_choose(selection_candidates(selection.candidates), selection.replicates, iteration, record);
+}
+
+Run StudyLoop::replicate_and_choose(const std::vector<int>& candidates, int replicates, int iteration,
+                                    nlohmann::json& record) {
   MatrixXd points(static_cast<Eigen::Index>(candidates.size()) * replicates, dims_);
   for (std::size_t c = 0; c < candidates.size(); ++c)
     for (int r = 0; r < replicates; ++r)
@@ -84,6 +87,11 @@ Answer StudyLoop::answer(int verification_iteration) {
           static_assert(std::is_same_v<Method, PredictedOptimumSelection>);
           answer.run = predicted_optimum_run(verification_iteration, answer.record);
           answer.next_free_iteration = after_verification;
+          if (answer.record.contains("much_worse")) {  // the answer rule: measure both, keep the better mean
+            answer.run = settle_much_worse_answer(after_verification, answer.record);
+            answer.next_free_iteration = after_verification + 1;
+            answer.nudges_used = kAnswerRuleReplicates;
+          }
         }
         return answer;
       },
@@ -105,7 +113,45 @@ Run StudyLoop::predicted_optimum_run(int verification_iteration, nlohmann::json&
   record["iteration"] = verification->iteration;
   record["point"] = verification->point;
   record["objective"] = verification->objective;
+  if (much_worse_than_best(verification->objective, lowest.objective)) record["much_worse"] = true;
   return *verification;
+}
+
+// The answer rule (final_selection.hpp): the verification run's own objective is much worse than
+// the best run's. One draw each cannot tell a lucky best run from a bad predicted optimum, so both
+// points are re-run as round-off replicates and the lower mean is the answer; the record says why
+// in one line.
+Run StudyLoop::settle_much_worse_answer(int iteration, nlohmann::json& record) {
+  const auto is_run = [&](int iteration_of, int point_of) {
+    for (int i = 0; i < static_cast<int>(std::min(decision_runs_, runs_.size())); ++i)
+      if (runs_[i].iteration == iteration_of && runs_[i].point == point_of && !runs_[i].replicate) return i;
+    return -1;
+  };
+  const int verification = is_run(record.at("iteration").get<int>(), record.at("point").get<int>());
+  const int lowest =
+      is_run(record.at("best_run").at("iteration").get<int>(), record.at("best_run").at("point").get<int>());
+  nlohmann::json replicated;
+  const Run chosen = replicate_and_choose({verification, lowest}, kAnswerRuleReplicates, iteration, replicated);
+  const auto& candidates = replicated.at("candidates");
+  const double verification_mean = candidates.at(0).at("mean_objective").get<double>();
+  const double lowest_mean = candidates.at(1).at("mean_objective").get<double>();
+  char why[320];
+  std::snprintf(why, sizeof why,
+                "the verification run's objective %s was %.3g x the best run's %s (above %.3g x); over %d round-off "
+                "replicates each they average %s and %s: the %s is the answer",
+                format_number(runs_[verification].objective).c_str(),
+                runs_[verification].objective / runs_[lowest].objective,
+                format_number(runs_[lowest].objective).c_str(), kMuchWorseRatio, kAnswerRuleReplicates,
+                format_number(verification_mean).c_str(), format_number(lowest_mean).c_str(),
+                replicated.at("chosen").get<int>() == 0 ? "predicted optimum" : "best run");
+  record["answer_rule"] = replicated;
+  if (replicated.at("chosen").get<int>() == 0) {
+    record["note"] = why;
+  } else {
+    record["fallback"] = why;
+  }
+  if (options_.progress) std::fprintf(stderr, "demfit: final selection: %s\n", why);
+  return chosen;
 }
 
 }  // namespace demfit::identify::detail

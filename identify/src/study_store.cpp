@@ -3,6 +3,8 @@
 #include "demfit/identify/study_store.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -34,6 +36,35 @@ IterationRecord iteration_from_json(const nlohmann::json& j) {
   r.design_change = number_from(j.at("design_change"));
   r.objective_change = number_from(j.at("objective_change"));
   return r;
+}
+
+// FNV-1a 64 of a row's stored texts: detects a row edited or damaged after demfit wrote it (an
+// accidental edit, a bad copy, a half-written page). It is no signature: whoever can recompute
+// it can forge a row, and the store says so in docs/study_format.md.
+std::string row_checksum(const std::vector<std::string>& fields) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const std::string& field : fields) {
+    for (const unsigned char c : field) hash = (hash ^ c) * 1099511628211ull;
+    hash = (hash ^ 0x1fu) * 1099511628211ull;  // unit separator: ("ab","c") differs from ("a","bc")
+  }
+  char text[20];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+// A REAL column as the checksum sees it: the exact double, or "null".
+std::string number_text(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string evaluation_checksum(int iteration, int point, const std::string& kind, const std::string& unit_x,
+                                const std::string& parameters, const std::string& curves, double objective,
+                                double wall_seconds, const std::string& status, const std::string& error) {
+  return row_checksum({std::to_string(iteration), std::to_string(point), kind, unit_x, parameters, curves,
+                       number_text(objective), number_text(wall_seconds), status, error});
 }
 
 std::string column_text(sqlite3_stmt* statement, int column) {
@@ -146,18 +177,30 @@ void StudyStore::execute(const std::string& sql) {
 }
 
 void StudyStore::put_meta(const std::string& key, const std::string& value) {
-  Statement s(db_, "INSERT OR REPLACE INTO meta(key, value) VALUES(?1, ?2)");
+  Statement s(db_, "INSERT OR REPLACE INTO meta(key, value, checksum) VALUES(?1, ?2, ?3)");
   s.bind(1, key);
   s.bind(2, value);
+  s.bind(3, row_checksum({key, value}));
   if (sqlite3_step(s.get()) != SQLITE_DONE)
     throw std::runtime_error(std::string("study store: ") + sqlite3_errmsg(db_));
 }
 
 std::optional<std::string> StudyStore::meta(const std::string& key) const {
-  Statement s(db_, "SELECT value FROM meta WHERE key = ?1");
+  if (key == "schema_version") {  // read without a checksum: a store of another version has none
+    Statement s(db_, "SELECT value FROM meta WHERE key = ?1");
+    s.bind(1, key);
+    if (sqlite3_step(s.get()) == SQLITE_ROW) return column_text(s.get(), 0);
+    return std::nullopt;
+  }
+  Statement s(db_, "SELECT value, checksum FROM meta WHERE key = ?1");
   s.bind(1, key);
-  if (sqlite3_step(s.get()) == SQLITE_ROW) return column_text(s.get(), 0);
-  return std::nullopt;
+  if (sqlite3_step(s.get()) != SQLITE_ROW) return std::nullopt;
+  std::string value = column_text(s.get(), 0);
+  if (column_text(s.get(), 1) != row_checksum({key, value}))
+    throw std::runtime_error("study store '" + path_.string() + "': its '" + key +
+                             "' entry was changed after demfit wrote it (checksum mismatch); restore study.db from a "
+                             "copy or rerun the study into a new --out folder");
+  return value;
 }
 
 StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const StudySpec& spec, bool resume,
@@ -172,12 +215,12 @@ StudyStore StudyStore::open_for_run(const std::filesystem::path& path, const Stu
   const std::string hash = std::to_string(study_hash(spec));
   if (!exists) {
     store.execute(
-        "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+        "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL, checksum TEXT NOT NULL);"
         "CREATE TABLE evaluations(iteration INTEGER NOT NULL, point INTEGER NOT NULL, kind TEXT NOT NULL,"
         " unit_x TEXT NOT NULL, parameters TEXT NOT NULL, curves TEXT NOT NULL, objective REAL,"
-        " wall_seconds REAL NOT NULL, status TEXT NOT NULL, error TEXT NOT NULL,"
+        " wall_seconds REAL NOT NULL, status TEXT NOT NULL, error TEXT NOT NULL, checksum TEXT NOT NULL,"
         " PRIMARY KEY(iteration, point));"
-        "CREATE TABLE iterations(iteration INTEGER PRIMARY KEY, record TEXT NOT NULL);");
+        "CREATE TABLE iterations(iteration INTEGER PRIMARY KEY, record TEXT NOT NULL, checksum TEXT NOT NULL);");
     store.execute("BEGIN");
     store.put_meta("schema_version", std::to_string(kStoreSchemaVersion));
     store.put_meta("study_hash", hash);
@@ -215,13 +258,24 @@ void StudyStore::load() {
                              ", this demfit reads version " + std::to_string(kStoreSchemaVersion) +
                              "; rerun the study with this version");
   Statement s(db_,
-              "SELECT iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds, status, error "
-              "FROM evaluations ORDER BY iteration, point");
+              "SELECT iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds, status, error, "
+              "checksum FROM evaluations ORDER BY iteration, point");
   while (sqlite3_step(s.get()) == SQLITE_ROW) {
     EvaluationRecord r;
     r.iteration = sqlite3_column_int(s.get(), 0);
     r.point = sqlite3_column_int(s.get(), 1);
     r.kind = column_text(s.get(), 2);
+    const double objective = sqlite3_column_type(s.get(), 6) == SQLITE_NULL ? std::numeric_limits<double>::quiet_NaN()
+                                                                            : sqlite3_column_double(s.get(), 6);
+    const std::string expected = evaluation_checksum(r.iteration, r.point, r.kind, column_text(s.get(), 3),
+                                                     column_text(s.get(), 4), column_text(s.get(), 5), objective,
+                                                     sqlite3_column_double(s.get(), 7), column_text(s.get(), 8),
+                                                     column_text(s.get(), 9));
+    if (column_text(s.get(), 10) != expected)
+      throw std::runtime_error("study store '" + path_.string() + "': run " + std::to_string(r.iteration) + "/" +
+                               std::to_string(r.point) +
+                               " is corrupted or was changed after demfit wrote it (checksum mismatch); restore "
+                               "study.db from a copy or rerun the study into a new --out folder");
     try {
       r.unit_x = nlohmann::json::parse(column_text(s.get(), 3)).get<std::vector<double>>();
       r.parameters = nlohmann::json::parse(column_text(s.get(), 4)).get<ParameterSet>();
@@ -240,11 +294,17 @@ void StudyStore::load() {
     r.error = column_text(s.get(), 9);
     evaluations_[{r.iteration, r.point}] = std::move(r);
   }
-  Statement it(db_, "SELECT record FROM iterations ORDER BY iteration");
+  Statement it(db_, "SELECT iteration, record, checksum FROM iterations ORDER BY iteration");
   while (sqlite3_step(it.get()) == SQLITE_ROW) {
     IterationRecord r;
+    if (column_text(it.get(), 2) != row_checksum({std::to_string(sqlite3_column_int(it.get(), 0)),
+                                                  column_text(it.get(), 1)}))
+      throw std::runtime_error("study store '" + path_.string() + "': iteration record " +
+                               std::to_string(sqlite3_column_int(it.get(), 0)) +
+                               " was changed after demfit wrote it (checksum mismatch); restore study.db from a copy "
+                               "or rerun the study into a new --out folder");
     try {
-      r = iteration_from_json(nlohmann::json::parse(column_text(it.get(), 0)));
+      r = iteration_from_json(nlohmann::json::parse(column_text(it.get(), 1)));
     } catch (const nlohmann::json::exception&) {
       throw std::runtime_error("study store '" + path_.string() + "': iteration record " +
                                std::to_string(iterations_.size()) + " is corrupted; restore study.db from a copy");
@@ -261,17 +321,23 @@ nlohmann::json StudyStore::study_json() const {
 void StudyStore::add_evaluation(const EvaluationRecord& r) {
   Statement s(db_,
               "INSERT OR REPLACE INTO evaluations(iteration, point, kind, unit_x, parameters, curves, objective,"
-              " wall_seconds, status, error) VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+              " wall_seconds, status, error, checksum) VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)");
+  const std::string unit_x = nlohmann::json(r.unit_x).dump();
+  const std::string parameters = nlohmann::json(r.parameters).dump();
+  const std::string curves = curves_to_json(r.curves).dump();
+  const std::string status = r.ok ? "ok" : "failed";
   s.bind(1, r.iteration);
   s.bind(2, r.point);
   s.bind(3, r.kind);
-  s.bind(4, nlohmann::json(r.unit_x).dump());
-  s.bind(5, nlohmann::json(r.parameters).dump());
-  s.bind(6, curves_to_json(r.curves).dump());
+  s.bind(4, unit_x);
+  s.bind(5, parameters);
+  s.bind(6, curves);
   s.bind(7, r.objective);
   s.bind(8, r.wall_seconds);
-  s.bind(9, std::string(r.ok ? "ok" : "failed"));
+  s.bind(9, status);
   s.bind(10, r.error);
+  s.bind(11, evaluation_checksum(r.iteration, r.point, r.kind, unit_x, parameters, curves, r.objective,
+                                 r.wall_seconds, status, r.error));
   if (sqlite3_step(s.get()) != SQLITE_DONE)
     throw std::runtime_error("study store '" + path_.string() + "': " + sqlite3_errmsg(db_));
   evaluations_[{r.iteration, r.point}] = r;
@@ -289,9 +355,11 @@ std::vector<EvaluationRecord> StudyStore::evaluations() const {
 }
 
 void StudyStore::put_iteration(const IterationRecord& r) {
-  Statement s(db_, "INSERT OR REPLACE INTO iterations(iteration, record) VALUES(?1, ?2)");
+  Statement s(db_, "INSERT OR REPLACE INTO iterations(iteration, record, checksum) VALUES(?1, ?2, ?3)");
+  const std::string record = to_json(r).dump();
   s.bind(1, r.iteration);
-  s.bind(2, to_json(r).dump());
+  s.bind(2, record);
+  s.bind(3, row_checksum({std::to_string(r.iteration), record}));
   if (sqlite3_step(s.get()) != SQLITE_DONE)
     throw std::runtime_error("study store '" + path_.string() + "': " + sqlite3_errmsg(db_));
   iterations_[r.iteration] = r;

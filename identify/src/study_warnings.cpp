@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/study_answer.hpp"
 
 namespace demfit::identify {
 namespace {
@@ -65,6 +67,47 @@ void quasi_static_warnings(const std::vector<EvaluationRecord>& runs, const Eval
                        "run was not, but the surrogate was fitted to them too");
 }
 
+// RMS misfit of `run` against target `t` at the target's x, in the target's y units; none when
+// the run lacks the curve or it cannot be resampled there.
+std::optional<double> target_rms(const TargetSpec& t, const EvaluationRecord& run) {
+  const auto curve = run.curves.find(t.curve);
+  if (!run.ok || curve == run.curves.end() || curve->second.x.size() < 2) return std::nullopt;
+  std::vector<double> simulated;
+  try {
+    simulated = resample_monotone(curve->second, t.data.x);
+  } catch (const std::exception&) { return std::nullopt; }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < simulated.size(); ++i)
+    sum += (simulated[i] - t.data.y[i]) * (simulated[i] - t.data.y[i]);
+  return std::sqrt(sum / static_cast<double>(simulated.size()));
+}
+
+// The answer misses target `t` far above its noise. The likely cause, in order: another stored
+// run fits this target clearly better (within the noise, or by less than 70 % of the answer's
+// miss) -> the search has not converged; no run fits better -> model, units or fill.
+std::string misfit_warning(const TargetSpec& t, const TargetMisfit& m, const std::vector<EvaluationRecord>& runs,
+                           const EvaluationRecord& answer) {
+  const EvaluationRecord* better = nullptr;
+  double better_rms = m.rms;
+  for (const auto& r : runs) {
+    if (&r == &answer || (r.iteration == answer.iteration && r.point == answer.point)) continue;
+    const auto rms = target_rms(t, r);
+    if (rms && *rms < better_rms) {
+      better = &r;
+      better_rms = *rms;
+    }
+  }
+  const std::string miss = "target '" + t.name + "': the answer misses the data by RMS " + number(m.rms) + " " +
+                           m.y_label + ", " + number(m.rms / m.noise) + " x the noise of the data (" +
+                           number(m.noise) + ")";
+  if (better && (better_rms <= 3.0 * m.noise || better_rms < 0.7 * m.rms))
+    return miss + ": the search has not converged: run " + std::to_string(better->iteration) + "/" +
+           std::to_string(better->point) + " fits it with RMS " + number(better_rms) +
+           "; resume with a larger stopping.max_iterations or a wider initial region";
+  return miss + ", and no stored run fits it clearly better: the model, the units or the fill do not match the "
+                "measurement";
+}
+
 }  // namespace
 
 StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
@@ -74,7 +117,10 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
   if (!best) return d;
   bound_warnings(spec, *best, d.warnings);
   quasi_static_warnings(runs, *best, d.warnings);
-  if (result && !result->value("converged", false))
+  const std::string stopped = result ? result->value("stop_reason", std::string()) : std::string();
+  if (stopped.rfind("NOT converged", 0) == 0)
+    d.warnings.push_back("the study " + stopped);
+  else if (result && !result->value("converged", false))
     d.warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
                          ") without converging; resume with a larger stopping.max_iterations");
   const EvaluationRecord* verification = nullptr;
@@ -94,21 +140,11 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
                            ": the surrogate is not reliable near the optimum");
   }
   for (const auto& t : spec.targets) {
-    const auto curve = best->curves.find(t.curve);
-    if (t.metric != CurveMetric::mse || curve == best->curves.end() || curve->second.x.size() < 2) continue;
-    std::vector<double> simulated;
-    try {
-      simulated = resample_monotone(curve->second, t.data.x);
-    } catch (const std::exception&) { continue; }
-    double sum = 0.0;
-    for (std::size_t i = 0; i < simulated.size(); ++i)
-      sum += (simulated[i] - t.data.y[i]) * (simulated[i] - t.data.y[i]);
-    TargetMisfit m{t.name, t.data.y_label, std::sqrt(sum / static_cast<double>(simulated.size())),
-                   second_difference_noise(t.data.y)};
-    if (m.noise > 0.0 && m.rms > 3.0 * m.noise)
-      d.warnings.push_back("target '" + t.name + "': the best run misses the data by RMS " + number(m.rms) + " " +
-                           m.y_label + ", " + number(m.rms / m.noise) + " x the noise of the data (" + number(m.noise) +
-                           "): the model, the units or the fill do not match the measurement");
+    if (t.metric != CurveMetric::mse) continue;
+    const auto rms = target_rms(t, *best);
+    if (!rms) continue;
+    TargetMisfit m{t.name, t.data.y_label, *rms, second_difference_noise(t.data.y)};
+    if (m.noise > 0.0 && m.rms > 3.0 * m.noise) d.warnings.push_back(misfit_warning(t, m, runs, *best));
     d.misfits.push_back(m);
   }
   return d;
@@ -118,13 +154,7 @@ StudyDiagnostics study_diagnostics(const StudyStore& store) {
   const StudySpec spec = parse_study(store.study_json(), store.path().parent_path());
   const auto runs = store.evaluations();
   const auto result = store.result();
-  const EvaluationRecord* best = nullptr;
-  if (result)
-    for (const auto& r : runs)
-      if (r.iteration == result->value("best_iteration", -1) && r.point == result->value("best_point", -1)) best = &r;
-  if (!best)
-    for (const auto& r : runs)
-      if (r.ok && (!best || r.objective < best->objective)) best = &r;
+  const EvaluationRecord* best = study_answer(runs, result, store.path().string()).run;
   return study_diagnostics(spec, runs, store.iterations(), best, result);
 }
 

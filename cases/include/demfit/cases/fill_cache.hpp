@@ -29,8 +29,12 @@ std::filesystem::path fill_cache_path(const std::filesystem::path& cache_dir, co
                                       const nlohmann::json& key);
 
 // Returns the cached fill for `key`, or calls `generate`, stores its result and returns it.
-// `generated` (optional) is set to true when the fill was generated in this call.
+// `generated` (optional) is set to true when the fill was generated in this call. A cached file
+// is used only when its last line ("end <count> <FNV-1a 64 of the particle lines>") matches, every
+// field is a whole finite number, every radius is positive, and `plausible` (optional: e.g. every
+// particle inside the container) accepts it; otherwise the fill is generated again.
 Fill cached_fill(const std::filesystem::path& cache_dir, const std::string& prefix, const nlohmann::json& key,
-                 const std::function<Fill()>& generate, bool* generated = nullptr);
+                 const std::function<Fill()>& generate, bool* generated = nullptr,
+                 const std::function<bool(const Fill&)>& plausible = {});
 
 }  // namespace demfit::cases

@@ -17,6 +17,19 @@ struct SelectionCandidate {
 // Mean over the run and its finite replicates.
 double candidate_mean(const SelectionCandidate& candidate);
 
+// The answer rule: an answer whose own evaluation is more than kMuchWorseRatio times the
+// objective of the best evaluated run is "much worse" and is not returned on one draw. With
+// PredictedOptimumSelection both points are re-run kAnswerRuleReplicates times as round-off
+// replicates and the lower mean is the answer, stated in one line in the report (a chaotic run's
+// single objective is one draw of its point's spread; the mean of three is better supported).
+inline constexpr double kMuchWorseRatio = 2.0;
+inline constexpr int kAnswerRuleReplicates = 2;
+
+// True when `answer_objective` is much worse than `best_objective` (kMuchWorseRatio).
+inline bool much_worse_than_best(double answer_objective, double best_objective) {
+  return answer_objective > kMuchWorseRatio * best_objective;
+}
+
 // Index of the candidate with the lowest candidate_mean (the first on ties); -1 when empty.
 int choose_by_replicate_means(const std::vector<SelectionCandidate>& candidates);
 

@@ -66,7 +66,8 @@ struct StudyResult {
   std::vector<std::vector<double>> correlation;  // variables x variables, study order
   double wall_seconds = 0.0;
   CurveSet best_curves;    // the best run's curves as simulated
-  bool converged = false;  // stopped by the tolerances, not the iteration limit
+  bool converged = false;  // stopped by the tolerances with enough distinct, successful runs (stop_reason.hpp)
+  std::string stop_reason;  // one line: why the study stopped
 };
 
 // Runs (or resumes) a study. Throws std::runtime_error when every run failed, when the store

@@ -2,10 +2,12 @@
 // The study store: one SQLite file beside the results holding the resolved study, every
 // evaluation (committed as it finishes) and every iteration. It is what --resume replays and
 // what `demfit report` / `demfit export` read. Tables (schema version kStoreSchemaVersion):
-//   meta(key, value)            schema_version, study_hash, study_json, result_json
+//   meta(key, value, checksum)  schema_version, study_hash, study_json, result_json
 //   evaluations(iteration, point, kind, unit_x, parameters, curves, objective, wall_seconds,
-//               status, error)  one row per run; (iteration, point) is unique
-//   iterations(iteration, record)  region, predicted optimum and objectives, JSON
+//               status, error, checksum)  one row per run; (iteration, point) is unique
+//   iterations(iteration, record, checksum)  region, predicted optimum and objectives, JSON
+// Every row carries a checksum of its stored texts (FNV-1a 64); a row that no longer matches it
+// was edited or damaged, and reading the store stops with an error naming the row.
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -23,7 +25,7 @@ struct sqlite3;
 
 namespace demfit::identify {
 
-inline constexpr int kStoreSchemaVersion = 1;
+inline constexpr int kStoreSchemaVersion = 2;
 
 struct EvaluationRecord {
   int iteration = 0;

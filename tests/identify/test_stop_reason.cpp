@@ -1,0 +1,66 @@
+// A study says "converged" only when the tolerances were met with enough distinct, successful
+// runs (stop_reason.hpp): most runs failed, or the design collapsed onto a point, is a warning.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "demfit/identify/stop_reason.hpp"
+
+using namespace demfit::identify;
+
+namespace {
+
+EvaluationRecord run(std::vector<double> unit, bool ok) {
+  EvaluationRecord r;
+  r.unit_x = std::move(unit);
+  r.ok = ok;
+  r.objective = ok ? 1.0 : NAN;
+  return r;
+}
+
+std::vector<EvaluationRecord> spread_runs(int count) {
+  std::vector<EvaluationRecord> runs;
+  for (int i = 0; i < count; ++i) runs.push_back(run({0.1 * i, 0.05 * i}, true));
+  return runs;
+}
+
+}  // namespace
+
+TEST_CASE("met tolerances over distinct successful runs are reported as converged") {
+  const StopReason r = stop_reason(true, 10, spread_runs(13), 2);
+  CHECK(r.converged);
+  CHECK(r.text.rfind("converged", 0) == 0);
+}
+
+TEST_CASE("the iteration limit is reported with the limit, not as converged") {
+  const StopReason r = stop_reason(false, 7, spread_runs(13), 2);
+  CHECK_FALSE(r.converged);
+  CHECK(r.text == "iteration limit reached (7) without converging");
+}
+
+TEST_CASE("a study with 11 of 13 runs failed never says converged") {
+  auto runs = spread_runs(13);
+  for (int i = 0; i < 11; ++i) runs[i].ok = false;
+  const StopReason r = stop_reason(true, 10, runs, 2);
+  CHECK_FALSE(r.converged);
+  CHECK(r.text.find("11 of 13 runs failed") != std::string::npos);
+}
+
+TEST_CASE("a failed share at the stated limit still converges, one run above it does not") {
+  auto runs = spread_runs(10);
+  runs[0].ok = runs[1].ok = false;  // 20 %: at the limit
+  CHECK(stop_reason(true, 10, runs, 2).converged);
+  runs[2].ok = false;  // 30 %
+  CHECK_FALSE(stop_reason(true, 10, runs, 2).converged);
+}
+
+TEST_CASE("a design collapsed onto the start point never says converged") {
+  std::vector<EvaluationRecord> runs(9, run({0.3, 0.7}, true));
+  runs.push_back(run({0.3 + 1e-12, 0.7}, true));  // round-off apart: the same point
+  CHECK(distinct_successful_points(runs) == 1);
+  const StopReason r = stop_reason(true, 10, runs, 2);
+  CHECK_FALSE(r.converged);
+  CHECK(r.text.find("collapsed onto 1 distinct successful point") != std::string::npos);
+}

@@ -1,0 +1,164 @@
+// The study's answer is one decision (study_answer.hpp): report.md, best_parameters.json and the
+// LS-DYNA export all name the run the study stored as its answer, never a lower run that the
+// final selection rejected; a store row edited after it was written is refused by every reader;
+// a run whose budget is absurd is refused before it starts.
+#include <catch2/catch.hpp>
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/study_spec.hpp"
+#include "demfit/identify/study_store.hpp"
+#include "trust_harness.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+namespace id = demfit::identify;
+using json = nlohmann::json;
+using trust::Sandbox;
+
+// A pellet study whose store holds three runs: the lowest (FRICS 0.40017) was rejected by the
+// final selection, which chose the second (FRICS 0.41002), as the shipped Table 3 study can.
+void rejected_lowest_run_store(const fs::path& db) {
+  const json study = {{"demfit_study_version", 1},
+                      {"name", "selection"},
+                      {"model", {{"case", "pellet_compression"}}},
+                      {"variables", {{{"name", "frics"}, {"lower", 0.1}, {"upper", 0.9}, {"initial", 0.3}}}},
+                      {"targets",
+                       {{{"curve", "pressure_volume"},
+                         {"x_column", "volume_cm3"},
+                         {"y_column", "pressure_MPa"},
+                         {"x", {60.0, 55.0, 50.0}},
+                         {"y", {0.1, 0.5, 2.0}}}}},
+                      {"final_selection", {{"candidates", 2}, {"replicates", 2}}},
+                      {"seed", 3}};
+  const id::StudySpec spec = id::parse_study(study, db.parent_path());
+  auto store = id::StudyStore::open_for_run(db, spec, false, nullptr);
+  const auto run = [](int iteration, int point, double frics, double objective) {
+    id::EvaluationRecord r;
+    r.iteration = iteration;
+    r.point = point;
+    r.kind = "design";
+    r.unit_x = {(frics - 0.1) / 0.8};
+    r.parameters = {{"frics", frics}, {"normk", 0.875046}, {"sheark", 0.299582}};
+    r.curves["pressure_volume"] = id::Curve{"volume_cm3", "pressure_MPa", {60.0, 55.0, 50.0}, {0.1, 0.5, 2.0}};
+    r.objective = objective;
+    r.wall_seconds = 1.0;
+    r.ok = true;
+    return r;
+  };
+  store.add_evaluation(run(0, 0, 0.40017, 0.010));
+  store.add_evaluation(run(0, 1, 0.41002, 0.012));
+  store.add_evaluation(run(0, 2, 0.70000, 0.090));
+  store.put_result({{"best_iteration", 0},
+                    {"best_point", 1},
+                    {"best_objective", 0.012},
+                    {"best_parameters", {{"frics", 0.41002}, {"normk", 0.875046}, {"sheark", 0.299582}}},
+                    {"best_variables", {{"frics", 0.41002}}},
+                    {"runs", 3},
+                    {"failed_runs", 0},
+                    {"iterations", 1},
+                    {"converged", false},
+                    {"stop_reason", "iteration limit reached (1) without converging"},
+                    {"final_selection", nullptr},
+                    {"wall_seconds", 3.0},
+                    {"uncertainty", nullptr}});
+}
+
+void sql(const fs::path& db, const std::string& statement) {
+  sqlite3* handle = nullptr;
+  REQUIRE(sqlite3_open(db.c_str(), &handle) == SQLITE_OK);
+  REQUIRE(sqlite3_exec(handle, statement.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK);
+  sqlite3_close(handle);
+}
+
+bool one_error_line(const trust::Result& r, const std::string& text) {
+  return r.status != 0 && r.status < 128 && r.err.rfind("demfit: error: ", 0) == 0 &&
+         std::count(r.err.begin(), r.err.end(), '\n') == 1 && r.err.find(text) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("report, best_parameters.json and the LS-DYNA export all give the study's answer, not a rejected lower run") {
+  Sandbox s("answer_everywhere");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  auto r = s.run({"report", "study/study.db", "--out", "rebuilt", "--no-plots"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json best = json::parse(trust::read_text(s.work / "rebuilt" / "best_parameters.json"));
+  INFO(best.dump());
+  CHECK(best.dump().find("0.41002") != std::string::npos);
+  CHECK(best.dump().find("0.40017") == std::string::npos);
+  CHECK(trust::read_text(s.work / "rebuilt" / "report.md").find("0.40017") == std::string::npos);
+  r = s.run({"export", "study/study.db", "--lsdyna", "answer.k"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string cards = trust::read_text(s.work / "answer.k");
+  CHECK(cards.find(".41002") != std::string::npos);  // FRICS of the answer, in its 10-character field
+  CHECK(cards.find(".40017") == std::string::npos);
+  CHECK(cards.find("run 0/1") != std::string::npos);
+}
+
+TEST_CASE("a run row edited after it was written is refused by export and report, naming the run") {
+  Sandbox s("answer_edited_row");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  // Make the rejected run look like the answer's better twin: a plausible, well-formed edit.
+  sql(s.work / "study" / "study.db", "UPDATE evaluations SET objective = 0.001 WHERE iteration = 0 AND point = 2");
+  const auto before = trust::snapshot(s.work);
+  auto r = s.run({"export", "study/study.db", "--lsdyna", "answer.k"});
+  CHECK(one_error_line(r, "run 0/2 is corrupted or was changed after demfit wrote it"));
+  r = s.run({"report", "study/study.db", "--out", "rebuilt", "--no-plots"});
+  CHECK(one_error_line(r, "run 0/2 is corrupted or was changed after demfit wrote it"));
+  CHECK(trust::snapshot(s.work) == before);
+}
+
+TEST_CASE("an edited stored answer is refused naming the entry") {
+  Sandbox s("answer_edited_result");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  sql(s.work / "study" / "study.db",
+      "UPDATE meta SET value = json_set(value, '$.best_point', 2) WHERE key = 'result_json'");
+  const auto r = s.run({"export", "study/study.db", "--lsdyna", "answer.k"});
+  CHECK(one_error_line(r, "'result_json' entry was changed after demfit wrote it"));
+  CHECK(!fs::exists(s.work / "answer.k"));
+}
+
+TEST_CASE("a drum run estimated at days is refused before any work, naming the estimate and the way to allow it") {
+  Sandbox s("budget_drum_duration");
+  json drum = json::parse(trust::read_text(fs::path(DEMFIT_SOURCE_DIR) / "cases" / "rotary_drum.json"));
+  drum["drum"]["duration"] = 1e6;
+  trust::write_text(s.work / "drum.json", drum.dump(2));
+  const auto r = s.run({"simulate", "drum.json", "--out", "out"});
+  INFO(r.err);
+  CHECK(one_error_line(r, "DEMFIT_ALLOW_LONG_RUNS=1"));
+  CHECK(r.err.find("days") != std::string::npos);
+  CHECK(!fs::exists(s.work / "out"));
+  CHECK(!fs::exists(s.root / "cache"));  // refused before the fill
+}
+
+TEST_CASE("a pellet run with a time step of 1e-12 s is refused before any work") {
+  Sandbox s("budget_pellet_step");
+  json pellet = json::parse(trust::read_text(fs::path(DEMFIT_SOURCE_DIR) / "cases" / "pellet_compression.json"));
+  pellet["time_step"] = {{"value", 1e-12}};
+  trust::write_text(s.work / "pellet.json", pellet.dump(2));
+  const auto r = s.run({"simulate", "pellet.json", "--out", "out"});
+  INFO(r.err);
+  CHECK(one_error_line(r, "estimated"));
+  CHECK(r.err.find("DEMFIT_ALLOW_LONG_RUNS") != std::string::npos);
+  CHECK(!fs::exists(s.work / "out"));
+}
+
+TEST_CASE("a drum turning so fast that the wall jumps over contacts in one step is refused") {
+  Sandbox s("budget_drum_rpm");
+  json drum = json::parse(trust::read_text(fs::path(DEMFIT_SOURCE_DIR) / "cases" / "rotary_drum.json"));
+  drum["drum"]["rpm"] = 1e6;
+  trust::write_text(s.work / "drum.json", drum.dump(2));
+  const auto r = s.run({"simulate", "drum.json", "--out", "out"});
+  INFO(r.err);
+  CHECK(one_error_line(r, "'drum.rpm': the wall moves"));
+  CHECK(!fs::exists(s.work / "out"));
+}
