@@ -1,5 +1,5 @@
-// bench_dem: throughput of the DEM kernel (particle-steps per second) on the SPEC 2.2 drum and the
-// SPEC 2.1 pellet bed with 1 and 2 threads, peak memory per particle, the cost of one case
+// bench_dem: throughput of the DEM kernel (particle-steps per second) on the docs/spec.md 2.2 drum and the
+// docs/spec.md 2.1 pellet bed with 1 and 2 threads, peak memory per particle, the cost of one case
 // evaluation; demfit vs LIGGGHTS on the same settled drum and a 10^3..10^6 scaling table.
 // Prints numbers; asserts nothing.
 #include <sys/resource.h>

@@ -48,7 +48,7 @@ Simulation make_pellet_bed(double normk, double sheark, double settle_time, int 
   const double cylinder_radius = 0.018, radius = 1.86e-3;
   SimulationSettings settings;
   settings.threads = threads;
-  settings.contact = {normk, sheark, 0.5, 0.5, 0.3, -1.0, 0.0, 0.1, 1.0};  // SPEC 2.1 choices
+  settings.contact = {normk, sheark, 0.5, 0.5, 0.3, -1.0, 0.0, 0.1, 1.0};  // docs/spec.md 2.1 choices
   Simulation sim(settings);
   sim.add_material({1.767e9, 1000.0, 0.4});
   const WallContactParameters wall{0.3, 0.0, 0.5, 1.0};
@@ -60,7 +60,7 @@ Simulation make_pellet_bed(double normk, double sheark, double settle_time, int 
   request.count = 1450;
   request.gap = 0.05;
   add_packing(sim, generate_packing(request));
-  // Densified (frictionless) settling reaches phi ~ 0.60 and a 64 mm bed, as SPEC 2.1 asks.
+  // Densified (frictionless) settling reaches phi ~ 0.60 and a 64 mm bed, as docs/spec.md 2.1 asks.
   settle(sim, {.max_time = settle_time, .frictionless = true});
   const double top = bed_height(sim, {0, 0, 1}, 0.01) + 0.2 * radius;
   sim.add_wall({DiskGeometry{{0, 0, top}, {0, 0, -1}, cylinder_radius}, FixedMotion{}, wall, {}, "piston"});

@@ -107,7 +107,7 @@ void print_differences(std::size_t triangles) {
 
 void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
   const HertzDrumSpec spec;
-  std::printf("drum (issue 16): preparing the bed: settle %.2f s, turn %.2f s at 60 RPM (2 threads) ...\n",
+  std::printf("drum: preparing the bed: settle %.2f s, turn %.2f s at 60 RPM (2 threads) ...\n",
               o.settle_time, o.spin_up_time);
   const Simulation bed = make_hertz_drum(spec, o.settle_time, o.spin_up_time, 2);
   std::printf(

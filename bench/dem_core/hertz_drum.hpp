@@ -1,5 +1,5 @@
 #pragma once
-// The Hertz–Mindlin rotating drum that bench_dem times in demfit and in LIGGGHTS (issue 16):
+// The Hertz–Mindlin rotating drum that bench_dem times in demfit and in LIGGGHTS:
 // inner diameter 100 mm x depth 20 mm, 6,996 spheres of radius 1 mm, E 5 MPa, nu 0.3,
 // rho 2500 kg/m^3, restitution 0.5, sliding friction 0.4, rolling friction 0.1 (particles and
 // walls alike; the walls have the particles' elastic constants, as LIGGGHTS' mesh of atom type 1),

@@ -1,6 +1,6 @@
 #pragma once
 // How much reorder_particles changes results (it changes round-off only; granular flow amplifies
-// round-off chaotically): the SPEC 2.2 s = 4 drum torque and the SPEC 2.1 pellet compression
+// round-off chaotically): the docs/spec.md 2.2 s = 4 drum torque and the docs/spec.md 2.1 pellet compression
 // curve, each run with and without reordering from the same prepared state.
 namespace demfit::bench {
 

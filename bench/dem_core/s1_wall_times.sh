@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 16: one full-resolution (s = 1) run's wall time on 2 threads in three kernel set-ups
+# One full-resolution (s = 1) run's wall time on 2 threads in three kernel set-ups
 # (docs/cases.md "numerics"): stored = the cases' defaults (insertion order, pair loads
 # own_row_first), reordered = Morton order at rebuilds, lean = Morton order and pair loads summed
 # in ascending first member (dem_core's defaults), for

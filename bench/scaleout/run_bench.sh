@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI throughput benchmark (issue #7): a fixed batch of CPU-bound evaluations with 1, 2 and 3
+# MPI throughput benchmark: a fixed batch of CPU-bound evaluations with 1, 2 and 3
 # ranks on this machine, the measured ratios, and a projection for a cluster.
 #   bench/scaleout/run_bench.sh [BUILD_DIR] [RUNS] [SECONDS_PER_RUN]
 set -euo pipefail

@@ -70,7 +70,7 @@ const CandidateFit* augmented(const Diagnosis& d) {
 
 // One PNG per target: data, base and augmented fits (top), residuals (bottom). Every file goes
 // through the atomic writer under a slug of the target name; gnuplot runs inside `out` from an
-// argument vector and sees relative names only (issue #13).
+// argument vector and sees relative names only.
 std::string plot_target(const Diagnosis& d, std::size_t t, Eigen::Index offset, const std::filesystem::path& out) {
   using identify::gnuplot_quote;
   const FitTarget& target = d.targets[t];
@@ -270,7 +270,7 @@ std::string markdown_report(const Diagnosis& d) {
 }
 
 std::string write_diagnosis(const Diagnosis& d, const std::filesystem::path& out, bool plots) {
-  // The one atomic writer: links are replaced, not followed; a full disk is an error (issue #13).
+  // The one atomic writer: links are replaced, not followed; a full disk is an error.
   identify::write_file_atomically(out / "report.md", markdown_report(d));
   identify::write_file_atomically(out / "diagnosis.json", to_json(d).dump(2) + "\n");
   if (!plots) return {};

@@ -83,9 +83,9 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
   // therefore compares means over R fresh replicas of each optimum (base and re-fits): a difference
   // of two such means is noisy by about sqrt(2 / R) x that spread (the base's; at a better fit the
   // spread is smaller, as the cross term with the systematic residual shrinks), and an effect must
-  // beat the threshold by two such standard deviations. Issue 15: with the single kept run and
+  // beat the threshold by two such standard deviations. With the single kept run and
   // sqrt(2) instead, a wall friction of 0.014 (physically nothing) gained delta BIC 17 by trajectory
-  // luck on the frictionless s = 4 drum; with the wall friction of the issue's drum, the true rolling
+  // luck on the frictionless s = 4 drum; with wall friction in the drum, the true rolling
   // friction's re-fit (RMS/sigma 3.06 -> 1.06) gained 54 against a threshold of 83 and nothing could
   // be named.
   d.scatter_chi_square_sd = chi_square_spread(replicas, a);

@@ -38,7 +38,7 @@ DiagnoseOptions expensive_model_options() {
   o.fit.absolute_tolerance = 0.1;
   o.fit.relative_tolerance = 1e-5;
   o.fit.max_evaluations = 60;
-  // Re-fit every candidate scoring at least a quarter of the best: issue 15 measured an s = 4 drum
+  // Re-fit every candidate scoring at least a quarter of the best: an s = 4 drum was measured
   // whose three screening scores were within 25 % of each other and whose true effect ranked third.
   o.refit_score_ratio = 0.25;
   o.scatter_replicas = 4;
@@ -235,7 +235,7 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
 // 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
 // another plausible candidate fits about as well — its delta BIC also exceeds the threshold and is
 // within the threshold of the chosen one's (|delta BIC_a - delta BIC_b| <= threshold), whether or
-// not its residual passed the noise tests (a 148.0 vs 147.4 tie is no evidence for either; issue 15).
+// not its residual passed the noise tests (a 148.0 vs 147.4 tie is no evidence for either).
 void decide_verdict(Diagnosis& d, double bic_threshold) {
   for (std::size_t i = 0; i < d.refits.size(); ++i)
     if (d.refits[i].passes && (d.chosen < 0 || d.refits[i].delta_bic > d.refits[d.chosen].delta_bic))

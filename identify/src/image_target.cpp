@@ -1,4 +1,4 @@
-// Image targets (issue 14 item 2): the photo's surface profile in millimetres. The extraction
+// Image targets: the photo's surface profile in millimetres. The extraction
 // rule (compared circle, Otsu threshold, bed connected to the bottom, sub-pixel surface) is
 // demfit::imaging's, so the simulated side, built from an occupancy image by the same code,
 // means the same thing.

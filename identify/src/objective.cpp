@@ -1,4 +1,4 @@
-// Curve metrics of SPEC 3; the conventions are documented in objective.hpp.
+// Curve metrics of docs/spec.md 3; the conventions are documented in objective.hpp.
 #include "demfit/identify/objective.hpp"
 
 #include <algorithm>

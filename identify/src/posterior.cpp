@@ -1,5 +1,5 @@
-// Posterior sampling on the local linear surrogate of the residuals (uncertainty.hpp, issue 15
-// item 3): correlated simulation noise estimated from the runs, data noise from what the best fit
+// Posterior sampling on the local linear surrogate of the residuals (uncertainty.hpp):
+// correlated simulation noise estimated from the runs, data noise from what the best fit
 // leaves, uniform prior on the bounds, Gibbs sampling of the truncated normal posterior.
 #include <algorithm>
 #include <cmath>

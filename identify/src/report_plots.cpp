@@ -307,7 +307,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   md << "- best objective: " << format_number(best->objective) << " (run " << best->iteration << "/" << best->point
      << ", " << best->kind << ")\n"
      << selection_line(result) << "\n";
-  // Issue 13: what the numbers may hide, and the objective in the curve's own units.
+  // What the numbers may hide, and the objective in the curve's own units.
   const StudyDiagnostics diagnostics = study_diagnostics(spec, runs, iterations, best, result);
   if (!diagnostics.warnings.empty()) {
     md << "## Warnings\n\n";

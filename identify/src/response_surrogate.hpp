@@ -2,7 +2,7 @@
 // Internal: RBF networks over the response vectors of the runs (one output per curve value, or
 // per principal-component score), fitted in the local coordinates of a "fit box" so that small
 // late subregions stay well conditioned. The objective of a prediction is the composite
-// objective of the predicted responses (SPEC 3: the objective is computed from predicted curves).
+// objective of the predicted responses (docs/spec.md 3: the objective is computed from predicted curves).
 #include <vector>
 
 #include <Eigen/Dense>

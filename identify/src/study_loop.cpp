@@ -1,4 +1,4 @@
-// The identification loop of SPEC 3 (LS-OPT-like): iteration 0 is a space-filling design over the
+// The identification loop of docs/spec.md 3 (LS-OPT-like): iteration 0 is a space-filling design over the
 // initial region including the initial point; every later iteration evaluates the previous
 // predicted optimum plus maximin points in the SRSM subregion (or adaptive infill points),
 // refits the RBF networks and minimises the predicted composite objective. Every run is looked
@@ -84,7 +84,7 @@ void StudyLoop::record_evaluation(const EvaluationRecord& record, int point, int
   ++evaluated_here_;
   evaluated_wall_ += record.wall_seconds;
   if (options_.progress)
-    std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s%s; %d runs in this session)\n",
+    std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s%s; %d runs in this process)\n",
                  record.iteration, point + 1, points, record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
                  record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
                  record.wall_seconds, note, evaluated_here_);
@@ -223,13 +223,13 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.converged = stopped.converged;
   result.stop_reason = stopped.text;
   nlohmann::json uncertainty = nullptr;
-  // Uncertainty at the best run (issue #4): Jacobian and simulation noise from a linear
+  // Uncertainty at the best run: Jacobian and simulation noise from a linear
   // regression of the evaluated residuals over the runs near the optimum (see uncertainty.hpp).
   {
     const RunSample sample = uncertainty_sample(best, final_region);
     const auto estimate = estimate_uncertainty_from_runs(sample, spec_.variables);
     uncertainty = detail::uncertainty_json(spec_, estimate);
-    std::string posterior_warning;  // issue 15: marginal intervals that stay right with poorly pinned parameters
+    std::string posterior_warning;  // Marginal intervals that stay right with poorly pinned parameters
     uncertainty["posterior"] =
         detail::posterior_json(spec_, sample, options_.output_dir, options_.plots, posterior_warning);
     if (options_.progress && !posterior_warning.empty())
@@ -355,7 +355,7 @@ StudyResult StudyLoop::run() {
     progress_iteration(iteration, record, region);
     previous_optimum = optimum;
     previous_predicted = record.predicted_objective;
-    // SPEC 3 stopping rule: design change and objective change both below tolerance.
+    // docs/spec.md 3 stopping rule: design change and objective change both below tolerance.
     converged = iteration > 0 && record.design_change < spec_.design_tolerance &&
                 record.objective_change < spec_.objective_tolerance;
     if (converged || iteration + 1 >= spec_.max_iterations) break;

@@ -110,7 +110,7 @@ sqlite3* open_database(const std::filesystem::path& path, int flags) {
 
 }  // namespace
 
-// --resume of a changed model is refused, naming the field (issue #13); an older store without a
+// --resume of a changed model is refused, naming the field; an older store without a
 // recorded model gets the current one.
 void StudyStore::check_same_model(StudyStore& store, const nlohmann::json& resolved_model) {
   if (resolved_model.is_null()) return;
@@ -281,7 +281,7 @@ void StudyStore::load() {
       r.parameters = nlohmann::json::parse(column_text(s.get(), 4)).get<ParameterSet>();
       r.curves = curves_from_json(nlohmann::json::parse(column_text(s.get(), 5)));
     } catch (const nlohmann::json::exception&) {
-      // A damaged row names the store and the run instead of a bare JSON error (issue #13).
+      // A damaged row names the store and the run instead of a bare JSON error.
       throw std::runtime_error("study store '" + path_.string() + "': run " + std::to_string(r.iteration) + "/" +
                                std::to_string(r.point) +
                                " is corrupted (unreadable parameters or curves); "
@@ -314,7 +314,7 @@ void StudyStore::load() {
 }
 
 nlohmann::json StudyStore::study_json() const {
-  // A received study.db is input like any other: limits and duplicate keys checked (issue #13).
+  // A received study.db is input like any other: limits and duplicate keys checked.
   return parse_json_document(meta("study_json").value_or("{}"), "study store '" + path_.string() + "' (study)");
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Glue between identify's study loop and the ask/tell strategies of rbf_surrogate (issue 15): the
+// Glue between identify's study loop and the ask/tell strategies of rbf_surrogate: the
 // "expected_improvement" study strategy. The loop tells every finished iteration (composite
 // objective per run, NaN for a failed run, in point order — the order the store replays on resume)
 // and asks for the infill points of the next iteration: q = points_per_iteration − 1 batch

@@ -1,4 +1,4 @@
-// Unit-cube normalisation (SPEC section 3) and box helpers.
+// Unit-cube normalisation (docs/spec.md section 3) and box helpers.
 #include "demfit/rbf_surrogate/bounds.hpp"
 
 #include <cmath>

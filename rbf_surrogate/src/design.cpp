@@ -1,5 +1,5 @@
 // Space-filling designs: maximin Latin hypercube and sequential maximin augmentation
-// (SPEC section 3: iteration 0 is a space-filling design, later iterations add points by maximin
+// (docs/spec.md section 3: iteration 0 is a space-filling design, later iterations add points by maximin
 // distance to all points already run in the current subregion).
 #include "demfit/rbf_surrogate/design.hpp"
 

@@ -1,4 +1,4 @@
-// Global + local minimisation of a cheap objective with NLopt (SPEC section 3: the predicted
+// Global + local minimisation of a cheap objective with NLopt (docs/spec.md section 3: the predicted
 // optimum of the surrogate in the current subregion).
 #include "demfit/rbf_surrogate/optimize.hpp"
 

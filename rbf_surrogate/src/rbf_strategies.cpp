@@ -1,4 +1,4 @@
-// RBF-network ask/tell strategies: SRSM domain reduction (SPEC section 3, LS-OPT-like) and
+// RBF-network ask/tell strategies: SRSM domain reduction (docs/spec.md section 3, LS-OPT-like) and
 // stochastic-RBF adaptive infill (Regis & Shoemaker 2007). Both were loops of minimise_expensive;
 // as ask/tell objects they keep the same iteration structure, so minimise_expensive's points are
 // unchanged (bit-identical, checked on Branin, Hartmann-6 and noisy Branin for 2 seeds).

@@ -1,5 +1,5 @@
 // Successive response surface method (SRSM) domain reduction, Stander & Craig (2002), as specified
-// in SPEC section 3. Everything is per variable, in unit coordinates.
+// in docs/spec.md section 3. Everything is per variable, in unit coordinates.
 #include "demfit/rbf_surrogate/srsm.hpp"
 
 #include <algorithm>
@@ -32,7 +32,7 @@ void validate(const SrsmSettings& s) {
 namespace {
 
 // Centre the subregion on `center`, shrink a side that exceeds the bounds, then shift it inside
-// the bounds keeping its size (SPEC 3: "clipped to the bounds").
+// the bounds keeping its size (docs/spec.md 3: "clipped to the bounds").
 Subregion place_inside(VectorXd center, VectorXd range, const Box& bounds) {
   range = range.cwiseMin(bounds.width());
   for (Eigen::Index i = 0; i < center.size(); ++i) {

@@ -1,4 +1,4 @@
-// Issue 15: the model's own (trajectory) scatter measured from replicas and added to the noise
+// The model's own (trajectory) scatter measured from replicas and added to the noise
 // model as an AR(1) process along the curve; residuals whitened by its Cholesky factor.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// The diagnosis of a model that scatters like a DEM run (issue 15): every parameter set draws its
+// The diagnosis of a model that scatters like a DEM run: every parameter set draws its
 // own smooth "trajectory" error, so runs that differ only in round-off give different curves. The
 // criterion must then compare means over fresh replicas of each optimum, not the one run a fit
 // kept; these tests check that arithmetic against an independent computation and the verdicts it

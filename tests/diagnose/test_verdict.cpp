@@ -1,4 +1,4 @@
-// Issue 15 item 4: diagnose compares every plausible candidate and never names one on a tie.
+// Diagnose compares every plausible candidate and never names one on a tie.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -40,7 +40,7 @@ void check_named(const Diagnosis& d, const std::string& effect) {
   REQUIRE(d.chosen >= 0);
   CHECK(d.refits[d.chosen].effect == effect);
   CHECK(d.refits[d.chosen].delta_bic > 10.0);
-  // Gap after: RMS within 1.5x the true noise (issue #6 acceptance).
+  // Gap after: RMS within 1.5x the true noise (the acceptance criterion).
   CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
   CHECK(d.base_analysis.rms > 1.5 * kNoise);
 }

@@ -44,7 +44,7 @@ run(0 report ${OUT}/study/study.db --out ${OUT}/rebuilt --no-plots)
 if(NOT EXISTS ${OUT}/rebuilt/report.md)
   message(FATAL_ERROR "report did not rebuild report.md")
 endif()
-# export refuses a study whose model is not a DEM case (issue #13): the analytic model has no
+# export refuses a study whose model is not a DEM case: the analytic model has no
 # LS-DYNA meaning. The card layout itself is checked by test_lsdyna_export.
 run(1 export ${OUT}/study/study.db --lsdyna ${OUT}/out.k)
 if(NOT last_err MATCHES "^demfit: error: export: .*analytic.* not a DEM case[^\n]*\n$" OR EXISTS ${OUT}/out.k)

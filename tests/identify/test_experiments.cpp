@@ -1,4 +1,4 @@
-// Several experiments in one study (issue 14 item 3): shared variables, one job per (point,
+// Several experiments in one study: shared variables, one job per (point,
 // experiment), curves and targets qualified by the experiment, errors before the store exists.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Interval-end checks (issue 15 item 3, interval_check.hpp): runs at the posterior intervals' ends
+// Interval-end checks (interval_check.hpp): runs at the posterior intervals' ends
 // widen an interval drawn too narrow, and never narrow one.
 #include <catch2/catch.hpp>
 

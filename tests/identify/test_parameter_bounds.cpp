@@ -1,5 +1,5 @@
 // A study's variable bounds are checked against the parameter descriptors of its model
-// (issue 12 item 1) before anything runs or is stored.
+// before anything runs or is stored.
 #include <catch2/catch.hpp>
 
 #include <atomic>

@@ -1,4 +1,4 @@
-// Posterior intervals on the local surrogate (issue 15 item 3): coverage on an analytic model
+// Posterior intervals on the local surrogate: coverage on an analytic model
 // with a well-determined, a weak and a correlated parameter under DEM-like noise.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Image targets and the profile_area metric (issue 14 item 2), and the single-model study form
+// Image targets and the profile_area metric, and the single-model study form
 // resolving exactly as before the experiments form existed.
 #include <catch2/catch.hpp>
 

@@ -341,7 +341,7 @@ TEST_CASE("A plug-in evaluator finishing runs in another order gives the same re
 
 TEST_CASE("With simulation noise, variables below it are flagged and the others lie inside their intervals",
           "[identify][loop][uncertainty]") {
-  // Regression Jacobian (issue #4): the runs' trajectory noise must neither give "weak" a narrow
+  // Regression Jacobian: the runs' trajectory noise must neither give "weak" a narrow
   // interval nor make amplitude and rate look unidentifiable.
   auto study = test::analytic_study(0.01, 10);
   study["variables"].push_back({{"name", "weak"}, {"lower", 0.0}, {"upper", 1.0}, {"initial", 0.3}});

@@ -1,4 +1,4 @@
-// The "expected_improvement" study strategy (issue 15 item 2): batch expected improvement driven by
+// The "expected_improvement" study strategy: batch expected improvement driven by
 // the study loop through ask/tell, resumable bit-identically from the store.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Surrogate-based minimisation of expensive functions with few evaluations (issue #3 targets).
+// Surrogate-based minimisation of expensive functions with few evaluations.
 #include "demfit/rbf_surrogate/design.hpp"
 #include "demfit/rbf_surrogate/expensive.hpp"
 #include "test_functions.hpp"

@@ -1,4 +1,4 @@
-// SRSM limiting cases from the update formulas of SPEC section 3 (Stander & Craig 2002).
+// SRSM limiting cases from the update formulas of docs/spec.md section 3 (Stander & Craig 2002).
 #include "demfit/rbf_surrogate/srsm.hpp"
 
 #include <catch2/catch.hpp>

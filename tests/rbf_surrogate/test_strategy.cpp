@@ -1,4 +1,4 @@
-// Ask/tell strategies (issue 15): the one loop that minimise_expensive and identify's study loop drive.
+// Ask/tell strategies: the one loop that minimise_expensive and identify's study loop drive.
 #include "demfit/rbf_surrogate/strategy.hpp"
 #include "test_functions.hpp"
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `mpirun -np 3 demfit identify STUDY --mpi` checks the study at the initial point, evaluated on a
-# worker rank, before anything is created, as without MPI (issue #13): a target naming a curve the
+# worker rank, before anything is created, as without MPI: a target naming a curve the
 # model does not produce ends the whole job with one error line listing the model's curves, a
 # non-zero exit, and no output folder. (Without --enable-recovery: Open MPI 4.1's mpirun with it
 # exits 0 whatever its processes return, even `mpirun --enable-recovery -np 3 sh -c 'exit 3'`.)

@@ -1,5 +1,5 @@
 #pragma once
-// A candidate physical effect the base model may lack (issue #6). An effect is data: the extra
+// A candidate physical effect the base model may lack. An effect is data: the extra
 // model parameters it adds (each with bounds and the "off" value at which the effect vanishes)
 // and the simulated curves it changes. The model must accept those parameters; with every effect
 // parameter at its off value it must reproduce the base model.

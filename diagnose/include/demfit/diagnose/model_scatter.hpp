@@ -1,5 +1,5 @@
 #pragma once
-// The model's own scatter (issue 15): a DEM curve is a chaotic trajectory's average, so two runs
+// The model's own scatter: a DEM curve is a chaotic trajectory's average, so two runs
 // whose parameters differ only in round-off differ by a smooth, correlated error of about the size
 // of the data noise (s = 4 drum free surface: 0.5-0.8 mm against sigma 0.46 mm). A residual at the
 // true parameters then looks "structural" to tests that assume white data noise alone, and no

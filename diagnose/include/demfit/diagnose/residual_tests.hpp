@@ -79,7 +79,7 @@ struct ResidualAnalysis {
   int fitted_parameters = 0;
   double rms = 0.0, max_abs = 0.0;  // pooled in y units: meaningful for one target only
   // Every target normalised by its own noise level (r_i / sigma_target), then pooled: the columns
-  // reported for several targets with different units (issue 15).
+  // reported for several targets with different units.
   double rms_over_sigma = 0.0, max_over_sigma = 0.0;
   RunsTest runs;
   AutocorrelationTest autocorrelation;

@@ -1,5 +1,5 @@
 #pragma once
-// The diagnosis workflow (issue #6): 1. fit the base model, 2. decide noise vs structure,
+// The diagnosis workflow: 1. fit the base model, 2. decide noise vs structure,
 // 3. screen the candidate effects by a score test and re-fit the best few with their extra
 // parameters, 4. name an effect only if it passes the information criterion AND leaves a
 // residual that passes the noise tests, 5. otherwise say plainly that the residual is unexplained.
@@ -28,7 +28,7 @@ struct DiagnoseOptions {
   int base_starts = 2;
   // Candidates re-identified after screening: every one whose score is at least
   // refit_score_ratio x the best score (0: all of them, the default for cheap models), and at least
-  // the refit_best highest. Issue 15: with DEM trajectory noise the screening scores of different
+  // the refit_best highest. With DEM trajectory noise the screening scores of different
   // effects come within 25 % of each other, so the ranking alone must not decide which are compared.
   int refit_best = 2;
   double refit_score_ratio = 0.0;
@@ -55,7 +55,7 @@ struct DiagnoseOptions {
 // threshold of 10), a screening step of 20 % of each effect's range (a weak effect switched on by
 // 2 % would drown in trajectory noise; the score statistic does not depend on the step's size),
 // one start for the base fit and per re-fit, at most 60 evaluations per fit, and 4 replicas of
-// the base optimum to measure the trajectory scatter (issue 15: the s = 4 drum's true effect left
+// the base optimum to measure the trajectory scatter (the s = 4 drum's true effect left
 // RMS/sigma 1.8-2.3 against the data noise alone, so it could never be named).
 // docs/diagnose.md gives the measured costs.
 DiagnoseOptions expensive_model_options();

@@ -1,5 +1,5 @@
 #pragma once
-// The one Curve <-> JSON conversion (issue 12 item 4), used by the study store, the case result
+// The one Curve <-> JSON conversion, used by the study store, the case result
 // cache and the MPI wire format. A curve is {"x_label": .., "y_label": .., "x": [..], "y": [..]}
 // (units are part of the labels, as in the CSV header); a CurveSet is an object of curves by name.
 // nlohmann-json writes doubles in the shortest form that reads back to the same bits, so a curve

@@ -1,7 +1,7 @@
 #pragma once
 // Evaluating batches of parameter sets. The loop only sees Evaluator: submit a batch, get the
 // outcomes back in submission order. ThreadPoolEvaluator runs up to `jobs` simulations at once
-// in this process; an MPI evaluator (issue #7) implements the same interface with ranks.
+// in this process; an MPI evaluator implements the same interface with ranks.
 // Results never depend on the number of jobs: each evaluation is independent and outcomes are
 // returned by index, whatever order they finish in.
 #include <functional>

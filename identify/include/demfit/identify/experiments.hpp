@@ -1,5 +1,5 @@
 #pragma once
-// Several experiments in one study (issue 14 item 3): e.g. the same drum at 15 and 45 rpm, or a
+// Several experiments in one study: e.g. the same drum at 15 and 45 rpm, or a
 // pellet compression and a drum, all sharing the study's variables.
 //
 // A design point is evaluated as all its experiments. Each experiment's model receives its own

@@ -4,7 +4,7 @@
 // (roundoff_replicates.hpp) and the answer is the candidate with the lowest mean objective over
 // its run and its replicates. Why: a DEM run is chaotic, so a run's objective is one draw of its
 // point's spread; the lowest of a study's hundreds of draws is mostly the luckiest one (Table 3:
-// the best of 193 runs, 2.77 mm, averaged 6.88 mm over 8 replicates; docs/reproduce.md reading 7).
+// the best of 193 runs, 2.77 mm, averaged 6.88 mm over 8 replicates; docs/measurements/2026-12-05-table3-roundoff-replicates-final-selection.md).
 #include <vector>
 
 namespace demfit::identify {

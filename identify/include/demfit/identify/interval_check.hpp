@@ -1,5 +1,5 @@
 #pragma once
-// Interval-end checks (issue 15 item 3): runs of the model itself where the posterior's 95 %
+// Interval-end checks: runs of the model itself where the posterior's 95 %
 // intervals end, to catch intervals that are too narrow.
 //
 // Why: the posterior is a linear surrogate fitted to the runs nearest the best one. When the loop

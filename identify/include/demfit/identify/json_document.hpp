@@ -1,5 +1,5 @@
 #pragma once
-// Reading JSON input with limits (issue #13), for study files, case files and stored studies:
+// Reading JSON input with limits, for study files, case files and stored studies:
 //   - at most kMaxJsonBytes bytes and kMaxJsonDepth nested arrays/objects (a deeply nested value
 //     once crashed demfit with a stack overflow while formatting an error),
 //   - a key given twice in one object is an error (the JSON library would keep the last silently),

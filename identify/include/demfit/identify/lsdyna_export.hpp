@@ -1,5 +1,5 @@
 #pragma once
-// LS-DYNA keyword export of identified DEM parameters, fixed 10-character fields (SPEC 4).
+// LS-DYNA keyword export of identified DEM parameters, fixed 10-character fields (docs/spec.md 4).
 // Which parameter fills which field comes from the model's descriptors
 // (ParameterDescriptor::lsdyna_field, "*CONTROL_DISCRETE_ELEMENT NORMK"; for the DEM cases, the
 // parameter table's LS-DYNA column): this file knows the cards, never the parameter names. A field
@@ -26,7 +26,7 @@ namespace demfit::identify {
 // as fit (exponent shortened to e-5 style when needed). Throws if it cannot fit.
 std::string lsdyna_field(double value);
 // `title` and each of `comments` become "$ " comment lines; control characters in them are turned
-// into blanks, so no text can leave its comment line (issue #13). `model_parameters`: the model's
+// into blanks, so no text can leave its comment line. `model_parameters`: the model's
 // descriptors (for the DEM cases: cases::parameter_descriptors()); every effect parameter among
 // them without an LS-DYNA field (off value set, lsdyna_field empty) that `parameters` holds at a
 // value other than its off value gets a "$ WARNING" comment: LS-DYNA cannot carry it.

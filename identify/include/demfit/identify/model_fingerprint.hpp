@@ -1,7 +1,7 @@
 #pragma once
 // What a study simulates, as resolved JSON (for DEM cases: the case with every default filled in,
 // not the case file's path), kept in the study store so that --resume refuses a changed model and
-// names the field that changed (issue #13).
+// names the field that changed.
 #include <string>
 
 #include <nlohmann/json.hpp>

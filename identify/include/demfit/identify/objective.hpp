@@ -1,5 +1,5 @@
 #pragma once
-// Curve metrics (SPEC 3) as a map: simulated curves -> fixed-length response vector ->
+// Curve metrics (docs/spec.md 3) as a map: simulated curves -> fixed-length response vector ->
 // residual vector r with objective = |r|^2. Fixed length matters: every run then has the same
 // number of RBF outputs, and the objective of a *predicted* response vector is computed by the
 // same code as that of a simulated one.

@@ -1,5 +1,5 @@
 #pragma once
-// What a model says about one of its parameters (issue 12 item 1): name, unit and the range of
+// What a model says about one of its parameters: name, unit and the range of
 // values it accepts, so a study's bounds are checked against the model before anything runs.
 // The DEM cases fill these from their parameter table (cases/parameter_table.hpp); identify
 // knows nothing of DEM beyond these fields.

@@ -1,5 +1,5 @@
 #pragma once
-// Relative x-axes for compression curves (issue #13, "fill offset"): a real bed never holds
+// Relative x-axes for compression curves ("fill offset"): a real bed never holds
 // exactly the simulated amount of powder, so its absolute volumes are shifted against the
 // model's. A target may name a model curve with a suffix that re-expresses x from first contact:
 //   "<curve>@from_contact"  x' = x_c - x   label "<quantity>_change_<unit>" (e.g. volume_change_cm3)

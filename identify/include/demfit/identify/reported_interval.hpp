@@ -1,5 +1,5 @@
 #pragma once
-// The identified value of a variable and its 95 % interval as every output shows it (issue 15):
+// The identified value of a variable and its 95 % interval as every output shows it:
 // report.md, best_parameters.json, the command line's summary, `reproduce granudrum` and the
 // LS-DYNA export comments all read it through reported_interval() from the stored result, so
 // they cannot disagree.

@@ -1,6 +1,6 @@
 #pragma once
 // Helper programs (gnuplot, mpirun) run from an argument vector through fork/exec: no shell ever
-// sees a user string (issue #13). Output of the helper goes to /dev/null.
+// sees a user string. Output of the helper goes to /dev/null.
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// One process per study store (issue #13): two `identify --resume` on one study would both run
+// One process per study store: two `identify --resume` on one study would both run
 // every missing run. The lock is an flock(2) on <folder>/.demfit-lock, held for the object's
 // life and released by the kernel when the process ends (a killed run leaves no stale lock).
 #include <filesystem>

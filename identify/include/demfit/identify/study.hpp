@@ -1,6 +1,6 @@
 #pragma once
-// The identification loop (issue #4): design -> evaluate -> fit RBF networks -> minimise the
-// predicted composite objective -> reduce the region (SRSM) -> repeat until the SPEC 3 stopping
+// The identification loop: design -> evaluate -> fit RBF networks -> minimise the
+// predicted composite objective -> reduce the region (SRSM) -> repeat until the docs/spec.md 3 stopping
 // rule. Every evaluation is committed to a SQLite store as it finishes; --resume replays it.
 #include <filesystem>
 #include <functional>
@@ -36,7 +36,7 @@ struct RunOptions {
   // at once and propagates out of run_study (simulates a kill after k runs).
   std::function<void(int evaluations_done)> after_evaluation;
   // Where the runs are evaluated: nullptr = a ThreadPoolEvaluator of `jobs` threads in this
-  // process; otherwise this evaluator (e.g. an MPI evaluator, issue #7), which must outlive the
+  // process; otherwise this evaluator (e.g. an MPI evaluator), which must outlive the
   // call. Results do not depend on the choice.
   Evaluator* evaluator = nullptr;
   // What is simulated, resolved (DEM: the case with defaults filled in; see model_fingerprint.hpp).

@@ -1,5 +1,5 @@
 #pragma once
-// Checks a study against what its model produces, before any store or output exists (issue #13):
+// Checks a study against what its model produces, before any store or output exists:
 // one evaluation at the initial point (initial values of the variables, fixed parameters, model
 // defaults) and then, for every target,
 //   - the curve exists (else the error lists the model's curves),

@@ -1,5 +1,5 @@
 #pragma once
-// What a confident-looking result may hide (issue #13), computed from the study store alone and
+// What a confident-looking result may hide, computed from the study store alone and
 // shown in report.md and on stderr:
 //   - a variable at (within 0.5 % of) a bound: the optimum may lie outside the bounds,
 //   - the study stopped at the iteration limit instead of converging,
@@ -8,7 +8,7 @@
 //     the noise of a target is estimated from its second differences (sigma^2 = sum(d2^2)/(6(n-2))),
 //   - runs far from quasi-static: a model that can check it returns a curve named
 //     kQuasiStaticCurve whose y is the run's kinetic/elastic energy ratio divided by the case's own
-//     limit (pellet compression: 1 %, SPEC 2.1), so y > 1 means inertia, not the contact law,
+//     limit (pellet compression: 1 %, docs/spec.md 2.1), so y > 1 means inertia, not the contact law,
 //     shaped part of the measured curve,
 // plus, per target, the RMS misfit of the best run in the curve's own units and as a multiple of
 // that noise (the objective translated into physical terms).

@@ -6,7 +6,7 @@
 //
 // Two ways to get J and s^2:
 //  - estimate_uncertainty(J, r, ...): J given (e.g. analytic), s^2 = |r|^2 / (N - n).
-//  - estimate_uncertainty_from_runs(...): what the study loop uses (issue #4). J is the slope of
+//  - estimate_uncertainty_from_runs(...): what the study loop uses. J is the slope of
 //    a linear least-squares regression of the EVALUATED residual vectors on the variables over the
 //    runs near the optimum, not the derivative of an interpolating surrogate: a DEM response has
 //    trajectory noise (a tiny parameter change gives a slightly different packing history), and an
@@ -79,7 +79,7 @@ UncertaintyEstimate estimate_uncertainty_from_runs(const RunSample& sample, cons
 // Inverse of the standard normal CDF (Acklam's rational approximation, |rel. error| < 1.2e-9).
 double normal_quantile(double p);
 
-// ---- Posterior sampling on the local surrogate (issue 15 item 3) ----
+// ---- Posterior sampling on the local surrogate ----
 // Intervals that stay right when another parameter is poorly pinned. The residual vector is
 // regressed on the unit coordinates over the runs near the optimum, r(u) ≈ b0 + J (u − u_best)
 // (the local linear surrogate of the residuals; its regression residuals E measure the simulation

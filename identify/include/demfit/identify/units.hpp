@@ -1,7 +1,7 @@
 #pragma once
-// Units named in curve column labels (SPEC 4: "volume_cm3", "pressure_MPa"): the text after the
+// Units named in curve column labels (docs/spec.md 4: "volume_cm3", "pressure_MPa"): the text after the
 // last '_' is the unit. A measured curve in other units of the same dimension is converted to the
-// model's units; a different dimension is refused (issue #13: a mm3/kPa curve against a cm3/MPa
+// model's units; a different dimension is refused (a mm3/kPa curve against a cm3/MPa
 // model once "identified" the corners of the bounds).
 //
 // Known units (factor to SI):

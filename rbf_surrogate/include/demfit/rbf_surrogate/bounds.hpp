@@ -1,6 +1,6 @@
 #pragma once
 // Design variables and the unit-cube normalisation used by every other part of rbf_surrogate
-// (SPEC section 3: "Variables normalised to [0, 1] (optionally log-scaled)").
+// (docs/spec.md section 3: "Variables normalised to [0, 1] (optionally log-scaled)").
 #include <Eigen/Dense>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Space-filling designs (SPEC section 3; LS-OPT "space filling" point selection).
+// Space-filling designs (docs/spec.md section 3; LS-OPT "space filling" point selection).
 // Points are ROWS, in unit coordinates. Deterministic: std::mt19937_64 with our own uniform
 // mapping (std distributions are implementation-defined).
 #include "demfit/rbf_surrogate/bounds.hpp"

@@ -32,7 +32,7 @@ struct ExpensiveOptions {
   InfillStrategy strategy = InfillStrategy::srsm;
   int max_evaluations = 100;
   int initial_points = 0;        // 0: 2(n+1); expected_improvement n+1
-  int points_per_iteration = 0;  // batch size; 0: srsm 1.5(n+1)+1 rounded up (SPEC 3), others 1
+  int points_per_iteration = 0;  // batch size; 0: srsm 1.5(n+1)+1 rounded up (docs/spec.md 3), others 1
   std::uint64_t seed = 1;
   RbfOptions rbf;
   SrsmSettings srsm;

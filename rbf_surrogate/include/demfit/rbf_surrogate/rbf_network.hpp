@@ -1,5 +1,5 @@
 #pragma once
-// Radial-basis-function network with many outputs sharing one factorisation (SPEC section 3).
+// Radial-basis-function network with many outputs sharing one factorisation (docs/spec.md section 3).
 //   f_j(x) = sum_i alpha_ij phi(|x - x_i|) + sum_k beta_kj p_k(x),   sum_i alpha_ij p_k(x_i) = 0
 // Width (and optional ridge smoothing) chosen by the closed-form leave-one-out error of Rippa (1999),
 // e_ij = alpha_ij / (M^-1)_ii, or by GCV (diagonal replaced by its mean), summed over outputs with

@@ -1,5 +1,5 @@
 #pragma once
-// Successive response surface method domain reduction (Stander & Craig 2002; SPEC section 3).
+// Successive response surface method domain reduction (Stander & Craig 2002; docs/spec.md section 3).
 //   d = 2 Δx / r,  ĉ = sign(d_k d_{k-1}) sqrt|d_k d_{k-1}|,  γ = ½[γ_pan(1+ĉ) + γ_osc(1-ĉ)],
 //   λ = η + |d|(γ - η),  r <- λ r   (all per variable), centred on the new optimum, kept inside bounds.
 #include "demfit/rbf_surrogate/bounds.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Ask/tell sampling strategies: the one surrogate loop of demfit (issue 15). A strategy proposes
+// Ask/tell sampling strategies: the one surrogate loop of demfit. A strategy proposes
 // points (`ask`), the caller evaluates them however it likes (in memory, a thread pool, MPI workers,
 // a study store that survives a restart) and reports the results (`tell`). minimise_expensive
 // (expensive.hpp) is a thin driver over these objects, and identify's study loop drives the
@@ -102,7 +102,7 @@ class AskTellStrategy {
 };
 
 // The strategy of options.strategy for `dims` unit-coordinate variables. Batch size of SRSM when
-// the caller passes options.points_per_iteration = 0: ⌈1.5(n+1)⌉+1 (SPEC 3); others: 1.
+// the caller passes options.points_per_iteration = 0: ⌈1.5(n+1)⌉+1 (docs/spec.md 3); others: 1.
 std::unique_ptr<AskTellStrategy> make_strategy(int dims, const ExpensiveOptions& options);
 int default_batch_size(int dims, const ExpensiveOptions& options);
 
