@@ -142,6 +142,22 @@ const char* rolling_text(dem_core::RollingModel model) {
   return "";
 }
 
+// A "released constraint": a parameter the case fixes (not an effect) set free over
+// [lower, upper]; its off value is the case's own value (the base model), and the range is
+// widened to contain it. A logic error when the row does not exist or the range leaves its valid one.
+EffectParameterInfo released(const char* name, double lower, double upper, const CaseSpec& spec) {
+  const ParameterRow* row = find_parameter(name);
+  if (!row || !row->applies_to(spec.law))
+    throw std::logic_error(std::string("effect catalogue: '") + name + "' is no parameter of the case's law");
+  const double fixed = row->get(spec);
+  lower = std::min(lower, fixed);
+  upper = std::max(upper, fixed);
+  if (!row->valid.contains_interval(lower, upper))
+    throw std::logic_error(std::string("effect catalogue: the released range of '") + name +
+                           "' lies outside its valid range");
+  return {name, lower, upper, fixed, row->unit};
+}
+
 // The Hertz law's candidates for a drum case (the only kind that runs Hertz–Mindlin).
 std::vector<EffectInfo> hertz_effects(const CaseSpec& spec) {
   const std::string name = case_kind_row(spec.kind).name;
@@ -164,6 +180,15 @@ std::vector<EffectInfo> hertz_effects(const CaseSpec& spec) {
                    {}});
   all.push_back({"rolling_resistance", rolling_text(spec.contact.rolling_model), {fitting("fricr", 0.0, 0.3)},
                  {name}, {}});
+  // Released: the case fixes e (e.g. 0.3 for the GranuDrum powder); free over the range where
+  // restitution-based damping is meaningful for granular media (0.05 heavily damped to 0.95
+  // nearly elastic).
+  all.push_back({"restitution",
+                 "coefficient of restitution of pairs and walls released from the case's fixed value (Hertz "
+                 "damping; off value = the case's e)",
+                 {released("restitution", 0.05, 0.95, spec)},
+                 {name},
+                 {}});
   return all;
 }
 
