@@ -129,6 +129,10 @@ void parse_hertz_wall(const json& j, CaseSpec& spec) {
         "'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: "
         "remove one");
   read_parameter_fields(j, p, kHertz, spec);
+  if (!spec.wall_friction_as_particles && spec.wall_friction_ratio != 1.0)
+    throw std::runtime_error(
+        "'wall_contact.friction_ratio' scales the wall friction tied to the particles': it needs "
+        "'wall_contact.friction_as_particles' = true (or give 'wall_contact.frics' instead)");
   w.damp = 0.0;
   w.sfp = 1.0;
 }
@@ -219,7 +223,7 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
   parse_hertz_contact(contact, spec);
   parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
   if (spec.wall_friction_as_particles) {
-    spec.wall.frics = spec.contact.frics;
+    spec.wall.frics = spec.contact.frics * spec.wall_friction_ratio;  // exact for the ratio 1
     spec.wall.fricd = spec.contact.fricr;
   }
   if (spec.material.radius_spread != 0.0)
@@ -292,10 +296,13 @@ json to_json(const CaseSpec& s) {
       j["contact"]["cohesion_model"] = model_name(kCohesionModels, s.contact.cohesion_model);
       j["contact"]["rolling_model"] = model_name(kRollingModels, s.contact.rolling_model);
       j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-      if (s.wall_friction_as_particles)
+      if (s.wall_friction_as_particles) {
         j["wall_contact"]["friction_as_particles"] = true;
-      else
+        if (s.wall_friction_ratio != 1.0) j["wall_contact"]["friction_ratio"] = s.wall_friction_ratio;
+      } else {
         write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
+        j["wall_contact"].erase("friction_ratio");  // 1 without the tie (parse_hertz_wall)
+      }
       break;
     case dem_core::ContactLawKind::lsdyna_linear:
       // The text of a case file from before the law could be chosen (no "law" key).

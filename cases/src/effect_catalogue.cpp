@@ -178,6 +178,13 @@ std::vector<EffectInfo> hertz_effects(const CaseSpec& spec) {
                    {fitting("wall_frics", 0.0, 0.6)},
                    {name},
                    {}});
+  else  // released from the tie: the wall's FRICS from 0 to twice the particles'
+    all.push_back({"wall_friction",
+                   "particle-wall sliding friction released from the particles' value (the case ties them): wall "
+                   "FRICS = ratio x particle FRICS, drag of the bed by the drum wall",
+                   {fitting("wall_friction_ratio", 0.0, 2.0)},
+                   {name},
+                   {}});
   all.push_back({"rolling_resistance", rolling_text(spec.contact.rolling_model), {fitting("fricr", 0.0, 0.3)},
                  {name}, {}});
   // Released: the case fixes e (e.g. 0.3 for the GranuDrum powder); free over the range where

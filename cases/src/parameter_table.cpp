@@ -109,6 +109,12 @@ std::vector<ParameterRow> effect_rows() {
        "cohesion: attractive normal force k_c A while overlapping (A: contact.cohesion_model sjkr or sjkr2)",
        non_negative(), kPair.cohesion_energy_density, true, 0.0, Home::effect, "", Law::hertz_mindlin, false,
        "contact.cohesion_energy_density", nullptr, DEMFIT_FIELD(contact.cohesion_energy_density)},
+      // Hertz drums whose wall friction follows the particles' (wall_contact.friction_as_particles):
+      // the tie released to wall FRICS = ratio x FRICS; refused without the tie (give wall_frics).
+      {"wall_friction_ratio", "-",
+       "tied wall sliding friction: wall FRICS = ratio x particle FRICS (with wall_contact.friction_as_particles)",
+       non_negative(), 1.0, true, 1.0, Home::effect, "", Law::hertz_mindlin, false, "wall_contact.friction_ratio",
+       nullptr, DEMFIT_FIELD(wall_friction_ratio)},
   };
 }
 

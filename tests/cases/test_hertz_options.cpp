@@ -113,8 +113,9 @@ TEST_CASE("A Hertz drum's effect candidates are the Hertz law's own, cohesion in
     return out;
   };
   const auto effects = effects_for_case(tied);
-  // Wall friction tied to the particles'; restitution released from the case's 0.5.
-  CHECK(names(effects) == std::vector<std::string>{"cohesion", "rolling_resistance", "restitution"});
+  // Wall friction released from the tie to the particles'; restitution from the case's 0.5.
+  CHECK(names(effects) == std::vector<std::string>{"cohesion", "wall_friction", "rolling_resistance", "restitution"});
+  CHECK(effects[1].parameters[0].name == "wall_friction_ratio");
   for (const EffectInfo& e : effects)
     for (const auto& p : e.parameters) {
       INFO(e.name << ": " << p.name);
@@ -132,15 +133,44 @@ TEST_CASE("A Hertz drum's effect candidates are the Hertz law's own, cohesion in
   const double wall_limit = dem_core::hertz_cohesion_limit(e_star, dem_core::CohesionModel::sjkr2, true);
   CHECK(effects_for_case(parse_case(sjkr2))[0].parameters[0].upper == Approx(0.99 * wall_limit));
   CHECK(wall_limit == Approx(0.0237254 * e_star).epsilon(1e-5));
-  // Untied wall friction is a candidate of its own.
+  // Untied wall friction is a candidate as wall FRICS itself.
   json untied = hertz_drum_document();
   untied["wall_contact"].erase("friction_as_particles");
   untied["wall_contact"]["frics"] = 0.0;
-  CHECK(names(effects_for_case(parse_case(untied))) ==
+  const auto untied_effects = effects_for_case(parse_case(untied));
+  CHECK(names(untied_effects) ==
         std::vector<std::string>{"cohesion", "wall_friction", "rolling_resistance", "restitution"});
+  CHECK(untied_effects[1].parameters[0].name == "wall_frics");
   // The released restitution is off at the case's value, inside its fitting range.
-  const auto& e = effects[2].parameters[0];
+  const auto& e = effects[3].parameters[0];
   CHECK(e.off_value == 0.5);
   CHECK(e.lower == 0.05);
   CHECK(e.upper == 0.95);
+}
+
+TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS = ratio x particle FRICS",
+          "[cases][hertz]") {
+  const CaseSpec tied = parse_case(hertz_drum_document());  // frics 0.4, tied
+  CHECK(tied.wall.frics == 0.4);                             // the ratio 1 is the tie itself
+  const CaseSpec half = detail::with_parameters(tied, {{"wall_friction_ratio", 0.5}});
+  CHECK(half.wall.frics == Approx(0.2).epsilon(1e-15));
+  CHECK(half.wall.fricd == tied.contact.fricr);  // rolling stays tied
+  // The ratio is kept while the particles' friction varies (a study with frics as a variable).
+  CHECK(detail::with_parameters(tied, {{"wall_friction_ratio", 0.5}, {"frics", 0.6}}).wall.frics ==
+        Approx(0.3).epsilon(1e-15));
+  // Case file: written back with the tie, and refused without it.
+  json document = hertz_drum_document();
+  document["wall_contact"]["friction_ratio"] = 0.5;
+  const json written = to_json(parse_case(document));
+  CHECK(written["wall_contact"]["friction_ratio"] == 0.5);
+  CHECK(parse_case(written).wall.frics == Approx(0.2).epsilon(1e-15));
+  CHECK_FALSE(to_json(tied)["wall_contact"].contains("friction_ratio"));
+  document["wall_contact"].erase("friction_as_particles");
+  CHECK_THAT(error_of(document), Catch::Contains("'wall_contact.friction_ratio'") &&
+                                     Catch::Contains("friction_as_particles"));
+  // An untied case varies wall_frics itself.
+  json untied = hertz_drum_document();
+  untied["wall_contact"].erase("friction_as_particles");
+  CHECK_THROWS_WITH(detail::with_parameters(parse_case(untied), {{"wall_friction_ratio", 0.5}}),
+                    Catch::Contains("vary wall_frics"));
 }
