@@ -4,6 +4,7 @@
 
 #include <array>
 #include <fstream>
+#include <utility>
 #include <optional>
 #include <numbers>
 #include <stdexcept>
@@ -46,9 +47,52 @@ std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_vi
   return keys;
 }
 
+// The Hertz law's model selections: their case-file spellings (LIGGGHTS' model names).
+constexpr std::pair<dem_core::CohesionModel, const char*> kCohesionModels[] = {
+    {dem_core::CohesionModel::sjkr, "sjkr"}, {dem_core::CohesionModel::sjkr2, "sjkr2"}};
+constexpr std::pair<dem_core::RollingModel, const char*> kRollingModels[] = {
+    {dem_core::RollingModel::constant_torque, "cdt"}, {dem_core::RollingModel::elastic_plastic, "epsd2"}};
+
+template <class Model, std::size_t N>
+const char* model_name(const std::pair<Model, const char*> (&models)[N], Model model) {
+  for (const auto& [m, name] : models)
+    if (m == model) return name;
+  throw std::logic_error("a contact model without a case-file name");
+}
+
+// Reads `contact.<key>` as one of `models` (fallback when absent); errors name the field.
+template <class Model, std::size_t N>
+Model read_model(const json& contact, const char* key, const std::pair<Model, const char*> (&models)[N],
+                 Model fallback) {
+  const std::string text = read_string(contact, "contact", key, model_name(models, fallback));
+  std::string names;
+  for (const auto& [m, name] : models) {
+    if (text == name) return m;
+    names += (names.empty() ? "\"" : " or \"") + std::string(name) + "\"";
+  }
+  throw std::runtime_error("'contact." + std::string(key) + "' must be " + names + " (got \"" + text + "\")");
+}
+
+// The Hertz-only keys, refused in an lsdyna_linear file with the fix named.
+void refuse_hertz_keys(const json& contact) {
+  if (contact.contains("rolling_model") &&
+      read_model(contact, "rolling_model", kRollingModels, dem_core::RollingModel::constant_torque) !=
+          dem_core::RollingModel::constant_torque)
+    throw std::runtime_error(
+        "'contact.rolling_model' = \"epsd2\" needs law hertz_mindlin: lsdyna_linear has the constant torque "
+        "(\"cdt\") only");
+  for (const char* key : {"cohesion_energy_density", "cohesion_model"})
+    if (contact.contains(key))
+      throw std::runtime_error("'contact." + std::string(key) +
+                               "' (SJKR cohesion) needs law hertz_mindlin: lsdyna_linear's cohesion is "
+                               "contact.surface_energy");
+}
+
 // LS-DYNA *CONTROL_DISCRETE_ELEMENT (with the effects) and coupling card 2: every key is a row of
-// the parameter table, read with its range.
-void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec) {
+// the parameter table, read with its range ("rolling_model": "cdt" is accepted, the law's only one).
+void parse_lsdyna_contact(json contact, const json& wall, CaseSpec& spec) {
+  refuse_hertz_keys(contact);
+  contact.erase("rolling_model");
   require_known_keys(contact, "contact", parameter_keys("contact", kLsDyna));
   read_parameter_fields(contact, "contact", kLsDyna, spec);
   if (!contact.contains("fricd")) spec.contact.fricd = spec.contact.frics;  // LS-DYNA: FRICD defaults to FRICS
@@ -59,12 +103,14 @@ void parse_lsdyna_contact(const json& contact, const json& wall, CaseSpec& spec)
 // Hertz–Mindlin contact (issue 12 item 3): restitution, sliding and rolling friction; the
 // LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
 void parse_hertz_contact(const json& j, CaseSpec& spec) {
-  require_known_keys(j, "contact", keys_with({"law"}, "contact", kHertz));
+  require_known_keys(j, "contact", keys_with({"law", "cohesion_model", "rolling_model"}, "contact", kHertz));
   if (!j.contains("restitution"))
     throw std::runtime_error(
         "'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
         find_parameter("restitution")->valid.to_string());
   read_parameter_fields(j, "contact", kHertz, spec);
+  spec.contact.cohesion_model = read_model(j, "cohesion_model", kCohesionModels, spec.contact.cohesion_model);
+  spec.contact.rolling_model = read_model(j, "rolling_model", kRollingModels, spec.contact.rolling_model);
   spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
   spec.contact.dc = 0.0;
 }
@@ -83,6 +129,10 @@ void parse_hertz_wall(const json& j, CaseSpec& spec) {
         "'wall_contact.frics'/'wall_contact.fricr' cannot be given with 'wall_contact.friction_as_particles' = true: "
         "remove one");
   read_parameter_fields(j, p, kHertz, spec);
+  if (!spec.wall_friction_as_particles && spec.wall_friction_ratio != 1.0)
+    throw std::runtime_error(
+        "'wall_contact.friction_ratio' scales the wall friction tied to the particles': it needs "
+        "'wall_contact.friction_as_particles' = true (or give 'wall_contact.frics' instead)");
   w.damp = 0.0;
   w.sfp = 1.0;
 }
@@ -173,7 +223,7 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
   parse_hertz_contact(contact, spec);
   parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
   if (spec.wall_friction_as_particles) {
-    spec.wall.frics = spec.contact.frics;
+    spec.wall.frics = spec.contact.frics * spec.wall_friction_ratio;  // exact for the ratio 1
     spec.wall.fricd = spec.contact.fricr;
   }
   if (spec.material.radius_spread != 0.0)
@@ -243,11 +293,16 @@ json to_json(const CaseSpec& s) {
       j["particle"].erase("radius_spread");
       j["contact"] = {{"law", to_string(s.law)}};
       write_parameter_fields(j["contact"], "contact", s.law, s);
+      j["contact"]["cohesion_model"] = model_name(kCohesionModels, s.contact.cohesion_model);
+      j["contact"]["rolling_model"] = model_name(kRollingModels, s.contact.rolling_model);
       j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
-      if (s.wall_friction_as_particles)
+      if (s.wall_friction_as_particles) {
         j["wall_contact"]["friction_as_particles"] = true;
-      else
+        if (s.wall_friction_ratio != 1.0) j["wall_contact"]["friction_ratio"] = s.wall_friction_ratio;
+      } else {
         write_parameter_fields(j["wall_contact"], "wall_contact", s.law, s);
+        j["wall_contact"].erase("friction_ratio");  // 1 without the tie (parse_hertz_wall)
+      }
       break;
     case dem_core::ContactLawKind::lsdyna_linear:
       // The text of a case file from before the law could be chosen (no "law" key).
@@ -281,6 +336,12 @@ json to_key_json(const CaseSpec& s) {
     const auto dot = path.find('.');
     const std::string section = path.substr(0, dot);
     if (j.contains(section)) j[section].erase(path.substr(dot + 1));
+  }
+  // So do the Hertz law's default models (sjkr, cdt).
+  if (s.law == dem_core::ContactLawKind::hertz_mindlin) {
+    const dem_core::ContactParameters defaults;
+    if (s.contact.cohesion_model == defaults.cohesion_model) j["contact"].erase("cohesion_model");
+    if (s.contact.rolling_model == defaults.rolling_model) j["contact"].erase("rolling_model");
   }
   // Insertion order (the default) leaves the keys, and so the cached fills and results, as before.
   const NumericsSpec defaults;

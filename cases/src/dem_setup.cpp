@@ -75,7 +75,11 @@ void check_applicable(const ParameterRow& row, const CaseSpec& base) {
   if (base.wall_friction_as_particles && row.home == ParameterHome::wall_contact)
     throw std::runtime_error("parameter '" + name +
                              "': the case's wall friction follows the particles "
-                             "(wall_contact.friction_as_particles); vary frics/fricr instead");
+                             "(wall_contact.friction_as_particles); vary frics/fricr (or wall_friction_ratio) instead");
+  if (!base.wall_friction_as_particles && name == "wall_friction_ratio")
+    throw std::runtime_error(
+        "parameter 'wall_friction_ratio' scales a wall friction tied to the particles' "
+        "(wall_contact.friction_as_particles); this case gives its own: vary wall_frics instead");
 }
 
 }  // namespace
@@ -92,7 +96,7 @@ CaseSpec with_parameters(const CaseSpec& base, const identify::ParameterSet& par
   }
   if (is_hertz(spec)) spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient
   if (spec.wall_friction_as_particles) {
-    spec.wall.frics = spec.contact.frics;
+    spec.wall.frics = spec.contact.frics * spec.wall_friction_ratio;  // exact for the ratio 1
     spec.wall.fricd = spec.contact.fricr;
   }
   return spec;

@@ -11,6 +11,7 @@
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/model_factory.hpp"
 #include "demfit/cases/parameter_table.hpp"
+#include "demfit/dem_core/hertz_cohesion.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -110,6 +111,94 @@ std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_nam
   return all;
 }
 
+// ---- Hertz–Mindlin cases (dem_core/contact_law_hertz.hpp): the law's own options.
+
+// Fitting range of the SJKR cohesion energy density [J/m^3]: up to 1e5 (k_c pi (2 R delta -
+// delta^2) at 1e5 holds a 1 mm sphere of 2500 kg/m^3 on a wall with 6 of its weights at an
+// overlap of 0.1 % of R: strongly cohesive), lowered to just below the time step's limit for the
+// case's particle and wall materials (hertz_cohesion_limit) when that is smaller, so the upper
+// end always runs.
+constexpr double kHertzCohesionUpper = 1.0e5;
+
+double hertz_cohesion_upper(const CaseSpec& spec) {
+  const double particle = (1.0 - spec.material.poisson_ratio * spec.material.poisson_ratio) /
+                          spec.material.youngs_modulus;
+  const double wall = spec.wall.hertz_normal_compliance();
+  const dem_core::CohesionModel model = spec.contact.cohesion_model;
+  const double limit = std::min(dem_core::hertz_cohesion_limit(1.0 / (2.0 * particle), model, false),
+                                dem_core::hertz_cohesion_limit(1.0 / (particle + wall), model, true));
+  return std::min(kHertzCohesionUpper, 0.99 * limit);
+}
+
+const char* rolling_text(dem_core::RollingModel model) {
+  switch (model) {
+    case dem_core::RollingModel::constant_torque:
+      return "constant-torque rolling friction between particles (cdt: M_r = FRICR F_n R*; acts only with "
+             "FRICS > 0)";
+    case dem_core::RollingModel::elastic_plastic:
+      return "epsd2 rolling spring between particles (k_r = k_t R*^2, capped at FRICR F_n R*; acts only with "
+             "FRICS > 0)";
+  }
+  return "";
+}
+
+// A "released constraint": a parameter the case fixes (not an effect) set free over
+// [lower, upper]; its off value is the case's own value (the base model), and the range is
+// widened to contain it. A logic error when the row does not exist or the range leaves its valid one.
+EffectParameterInfo released(const char* name, double lower, double upper, const CaseSpec& spec) {
+  const ParameterRow* row = find_parameter(name);
+  if (!row || !row->applies_to(spec.law))
+    throw std::logic_error(std::string("effect catalogue: '") + name + "' is no parameter of the case's law");
+  const double fixed = row->get(spec);
+  lower = std::min(lower, fixed);
+  upper = std::max(upper, fixed);
+  if (!row->valid.contains_interval(lower, upper))
+    throw std::logic_error(std::string("effect catalogue: the released range of '") + name +
+                           "' lies outside its valid range");
+  return {name, lower, upper, fixed, row->unit};
+}
+
+// The Hertz law's candidates for a drum case (the only kind that runs Hertz–Mindlin).
+std::vector<EffectInfo> hertz_effects(const CaseSpec& spec) {
+  const std::string name = case_kind_row(spec.kind).name;
+  std::vector<EffectInfo> all;
+  all.push_back({"cohesion",
+                 std::string("SJKR cohesion: attractive normal force k_c A while particles (or a particle and a wall) "
+                             "overlap, A the ") +
+                     (spec.contact.cohesion_model == dem_core::CohesionModel::sjkr
+                          ? "area of the spheres' intersection circle (sjkr)"
+                          : "sjkr2 area 2 pi delta 2R*") +
+                     "; the contact breaks at zero overlap",
+                 {fitting("cohesion_energy_density", 0.0, hertz_cohesion_upper(spec))},
+                 {name},
+                 {}});
+  if (!spec.wall_friction_as_particles)
+    all.push_back({"wall_friction",
+                   "particle-wall sliding friction (wall FRICS): drag of the bed by the drum wall",
+                   {fitting("wall_frics", 0.0, 0.6)},
+                   {name},
+                   {}});
+  else  // released from the tie: the wall's FRICS from 0 to twice the particles'
+    all.push_back({"wall_friction",
+                   "particle-wall sliding friction released from the particles' value (the case ties them): wall "
+                   "FRICS = ratio x particle FRICS, drag of the bed by the drum wall",
+                   {fitting("wall_friction_ratio", 0.0, 2.0)},
+                   {name},
+                   {}});
+  all.push_back({"rolling_resistance", rolling_text(spec.contact.rolling_model), {fitting("fricr", 0.0, 0.3)},
+                 {name}, {}});
+  // Released: the case fixes e (e.g. 0.3 for the GranuDrum powder); free over the range where
+  // restitution-based damping is meaningful for granular media (0.05 heavily damped to 0.95
+  // nearly elastic).
+  all.push_back({"restitution",
+                 "coefficient of restitution of pairs and walls released from the case's fixed value (Hertz "
+                 "damping; off value = the case's e)",
+                 {released("restitution", 0.05, 0.95, spec)},
+                 {name},
+                 {}});
+  return all;
+}
+
 }  // namespace
 
 double cohesion_surface_energy_bound(double radius, double density, double weights, double gravity) {
@@ -125,7 +214,13 @@ std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlo
 }
 
 std::vector<EffectInfo> effects_for_case(const CaseSpec& spec) {
-  return build(case_cohesion_bound(spec), case_kind_row(spec.kind).name);
+  switch (spec.law) {  // each law has its own options (dem_core/contact_laws.hpp)
+    case dem_core::ContactLawKind::lsdyna_linear:
+      return build(case_cohesion_bound(spec), case_kind_row(spec.kind).name);
+    case dem_core::ContactLawKind::hertz_mindlin:
+      return hertz_effects(spec);
+  }
+  throw std::logic_error("effect catalogue: a ContactLawKind without effects");
 }
 
 }  // namespace demfit::cases

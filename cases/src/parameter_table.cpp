@@ -103,6 +103,18 @@ std::vector<ParameterRow> effect_rows() {
        "polydispersity: radii uniform in [R(1 - s), R(1 + s)] at the same solid volume (changes the fill)",
        closed(0.0, 0.3), 0.0, true, 0.0, Home::effect, "", Law::lsdyna_linear, false, "particle.radius_spread", nullptr,
        DEMFIT_FIELD(material.radius_spread)},
+      // Hertz-Mindlin SJKR cohesion (dem_core/hertz_cohesion.hpp); the area model is the case's
+      // contact.cohesion_model. Values past the time step's limit are refused when the run starts.
+      {"cohesion_energy_density", "J/m^3",
+       "cohesion: attractive normal force k_c A while overlapping (A: contact.cohesion_model sjkr or sjkr2)",
+       non_negative(), kPair.cohesion_energy_density, true, 0.0, Home::effect, "", Law::hertz_mindlin, false,
+       "contact.cohesion_energy_density", nullptr, DEMFIT_FIELD(contact.cohesion_energy_density)},
+      // Hertz drums whose wall friction follows the particles' (wall_contact.friction_as_particles):
+      // the tie released to wall FRICS = ratio x FRICS; refused without the tie (give wall_frics).
+      {"wall_friction_ratio", "-",
+       "tied wall sliding friction: wall FRICS = ratio x particle FRICS (with wall_contact.friction_as_particles)",
+       non_negative(), 1.0, true, 1.0, Home::effect, "", Law::hertz_mindlin, false, "wall_contact.friction_ratio",
+       nullptr, DEMFIT_FIELD(wall_friction_ratio)},
   };
 }
 

@@ -74,6 +74,8 @@ inline bool pair_geometry(const ParticleState& p, std::size_t i, std::size_t j, 
   g.normal_compliance = p.normal_compliance[i] + p.normal_compliance[j];
   g.shear_compliance = p.shear_compliance[i] + p.shear_compliance[j];
   g.inverse_inertia_sum = p.inverse_inertia[i] + p.inverse_inertia[j];
+  g.first_radius = p.radius[i];
+  g.second_radius = p.radius[j];
   return true;
 }
 
@@ -197,6 +199,7 @@ void wall_contacts_of(std::size_t i, const WallSide<Law>& walls, ParticleState& 
     g.normal_compliance = p.normal_compliance[i] / wall.contact.sfp;  // k_n,w = SFP k_i
     g.shear_compliance = p.shear_compliance[i];
     g.inverse_inertia_sum = p.inverse_inertia[i];
+    g.first_radius = p.radius[i];  // second_radius 0: the wall is a plane at the contact
     const ContactForce f = walls.laws[walls.wall[slot]].force(g, walls.history[slot], step.dt);
     p.force[i] += f.force;
     if (step.rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;

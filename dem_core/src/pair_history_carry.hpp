@@ -47,7 +47,8 @@ inline std::vector<std::uint32_t> pair_sources(const PairRebuild& r) {
         b = r.order[b];
       }
       // The tangential elongation is that of the first particle relative to the second: a pair
-      // whose members swapped roles carries it negated (exact); the rest of the history is scalar.
+      // whose members swapped roles carries it negated (exact), as is an epsd2 rolling torque
+      // (as_carried); the rest of the history is scalar.
       const bool swapped = a > b;
       const std::size_t old_k = swapped ? r.old.find(b, a) : r.old.find(a, b);
       if (old_k == NeighborList::npos) continue;

@@ -35,6 +35,7 @@ void validate(const ContactParameters& p) {
   require_finite("contact.stiffness_exponent", p.stiffness_exponent);
   if (p.stiffness_exponent < 1.0 || p.stiffness_exponent > 2.0)
     fail("contact.stiffness_exponent", p.stiffness_exponent, "must lie in [1, 2] (1 = linear, 1.5 = Hertzian shape)");
+  require_non_negative("contact.cohesion_energy_density [J/m^3]", p.cohesion_energy_density);
 }
 
 void validate(const WallContactParameters& p) {

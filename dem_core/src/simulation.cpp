@@ -15,12 +15,27 @@
 namespace demfit::dem_core {
 namespace {
 
-/// The effects library extends the LS-DYNA linear law only (contact_effects.hpp).
+/// The effects library extends the LS-DYNA linear law only (contact_effects.hpp); SJKR cohesion
+/// and the epsd2 rolling spring the Hertz–Mindlin law only (contact_law_hertz.hpp).
 void require_effects_law(ContactLawKind law, const ContactParameters& c) {
-  if (law != ContactLawKind::lsdyna_linear && c.effects_enabled())
-    throw std::runtime_error(
-        "contact.unloading_stiffness_ratio / surface_energy / stiffness_exponent apply to the "
-        "lsdyna_linear law only: set them to 1 / 0 / 1 or use law lsdyna_linear");
+  switch (law) {
+    case ContactLawKind::lsdyna_linear:
+      if (c.rolling_model != RollingModel::constant_torque)
+        throw std::runtime_error(
+            "contact.rolling_model = epsd2 applies to the hertz_mindlin law only: use cdt (constant torque) "
+            "with lsdyna_linear or switch to law hertz_mindlin");
+      if (c.cohesion_energy_density != 0.0 || c.cohesion_model != CohesionModel::sjkr)
+        throw std::runtime_error(
+            "contact.cohesion_energy_density / cohesion_model apply to the hertz_mindlin law only: use "
+            "surface_energy (the linear law's cohesion) or switch to law hertz_mindlin");
+      return;
+    case ContactLawKind::hertz_mindlin:
+      if (c.effects_enabled())
+        throw std::runtime_error(
+            "contact.unloading_stiffness_ratio / surface_energy / stiffness_exponent apply to the "
+            "lsdyna_linear law only: set them to 1 / 0 / 1 or use law lsdyna_linear");
+      return;
+  }
 }
 
 }  // namespace
@@ -229,25 +244,21 @@ double Simulation::resolved_step() const {
   return dt;
 }
 
-double Simulation::stable_time_step() const {
-  double max_sfp = 0.0, max_damp = 0.0;
+TimeStepEstimate Simulation::step_estimate() const {
+  double max_sfp = 0.0, max_damp = 0.0, max_hertz = 0.0;
   for (const Wall& w : walls_) {
     max_sfp = std::max(max_sfp, w.contact.sfp);
     max_damp = std::max(max_damp, w.contact.damp);
+    max_hertz = std::max(max_hertz, w.contact.hertz_normal_compliance());
   }
   return estimate_time_step(settings_.law, particles_, materials_, settings_.contact, max_sfp, max_damp,
-                            settings_.time_step_factor)
-      .stable_limit;
+                            settings_.time_step_factor, max_hertz);
 }
 
+double Simulation::stable_time_step() const { return step_estimate().stable_limit; }
+
 double Simulation::time_step() const {
-  double max_sfp = 0.0, max_damp = 0.0;
-  for (const Wall& w : walls_) {
-    max_sfp = std::max(max_sfp, w.contact.sfp);
-    max_damp = std::max(max_damp, w.contact.damp);
-  }
-  const TimeStepEstimate e = estimate_time_step(settings_.law, particles_, materials_, settings_.contact, max_sfp,
-                                                max_damp, settings_.time_step_factor);
+  const TimeStepEstimate e = step_estimate();
   if (settings_.time_step > 0.0) {
     if (settings_.time_step > e.stable_limit) {
       std::ostringstream out;

@@ -23,10 +23,10 @@ TEST_CASE("Built-in cases are the shipped case files") {
 }
 
 TEST_CASE(
-    "A case model exposes the twelve contact parameters, four effect parameters, restitution and two fill amounts with "
+    "A case model exposes the twelve contact parameters, six effect parameters, restitution and two fill amounts with "
     "the case's values as defaults") {
   const auto model = cases::make_model("pellet_compression", json::object(), DEMFIT_SOURCE_DIR);
-  CHECK(model->parameter_names().size() == 19);
+  CHECK(model->parameter_names().size() == 21);
   CHECK(model->default_parameters().size() == 16);  // LS-DYNA pellet: no restitution, no drum fill
   CHECK(model->default_parameters().at("unloading_stiffness_ratio") == 1.0);  // effects off by default
   CHECK(model->default_parameters().at("surface_energy") == 0.0);

@@ -184,9 +184,11 @@ TEST_CASE(
         Names{"dc", "fricd", "fricr", "frics", "ndamp", "normk", "radius_spread", "sheark", "stiffness_exponent",
               "surface_energy", "tdamp", "unloading_stiffness_ratio", "wall_damp", "wall_fricd", "wall_frics",
               "wall_sfp"});
-  // The GranuDrum case is Hertz-Mindlin with its fill given as a particle count.
+  // The GranuDrum case is Hertz-Mindlin (with its SJKR cohesion off and its wall friction tied
+  // to the particles' at the ratio 1) with its fill given as a particle count.
   CHECK(names_of(parse_case(read_case_json(dir + "granudrum_mcc.json"))) ==
-        Names{"fricr", "frics", "particle_count", "restitution", "wall_fricd", "wall_frics"});
+        Names{"cohesion_energy_density", "fricr", "frics", "particle_count", "restitution", "wall_fricd", "wall_frics",
+              "wall_friction_ratio"});
   json by_volume = read_case_json(dir + "rotary_drum.json");
   by_volume["drum"].erase("fill_fraction");
   by_volume["drum"]["fill_volume_ml"] = 50.0;

@@ -83,15 +83,22 @@ TEST_CASE("Each contact-law kind has one registry row and selects its law type, 
       if constexpr (std::is_same_v<Law, LsDynaLinearLaw>) return 0;
       if constexpr (std::is_same_v<Law, LsDynaEffectsLaw>) return 1;
       if constexpr (std::is_same_v<Law, HertzMindlinLaw>) return 2;
+      if constexpr (std::is_same_v<Law, HertzEpsd2Law>) return 3;
     });
   };
   ContactParameters c;
   CHECK(law_of(ContactLawKind::lsdyna_linear, c) == 0);
   CHECK(law_of(ContactLawKind::hertz_mindlin, c) == 2);
+  c.cohesion_energy_density = 1000.0;  // cohesion is a value of the Hertz law, not another type
+  CHECK(law_of(ContactLawKind::hertz_mindlin, c) == 2);
+  c.rolling_model = RollingModel::elastic_plastic;
+  CHECK(law_of(ContactLawKind::hertz_mindlin, c) == 3);
+  c = ContactParameters{};
   c.surface_energy = 0.1;
   CHECK(law_of(ContactLawKind::lsdyna_linear, c) == 1);
   // The plain laws keep 24 bytes per contact; only the effects law pays for its memory.
   CHECK(sizeof(LsDynaLinearLaw::History) == 24);
   CHECK(sizeof(HertzMindlinLaw::History) == 24);
   CHECK(sizeof(LsDynaEffectsLaw::History) == 32);
+  CHECK(sizeof(HertzEpsd2Law::History) == 48);  // + the rolling torque
 }

@@ -131,6 +131,9 @@ struct CaseSpec {
   dem_core::ContactLawKind law = dem_core::ContactLawKind::lsdyna_linear;
   // Hertz: wall sliding and rolling friction follow the particle values (also under overrides).
   bool wall_friction_as_particles = false;
+  // With the tie: wall FRICS = ratio x particle FRICS ("wall_contact.friction_ratio", 1 = the
+  // tie itself), so wall friction can be released from the particles' as a parameter.
+  double wall_friction_ratio = 1.0;
   ContactSpec contact;
   WallContactSpec wall;
   TimeStepSpec time_step;

@@ -20,6 +20,8 @@ struct ContactGeometry {
   double normal_compliance = 0.0;    ///< sum of both bodies' normal compliances (see ParticleState)
   double shear_compliance = 0.0;     ///< Hertz–Mindlin: sum of (2-nu)/G; wall adds 0 (rigid)
   double inverse_inertia_sum = 0.0;  ///< 1/I_i + 1/I_j (wall: 1/I_i), for the rolling limiter
+  double first_radius = 0.0;         ///< R_i [m] (the SJKR cohesion's intersection circle)
+  double second_radius = 0.0;        ///< R_j [m]; 0 for a wall (a plane at the contact point)
 };
 
 /// Per-contact memory of the plain laws (LS-DYNA linear, Hertz–Mindlin), carried across steps

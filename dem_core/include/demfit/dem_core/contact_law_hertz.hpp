@@ -6,10 +6,16 @@
 //   c = -2 sqrt(5/6) beta sqrt(S m*), beta = ln e / sqrt(ln^2 e + pi^2).
 // E* = 1/sum((1-nu^2)/E), G* = 1/sum((2-nu)/G) come in through ContactGeometry's compliances,
 // summed from each particle's `particle_compliance` (E, nu of its material).
+// Options (ContactParameters): SJKR cohesion F_coh = k_c A (hertz_cohesion.hpp; off at k_c = 0,
+// then the force is bit-identical to the law without it) and the rolling resistance, a template
+// argument because epsd2 keeps a torque per contact: cdt (ConstantTorqueRolling, the law's
+// default) or epsd2 (ElasticPlasticRolling, contact_law_parts.hpp).
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "demfit/dem_core/contact_law_parts.hpp"
+#include "demfit/dem_core/hertz_cohesion.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/time_step.hpp"
 
@@ -40,32 +46,44 @@ struct HertzNormal {
   }
 };
 
-struct HertzMindlinLaw {
-  using History = ContactHistory;  ///< no memory beyond the tangential spring
+/// Automatic step and stability limit of the Hertz law (src/contact_law_hertz.cpp); throws
+/// std::runtime_error when the cohesion exceeds hertz_cohesion_limit for a pair of the particles'
+/// materials or for one of them on the softest wall.
+TimeStepEstimate hertz_time_step(const TimeStepInputs& inputs);
+
+template <class Rolling>
+struct HertzLaw {
+  static constexpr bool kRollingSpring = std::is_same_v<Rolling, ElasticPlasticRolling>;
+  /// cdt: no memory beyond the tangential spring; epsd2: the rolling torque too.
+  using History = std::conditional_t<kRollingSpring, RollingSpringHistory, ContactHistory>;
   HertzNormal normal{};
   CoulombTangentialSpring tangential{};
-  ConstantTorqueRolling rolling{};
+  Rolling rolling{};
+  SjkrCohesion cohesion{};
   /// Compliances of an elastic wall (WallContactParameters::hertz_*_compliance), added to the
   /// particle's; 0 for pairs (both particles are already in the geometry) and rigid walls, and
   /// adding 0 is exact, so those contacts compute bit-identically to before.
   double body_normal_compliance = 0.0;  ///< [1/Pa]
   double body_shear_compliance = 0.0;   ///< [1/Pa]
 
-  static HertzMindlinLaw for_pairs(const ContactParameters& p) {
-    HertzMindlinLaw law;
+  static HertzLaw for_pairs(const ContactParameters& p) {
+    HertzLaw law;
     law.normal.beta = hertz_damping_beta(p.restitution);
     law.tangential = {p.frics, p.dynamic_friction(), p.dc};
     law.rolling.coefficient = p.rotation_enabled() ? p.fricr : 0.0;
+    law.cohesion = {p.cohesion_energy_density, p.cohesion_model};
     return law;
   }
   /// Wall: rigid body unless the wall has a Young's modulus (then its compliances are added, a
-  /// second elastic body); same restitution as the pairs, wall FRICS sliding, wall FRICD rolling.
-  /// SFP scales the particle's normal compliance (in the loop) as it scales the linear wall spring.
-  static HertzMindlinLaw for_wall(const ContactParameters& p, const WallContactParameters& w) {
-    HertzMindlinLaw law;
+  /// second elastic body); same restitution and cohesion as the pairs, wall FRICS sliding, wall
+  /// FRICD rolling. SFP scales the particle's normal compliance (in the loop) as it scales the
+  /// linear wall spring.
+  static HertzLaw for_wall(const ContactParameters& p, const WallContactParameters& w) {
+    HertzLaw law;
     law.normal.beta = hertz_damping_beta(p.restitution);
     law.tangential = {w.frics, w.frics, 0.0};
     law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
+    law.cohesion = {p.cohesion_energy_density, p.cohesion_model};
     law.body_normal_compliance = w.hertz_normal_compliance();
     law.body_shear_compliance = w.hertz_shear_compliance();
     return law;
@@ -81,7 +99,7 @@ struct HertzMindlinLaw {
   /// Rayleigh time T_R = pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest particle;
   /// automatic step = 0.2 T_R (common LIGGGHTS practice), stability limit = T_R
   /// (src/contact_law_hertz.cpp).
-  static TimeStepEstimate time_step(const TimeStepInputs& inputs);
+  static TimeStepEstimate time_step(const TimeStepInputs& inputs) { return hertz_time_step(inputs); }
   static bool restarts_history(const ContactParameters& /*before*/, const ContactParameters& /*after*/) {
     return false;
   }
@@ -97,19 +115,34 @@ struct HertzMindlinLaw {
     const double c_t = -2.0 * std::sqrt(5.0 / 6.0) * normal.beta * std::sqrt(s_t * g.effective_mass);
     out.tangential_force =
         tangential.evaluate(g, s_t, c_t, n.force, history.tangential_displacement, dt, out.elastic_energy);
-    out.force = out.tangential_force - n.force * g.normal;
-    out.rolling_torque = rolling.evaluate(g, n.force, dt);
+    // Net normal force: the repulsive Hertz part minus the cohesion (0 when off: n.force - 0 is
+    // n.force exactly); friction and rolling see the repulsive part.
+    out.force = out.tangential_force - (n.force - cohesion.force(g)) * g.normal;
+    if constexpr (kRollingSpring) {
+      out.rolling_torque = rolling.evaluate(g, s_t, n.force, history.rolling_torque, dt);
+      out.elastic_energy += Rolling::energy(g, s_t, history.rolling_torque);
+    } else {
+      out.rolling_torque = rolling.evaluate(g, n.force, dt);
+    }
     return out;
   }
-  /// The springs' energy [J] as `force` left them (same terms, same order: bit-identical).
+  /// The springs' energy [J] as `force` left them (same terms, same order: bit-identical). The
+  /// cohesion's work is not a spring energy and is not included.
   double elastic_energy(const ContactGeometry& contact, const History& history) const {
     ContactGeometry g = contact;
     g.normal_compliance += body_normal_compliance;
     g.shear_compliance += body_shear_compliance;
     const HertzNormal::Result n = normal.evaluate(g);
     const double s_t = 8.0 * n.contact_radius / g.shear_compliance;
-    return n.energy + 0.5 * s_t * norm2(history.tangential_displacement);
+    double energy = n.energy + 0.5 * s_t * norm2(history.tangential_displacement);
+    if constexpr (kRollingSpring) energy += Rolling::energy(g, s_t, history.rolling_torque);
+    return energy;
   }
 };
+
+/// The Hertz–Mindlin law with constant-torque rolling resistance (cdt) and with the epsd2
+/// rolling spring.
+using HertzMindlinLaw = HertzLaw<ConstantTorqueRolling>;
+using HertzEpsd2Law = HertzLaw<ElasticPlasticRolling>;
 
 }  // namespace demfit::dem_core

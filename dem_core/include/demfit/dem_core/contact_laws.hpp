@@ -73,7 +73,8 @@ inline std::optional<ContactLawKind> contact_law_kind(std::string_view name) {
 
 /// The one dispatch on the law: calls `visit(std::type_identity<Law>{})` with the law type that
 /// `kind` and `contact` select and returns its result. The effects law is the linear law with
-/// an effect on; with every effect off the plain law runs (bit-identical, no extra cost).
+/// an effect on; with every effect off the plain law runs (bit-identical, no extra cost). The
+/// Hertz law comes with the rolling resistance of contact.rolling_model (cdt or epsd2).
 template <class Visit>
 decltype(auto) with_contact_law(ContactLawKind kind, const ContactParameters& contact, Visit&& visit) {
   switch (kind) {
@@ -81,7 +82,13 @@ decltype(auto) with_contact_law(ContactLawKind kind, const ContactParameters& co
       if (contact.effects_enabled()) return visit(std::type_identity<LsDynaEffectsLaw>{});
       return visit(std::type_identity<LsDynaLinearLaw>{});
     case ContactLawKind::hertz_mindlin:
-      return visit(std::type_identity<HertzMindlinLaw>{});
+      switch (contact.rolling_model) {  // the epsd2 spring keeps a torque per contact: its own type
+        case RollingModel::constant_torque:
+          return visit(std::type_identity<HertzMindlinLaw>{});
+        case RollingModel::elastic_plastic:
+          return visit(std::type_identity<HertzEpsd2Law>{});
+      }
+      break;
   }
   throw std::logic_error("with_contact_law: a ContactLawKind without a case");
 }
@@ -97,7 +104,7 @@ struct ContactLawState {
 };
 
 /// The simulation's per-law state: one alternative per law type of with_contact_law.
-using ContactLawStates =
-    std::variant<ContactLawState<LsDynaLinearLaw>, ContactLawState<LsDynaEffectsLaw>, ContactLawState<HertzMindlinLaw>>;
+using ContactLawStates = std::variant<ContactLawState<LsDynaLinearLaw>, ContactLawState<LsDynaEffectsLaw>,
+                                      ContactLawState<HertzMindlinLaw>, ContactLawState<HertzEpsd2Law>>;
 
 }  // namespace demfit::dem_core

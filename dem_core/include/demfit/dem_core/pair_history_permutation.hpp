@@ -32,11 +32,15 @@ namespace demfit::dem_core {
 inline constexpr std::uint32_t kNewPair = 0xFFFFFFFFu;
 inline constexpr std::uint32_t kSwappedPair = 0x80000000u;
 
-/// An old history as the new pair with source `s` carries it: the tangential spring is that of
-/// the first member relative to the second, so it is negated when the members swapped roles.
+/// An old history as the new pair with source `s` carries it: the tangential spring (and an
+/// epsd2 rolling torque) is that of the first member relative to the second, so it is negated
+/// when the members swapped roles.
 template <class History>
 History as_carried(History h, std::uint32_t s) {
-  if (s & kSwappedPair) h.tangential_displacement = -h.tangential_displacement;
+  if (s & kSwappedPair) {
+    h.tangential_displacement = -h.tangential_displacement;
+    if constexpr (requires { h.rolling_torque; }) h.rolling_torque = -h.rolling_torque;
+  }
   return h;
 }
 

@@ -13,6 +13,19 @@ enum class ContactLawKind {
   hertz_mindlin,  ///< Hertz normal + Mindlin no-slip tangential, restitution-based damping
 };
 
+/// Contact area of the SJKR cohesion of the Hertz–Mindlin law (LIGGGHTS `cohesion sjkr` /
+/// `cohesion sjkr2`; contact_law_hertz.hpp).
+enum class CohesionModel {
+  sjkr,   ///< A = pi a^2, a = radius of the circle where the two undeformed spheres intersect
+  sjkr2,  ///< A = 2 pi delta (2 R*) (LIGGGHTS sjkr2 documentation)
+};
+
+/// Rolling resistance of the Hertz–Mindlin law (LIGGGHTS `rolling_friction cdt` / `epsd2`).
+enum class RollingModel {
+  constant_torque,  ///< cdt: M_r = -mu_r |F_n| R* omega_rel/|omega_rel| (SPEC 1); both laws
+  elastic_plastic,  ///< epsd2: incremental rolling spring k_r = k_t R*^2, capped at mu_r R* F_n
+};
+
 /// Particle material (solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2).
 struct Material {
   double bulk_modulus = 1.0e9;  ///< K [Pa]; LS-DYNA spring k_i = NORMK * K * R_i
@@ -47,12 +60,25 @@ struct ContactParameters {
   /// d_ref = 0.01 R*; 1 = linear (off), 1.5 = Hertzian shape.
   double stiffness_exponent = 1.0;
 
+  // ---- Hertz–Mindlin only (contact_law_hertz.hpp); refused with the linear law unless off.
+  /// SJKR cohesion energy density k_c [J/m^3] >= 0: attractive normal force k_c A while the
+  /// bodies overlap (A from `cohesion_model`); 0 = off (the plain Hertz–Mindlin law).
+  double cohesion_energy_density = 0.0;
+  CohesionModel cohesion_model = CohesionModel::sjkr;
+  /// cdt (default, the constant torque of FRICR / wall FRICD) or epsd2 (rolling spring).
+  RollingModel rolling_model = RollingModel::constant_torque;
+
   /// FRICD with the LS-DYNA default resolved (FRICD unset => FRICS).
   [[nodiscard]] double dynamic_friction() const { return fricd < 0.0 ? frics : fricd; }
   [[nodiscard]] bool rotation_enabled() const { return frics > 0.0; }
   /// True when any effect of the effects library is switched on (selects the effects law).
   [[nodiscard]] bool effects_enabled() const {
     return unloading_stiffness_ratio != 1.0 || surface_energy != 0.0 || stiffness_exponent != 1.0;
+  }
+  /// True when a setting of the Hertz–Mindlin law only is away from its default.
+  [[nodiscard]] bool hertz_options_enabled() const {
+    return cohesion_energy_density != 0.0 || cohesion_model != CohesionModel::sjkr ||
+           rolling_model != RollingModel::constant_torque;
   }
 };
 

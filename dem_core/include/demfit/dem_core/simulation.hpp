@@ -185,6 +185,8 @@ class Simulation {
   void reduce_diagnostics() const;       // wall loads, lazily, when one is asked for
   void reduce_pair_diagnostics() const;  // pair energy and contact count, lazily
   [[nodiscard]] double resolved_step() const;
+  /// The law's automatic step and stability limit for the current particles, walls, parameters.
+  [[nodiscard]] TimeStepEstimate step_estimate() const;
 
   SimulationSettings settings_;
   std::vector<Material> materials_{};

@@ -24,13 +24,18 @@ struct TimeStepInputs {
   double max_wall_sfp = 0.0;   ///< largest SFP of the walls (0 if no walls) [-]
   double max_wall_damp = 0.0;  ///< largest wall DAMP [-]
   double factor = 0.15;        ///< SimulationSettings::time_step_factor [-]
+  /// Largest normal compliance a wall adds to a Hertz contact (WallContactParameters::
+  /// hertz_normal_compliance; 0 = rigid or no walls) [1/Pa]; the Hertz cohesion limit uses it.
+  double max_wall_hertz_compliance = 0.0;
 };
 
 /// Steps of `law` for the given particles; `max_wall_sfp` = largest SFP of the walls (0 if no
-/// walls), `max_wall_damp` = largest wall DAMP. Throws std::runtime_error if there are no particles.
+/// walls), `max_wall_damp` = largest wall DAMP, `max_wall_hertz_compliance` = TimeStepInputs'.
+/// Throws std::runtime_error if there are no particles (or the law refuses the parameters).
 TimeStepEstimate estimate_time_step(ContactLawKind law, const ParticleState& particles,
                                     const std::vector<Material>& materials, const ContactParameters& contact,
-                                    double max_wall_sfp, double max_wall_damp, double factor);
+                                    double max_wall_sfp, double max_wall_damp, double factor,
+                                    double max_wall_hertz_compliance = 0.0);
 
 /// Verlet stability bound of a mode with frequency omega [1/s] and damping ratio zeta (the
 /// damping force uses the half-step velocity): dt < (2/omega)(sqrt(1+zeta^2) - zeta) [s].
