@@ -2,11 +2,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
 
@@ -86,6 +92,36 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
   return 1;
 }
 
+// The one line printed for an error that reached main. Messages of demfit's own checks name the
+// field and the fix; exceptions of the standard library or the JSON library that escaped them
+// ("stod", "filesystem error: ...") are put in words naming the command and, where known, the
+// file. Control and bidirectional characters of any echoed name are escaped (identify::printable).
+std::string error_line(const std::string& command) {
+  std::string message;
+  try {
+    throw;
+  } catch (const std::filesystem::filesystem_error& e) {
+    message = command + ": cannot use " + demfit::identify::quote_path(e.path1()) + " (" + e.code().message() +
+              "); check that the path exists and that you may read and write it";
+  } catch (const nlohmann::json::exception& e) {
+    message = command + ": a JSON value has the wrong type or is missing (" + e.what() +
+              "); check the input files against docs/study_format.md and docs/cases.md";
+  } catch (const std::invalid_argument& e) {
+    message = command + ": a value is not a number (" + e.what() + "); check the numbers given on the command line " +
+              "and in the input files";
+  } catch (const std::out_of_range& e) {
+    message = command + ": a value is out of range (" + e.what() + "); check the numbers given on the command " +
+              "line and in the input files";
+  } catch (const std::bad_alloc&) {
+    message = command + ": out of memory; a count in the input (points, pixels, particles) is too large";
+  } catch (const std::exception& e) { message = e.what(); } catch (...) {
+    message = command + ": unknown error";
+  }
+  message = demfit::identify::printable(message);
+  if (message.size() > 560) message = message.substr(0, 557) + "...";
+  return message;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,10 +146,8 @@ int main(int argc, char** argv) {
   demfit::apps::register_parameters(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return report_parse_error(app, e, argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "demfit: error: " << e.what() << '\n';
+  } catch (const CLI::ParseError& e) { return report_parse_error(app, e, argc, argv); } catch (...) {
+    std::cerr << "demfit: error: " << error_line(named_command(app, argc, argv).path) << '\n';
     return 1;
   }
   return 0;
