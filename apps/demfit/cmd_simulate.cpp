@@ -61,6 +61,10 @@ void run_simulate(const SimulateOptions& o) {
       // Identified parameters act on the measured stage only (the cached fill is shared).
       parameters[name] = parse_number(s.substr(eq + 1), "--set " + name);
     } else {
+      // A value that starts like a number must be one number ("0,1" and "1e999" are errors); words,
+      // true/false and JSON arrays or objects go to the case as they are.
+      const std::string value = eq == std::string::npos ? "" : s.substr(eq + 1);
+      if (!value.empty() && value.find_first_of("0123456789+-.") == 0) parse_number(value, "--set " + name);
       cases::apply_setting(document, s);
     }
   }

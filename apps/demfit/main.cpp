@@ -83,6 +83,16 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
     message += "; the commands are";
     for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
   }
+  // CLI11: "Could not convert: --jobs = 1e3" -> the option, the value and what it takes.
+  const std::string unconverted = "Could not convert: ";
+  if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr && message.rfind(unconverted, 0) == 0) {
+    const std::string rest = message.substr(unconverted.size());
+    const auto equals = rest.find(" = ");
+    if (equals != std::string::npos)
+      message = rest.substr(0, equals) + ": '" + rest.substr(equals + 3) +
+                "' is not a number of the kind this option takes (a whole number for counts, e.g. 2; otherwise a "
+                "decimal number with a point, e.g. 0.5, without a unit)";
+  }
   if (!named.misplaced_option.empty())
     message = "option '" + named.misplaced_option + "' belongs after the command (e.g. '" + named.path + " " +
               named.owner + " " + named.misplaced_option + " ...')";

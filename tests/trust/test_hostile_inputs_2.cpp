@@ -6,6 +6,8 @@
 // and leaves no partial output. No case runs a simulation: every refusal comes before the run.
 #include <catch2/catch.hpp>
 
+#include <linux/fs.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 
 #include <functional>
@@ -205,6 +207,56 @@ TEST_CASE("an output path that leads through a symbolic link is refused") {
   });
 }
 
+// A folder whose entries cannot be removed, for root too: the immutable attribute as root (chmod
+// does not stop root), mode 0555 otherwise. Undone by the destructor. `made` is false when the
+// file system has no immutable attribute.
+struct Unchangeable {
+  fs::path dir;
+  bool made = false;
+  bool immutable = false;
+  explicit Unchangeable(fs::path folder) : dir(std::move(folder)) {
+    if (::geteuid() != 0) {
+      made = ::chmod(dir.c_str(), 0555) == 0;
+      return;
+    }
+    immutable = made = set_immutable(true);
+  }
+  ~Unchangeable() {
+    if (immutable) set_immutable(false);
+    if (made && !immutable) ::chmod(dir.c_str(), 0755);
+  }
+  bool set_immutable(bool on) const {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return false;
+    int flags = 0;
+    bool ok = ::ioctl(fd, FS_IOC_GETFLAGS, &flags) == 0;
+    flags = on ? (flags | FS_IMMUTABLE_FL) : (flags & ~FS_IMMUTABLE_FL);
+    ok = ok && ::ioctl(fd, FS_IOC_SETFLAGS, &flags) == 0;
+    ::close(fd);
+    return ok;
+  }
+};
+
+TEST_CASE("simulate refuses an output folder it could not replace before the simulation starts") {
+  Sandbox s("battery2/unchangeable_out");
+  trust::write_text(s.work / "case.json", kPellet);
+  trust::write_text(s.work / "out" / ".demfit-output", kSimulateMarker);
+  trust::write_text(s.work / "out" / "summary.txt", "an earlier run\n");
+  const auto before_work = trust::snapshot(s.work);
+  const Unchangeable locked(s.work / "out");
+  if (!locked.made) {
+    WARN("this file system cannot make a folder unchangeable; case not run");
+    return;
+  }
+  const trust::Result r = s.run({"simulate", "case.json", "--out", "out"});
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err.rfind("demfit: error: --out: 'out' cannot be changed", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(trust::snapshot(s.work) == before_work);
+  CHECK(trust::leftovers(s.root).empty());
+}
+
 TEST_CASE("simulate refuses an unwritable output place before the simulation starts") {
   check_all({
       {"simulate --out below a read-only file system",
@@ -227,6 +279,22 @@ TEST_CASE("a number is the whole text or an error, and every range is stated") {
        "--set frics"},
       {"--set normk=0.5abc", pellet, {"simulate", "case.json", "--set", "normk=0.5abc", "--out", "out"}, "--set normk"},
       {"--set normk=1e999", pellet, {"simulate", "case.json", "--set", "normk=1e999", "--out", "out"}, "--set normk"},
+      {"--set of a case field with a decimal comma",
+       pellet,
+       {"simulate", "case.json", "--set", "pellet.piston_speed=0,1", "--out", "out"},
+       "--set pellet.piston_speed"},
+      {"--set of a case field beyond double range",
+       pellet,
+       {"simulate", "case.json", "--set", "particle.radius=1e999", "--out", "out"},
+       "--set particle.radius"},
+      {"--jobs 1e3 (not a whole number)",
+       study,
+       {"identify", "study.json", "--jobs", "1e3", "--out", "out"},
+       "--jobs: '1e3' is not a number"},
+      {"--noise 0.5abc",
+       pellet,
+       {"simulate", "case.json", "--noise", "0.5abc", "--out", "out"},
+       "--noise: '0.5abc' is not a number"},
       {"--seed -1", pellet, {"simulate", "case.json", "--seed", "-1", "--out", "out"}, "--seed"},
       {"simulate --out ''", pellet, {"simulate", "case.json", "--out", ""}, "--out"},
       {"identify --out ''", study, {"identify", "study.json", "--out", ""}, "--out"},
