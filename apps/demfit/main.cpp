@@ -96,9 +96,8 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
   if (!named.misplaced_option.empty())
     message = "option '" + named.misplaced_option + "' belongs after the command (e.g. '" + named.path + " " +
               named.owner + " " + named.misplaced_option + " ...')";
-  for (char& c : message)  // an argument may hold a newline or an escape sequence: keep one plain line
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";
+  // An argument may hold a newline or an escape sequence: one plain line, control characters escaped.
+  std::cerr << "demfit: error: " << demfit::identify::printable(message) << "; see '" << named.path << " --help'\n";
   return 1;
 }
 

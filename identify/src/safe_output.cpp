@@ -37,6 +37,16 @@ int open_exclusive(const fs::path& temporary) {
   return fd;
 }
 
+// The code point of a Unicode bidirectional control (U+202A..U+202E, U+2066..U+2069) whose UTF-8
+// form (E2 80 AA..AE, E2 81 A6..A9) starts at text[i], else 0.
+unsigned bidi_control_at(const std::string& text, std::size_t i) {
+  if (i + 2 >= text.size() || static_cast<unsigned char>(text[i]) != 0xE2) return 0;
+  const auto b = static_cast<unsigned char>(text[i + 1]), d = static_cast<unsigned char>(text[i + 2]);
+  if ((b == 0x80 && d >= 0xAA && d <= 0xAE) || (b == 0x81 && d >= 0xA6 && d <= 0xA9))
+    return (b == 0x80 ? 0x2000u : 0x2040u) + (d - 0x80u);
+  return 0;
+}
+
 bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
 }  // namespace
@@ -78,12 +88,15 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
 void check_user_text(const std::string& field, const std::string& text) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x20 || c == 0x7f) {
-      char code[8];
-      std::snprintf(code, sizeof code, "0x%02X", c);
-      throw std::runtime_error(field + ": contains a control character (byte " + code + " at position " +
-                               std::to_string(i) + "); use printable text");
-    }
+    const unsigned bidi = bidi_control_at(text, i);
+    if (c >= 0x20 && c != 0x7f && bidi == 0) continue;
+    char code[24];
+    if (bidi != 0)
+      std::snprintf(code, sizeof code, "U+%04X", bidi);
+    else
+      std::snprintf(code, sizeof code, "byte 0x%02X", c);
+    throw std::runtime_error(field + ": contains a " + (bidi != 0 ? "bidirectional " : "") + "control character (" +
+                             code + " at position " + std::to_string(i) + "); use printable text");
   }
 }
 
@@ -118,16 +131,11 @@ std::string printable(const std::string& text) {
       out += code;
       continue;
     }
-    // UTF-8 E2 80 AA..AE is U+202A..U+202E, E2 81 A6..A9 is U+2066..U+2069 (bidirectional controls).
-    if (c == 0xE2 && i + 2 < text.size()) {
-      const auto b = static_cast<unsigned char>(text[i + 1]), d = static_cast<unsigned char>(text[i + 2]);
-      const bool bidi = (b == 0x80 && d >= 0xAA && d <= 0xAE) || (b == 0x81 && d >= 0xA6 && d <= 0xA9);
-      if (bidi) {
-        std::snprintf(code, sizeof code, "\\u%04X", b == 0x80 ? 0x2000 + (d - 0x80) : 0x2040 + (d - 0x80));
-        out += code;
-        i += 2;
-        continue;
-      }
+    if (const unsigned bidi = bidi_control_at(text, i)) {
+      std::snprintf(code, sizeof code, "\\u%04X", bidi);
+      out += code;
+      i += 2;
+      continue;
     }
     out += static_cast<char>(c);
   }

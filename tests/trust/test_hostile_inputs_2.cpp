@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sqlite3.h>
+
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/store_lock.hpp"
 #include "trust_harness.hpp"
@@ -183,6 +185,47 @@ TEST_CASE("export writes only a new regular file, or standard output") {
        "not a regular file"},
       {"export --lsdyna ''", store, {"export", "x.db", "--lsdyna", ""}, "--lsdyna"},
   });
+}
+
+// A finished analytic study in work/out whose store claims a DEM case, so that export writes it.
+void exportable_study(const Sandbox& s) {
+  json study = analytic_study();
+  study["stopping"]["max_iterations"] = 2;
+  write_study(s, study);
+  const auto r = s.run({"identify", "study.json", "--out", "out", "--no-plots"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open((s.work / "out" / "study.db").c_str(), &db) == SQLITE_OK);
+  const char* claim =
+      "UPDATE meta SET value = json_set(value, '$.model.case', 'pellet_compression') WHERE key = 'study_json'";
+  REQUIRE(sqlite3_exec(db, claim, nullptr, nullptr, nullptr) == SQLITE_OK);
+  sqlite3_close(db);
+}
+
+TEST_CASE("export --lsdyna - writes the cards to standard output and no file") {
+  Sandbox s("battery2/export_stdout");
+  exportable_study(s);
+  const auto before = trust::snapshot(s.work);
+  const auto r = s.run({"export", "out/study.db", "--lsdyna", "-"});
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("*CONTROL_DISCRETE_ELEMENT") != std::string::npos);
+  CHECK(trust::snapshot(s.work) == before);
+}
+
+TEST_CASE("export --force replaces an existing regular keyword file, and only with --force") {
+  Sandbox s("battery2/export_force");
+  exportable_study(s);
+  trust::write_text(s.work / "old.k", "an earlier export\n");
+  auto r = s.run({"export", "out/study.db", "--lsdyna", "old.k"});
+  CHECK(r.status == 1);
+  CHECK(trust::read_text(s.work / "old.k") == "an earlier export\n");
+  r = s.run({"export", "out/study.db", "--lsdyna", "old.k", "--force"});
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(trust::read_text(s.work / "old.k").find("*CONTROL_DISCRETE_ELEMENT") != std::string::npos);
+  CHECK(fs::is_regular_file(fs::symlink_status(s.work / "old.k")));
 }
 
 TEST_CASE("an output path that leads through a symbolic link is refused") {
@@ -374,6 +417,24 @@ TEST_CASE("names echoed in messages have control and bidirectional characters es
   CHECK(r.err.find("x\\u202Evsc.txt") != std::string::npos);
   CHECK(r.err.find(rlo) == std::string::npos);
   CHECK(!fs::exists(s.work / "out"));
+}
+
+TEST_CASE("a bidirectional control character in a name that reaches a file or a report is refused") {
+  const std::string rlo = "\xE2\x80\xAE";
+  check_all({
+      {"U+202E in a target name",
+       study_with([&](json& j) { j["targets"][0]["name"] = "p" + rlo + "vsc.exe"; }),
+       {"identify", "study.json", "--out", "out", "--no-plots"},
+       "targets[0].name: contains a bidirectional"},
+      {"U+2066 in the study name",
+       study_with([](json& j) { j["name"] = "s\xE2\x81\xA6x"; }),
+       {"identify", "study.json", "--out", "out", "--no-plots"},
+       "U+2066"},
+      {"U+202E in --out",
+       study_with([](json&) {}),
+       {"identify", "study.json", "--out", "o" + rlo + "x", "--no-plots"},
+       "--out: contains a bidirectional"},
+  });
 }
 
 TEST_CASE("errors of the file system reach the user as one line naming the path, never a raw library text") {

@@ -57,7 +57,9 @@ void check_user_file(const std::filesystem::path& path, bool overwrite, const st
 // bytes are ever read. `what` names the file in errors ("curve file 'x.csv'").
 std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes, const std::string& what);
 
-// Throws "<field>: contains a control character ..." when text holds a byte < 0x20 or 0x7f.
+// Throws "<field>: contains a control character ..." when text holds a byte < 0x20, 0x7f or a
+// Unicode bidirectional control (U+202A..U+202E, U+2066..U+2069): names that reach files, plots
+// and report headers are plain text that reads as it is.
 void check_user_text(const std::string& field, const std::string& text);
 
 // `text` as it may be echoed in a message or a report: C0 control characters, DEL and the Unicode
