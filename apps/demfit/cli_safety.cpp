@@ -85,6 +85,20 @@ std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
   return inputs;
 }
 
+CreatedParents::CreatedParents(const std::filesystem::path& target) {
+  std::error_code error;
+  for (std::filesystem::path p = target.parent_path(); !p.empty() && p != p.root_path(); p = p.parent_path()) {
+    if (std::filesystem::exists(std::filesystem::symlink_status(p, error))) break;
+    missing_.push_back(p);
+  }
+}
+
+CreatedParents::~CreatedParents() {
+  if (keep_) return;
+  std::error_code error;
+  for (const auto& p : missing_) std::filesystem::remove(p, error);  // removes only an empty folder
+}
+
 void remove_stale_staging(const std::filesystem::path& target) {
   std::filesystem::path t = target.filename().empty() ? target.parent_path() : target;
   const std::filesystem::path parent = t.parent_path().empty() ? std::filesystem::path(".") : t.parent_path();

@@ -28,6 +28,21 @@ CLI::Validator non_empty_path();
 // The study file, its target CSV files and its case file (when it is a file).
 std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
                                                 const std::filesystem::path& study_file);
+// The folders above `target` that do not exist yet. Unless keep() is called, the destructor removes
+// those that are still empty, so a failed run leaves no empty "results/" behind.
+class CreatedParents {
+ public:
+  explicit CreatedParents(const std::filesystem::path& target);
+  ~CreatedParents();
+  CreatedParents(const CreatedParents&) = delete;
+  CreatedParents& operator=(const CreatedParents&) = delete;
+  void keep() { keep_ = true; }
+
+ private:
+  std::vector<std::filesystem::path> missing_;  // deepest first
+  bool keep_ = false;
+};
+
 // Removes "<parent>/.<name>.partial-<pid>" staging folders of processes that no longer run.
 void remove_stale_staging(const std::filesystem::path& target);
 

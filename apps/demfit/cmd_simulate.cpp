@@ -78,14 +78,15 @@ void run_simulate(const SimulateOptions& o) {
   const std::filesystem::path out = o.out.empty()
                                         ? std::filesystem::path("results") / std::filesystem::path(o.case_file).stem()
                                         : std::filesystem::path(o.out);
-  // The output folder replaces an existing one only if demfit made it : never the
-  // working folder, a parent of it, a folder holding the case file, a plain file or a user folder.
+  // The output folder replaces an existing one only if simulate made it: never the working folder,
+  // a parent of it, a folder holding the case file, a plain file, a user folder or another command's.
   identify::OutputRequest request{identify::OutputKind::simulate, {o.case_file}};
   identify::check_replaceable_folder(out, request);
   remove_stale_staging(out);
   const int threads = capped_threads(o.threads, "--threads");
   // The staging folder, marked, before the run: a folder that cannot be written fails now, not
   // after the simulation.
+  CreatedParents parents(out);
   cases::StagedDirectory staged(out);
   try {
     identify::mark_output_folder(staged.path(), identify::OutputKind::simulate);
@@ -127,6 +128,7 @@ void run_simulate(const SimulateOptions& o) {
   cases::write_case_result(staged.path(), result, resolved, evaluated, {o.noise, seed});
   identify::check_replaceable_folder(out, request);  // still replaceable after the run (another demfit?)
   staged.commit();
+  parents.keep();
   std::cout << "demfit simulate: " << identify::printable(o.case_file) << " -> " << identify::printable(out.string())
             << '\n'
             << cases::format_summary(result);

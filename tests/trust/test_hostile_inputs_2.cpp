@@ -309,6 +309,15 @@ TEST_CASE("simulate refuses an unwritable output place before the simulation sta
   });
 }
 
+TEST_CASE("a simulation that fails leaves neither its staging folder nor the parents made for it") {
+  check_all({
+      {"pellets too large for the die, --out in new folders",
+       file("case.json", R"({"case": "pellet_compression", "particle": {"radius": 0.05}})"),
+       {"simulate", "case.json", "--out", "new/deeper/out"},
+       "fewer or smaller particles"},
+  });
+}
+
 TEST_CASE("a number is the whole text or an error, and every range is stated") {
   const auto pellet = file("case.json", kPellet);
   const auto study = study_with([](json&) {});
