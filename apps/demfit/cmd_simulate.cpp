@@ -50,15 +50,14 @@ void check_snapshot_times(const cases::CaseSpec& spec) {
   }
 }
 
-void run_simulate(const SimulateOptions& o) {
-  // Parse everything before any output exists (bad input leaves nothing behind).
-  nlohmann::json document = cases::read_case_json(o.case_file);
-  identify::ParameterSet parameters;
-  for (const std::string& s : o.settings) {
+// The --set settings: identified parameters into `parameters` (they act on the measured stage
+// only; the cached fill is shared), any other dotted field into the case document.
+void apply_settings(const std::vector<std::string>& settings, nlohmann::json& document,
+                    identify::ParameterSet& parameters) {
+  for (const std::string& s : settings) {
     const auto eq = s.find('=');
     const std::string name = s.substr(0, eq == std::string::npos ? 0 : eq);
     if (eq != std::string::npos && !cases::parameter_path(name).empty()) {
-      // Identified parameters act on the measured stage only (the cached fill is shared).
       parameters[name] = parse_number(s.substr(eq + 1), "--set " + name);
     } else {
       // A value that starts like a number must be one number ("0,1" and "1e999" are errors); words,
@@ -68,6 +67,28 @@ void run_simulate(const SimulateOptions& o) {
       cases::apply_setting(document, s);
     }
   }
+}
+
+// Every identified parameter used in the measured stage, not only the --set ones.
+identify::ParameterSet evaluated_parameters(const cases::CaseSpec& spec, identify::ParameterSet evaluated) {
+  const nlohmann::json base = cases::to_json(spec);
+  for (const std::string& name : cases::parameter_names()) {
+    if (evaluated.count(name)) continue;
+    const std::string path = cases::parameter_path(name);
+    const auto dot = path.find('.');
+    // Parameters of the other contact law or fill form are absent from the resolved case.
+    const std::string section = path.substr(0, dot), key = path.substr(dot + 1);
+    if (!base.contains(section) || !base[section].contains(key) || !base[section][key].is_number()) continue;
+    evaluated[name] = base[section][key].get<double>();
+  }
+  return evaluated;
+}
+
+void run_simulate(const SimulateOptions& o) {
+  // Parse everything before any output exists (bad input leaves nothing behind).
+  nlohmann::json document = cases::read_case_json(o.case_file);
+  identify::ParameterSet parameters;
+  apply_settings(o.settings, document, parameters);
   if (!o.snapshots.empty()) document["output"]["snapshot_times"] = o.snapshots;
   const cases::CaseSpec spec = cases::parse_case(document, std::filesystem::path(o.case_file).parent_path());
   check_snapshot_times(spec);
@@ -104,20 +125,7 @@ void run_simulate(const SimulateOptions& o) {
   }
   const cases::CaseResult result = cases::run_case(spec, parameters, run_options);
   progress.finish();
-  identify::ParameterSet evaluated = parameters;
-  {
-    // Record every identified parameter used in the measured stage, not only the --set ones.
-    nlohmann::json base = cases::to_json(spec);
-    for (const std::string& name : cases::parameter_names()) {
-      if (evaluated.count(name)) continue;
-      const std::string path = cases::parameter_path(name);
-      const auto dot = path.find('.');
-      // Parameters of the other contact law or fill form are absent from the resolved case.
-      const std::string section = path.substr(0, dot), key = path.substr(dot + 1);
-      if (!base.contains(section) || !base[section].contains(key) || !base[section][key].is_number()) continue;
-      evaluated[name] = base[section][key].get<double>();
-    }
-  }
+  const identify::ParameterSet evaluated = evaluated_parameters(spec, parameters);
   nlohmann::json resolved = cases::to_json(spec);
   resolved["description"] =
       spec.description +
