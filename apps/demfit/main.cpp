@@ -110,8 +110,17 @@ std::string error_line(const std::string& command) {
   try {
     throw;
   } catch (const std::filesystem::filesystem_error& e) {
-    message = command + ": cannot use " + demfit::identify::quote_path(e.path1()) + " (" + e.code().message() +
-              "); check that the path exists and that you may read and write it";
+    // what() is "filesystem error: <operation>: <reason> [path1] [path2]": the operation and the
+    // reason, the paths escaped.
+    std::string operation = e.what();
+    const std::string prefix = "filesystem error: ";
+    if (operation.rfind(prefix, 0) == 0) operation.erase(0, prefix.size());
+    operation = operation.substr(0, operation.find(" ["));
+    message = command + ": " + operation;
+    if (!e.path1().empty()) message += " " + demfit::identify::quote_path(e.path1());
+    message += e.path1().empty() && e.path2().empty()
+                   ? "; check that the working folder still exists"
+                   : "; check that the path exists and that you may read and write it";
   } catch (const nlohmann::json::exception& e) {
     message = command + ": a JSON value has the wrong type or is missing (" + e.what() +
               "); check the input files against docs/study_format.md and docs/cases.md";

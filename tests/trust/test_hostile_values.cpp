@@ -153,6 +153,33 @@ TEST_CASE("errors of the file system reach the user as one line naming the path,
   });
 }
 
+TEST_CASE("a working folder removed under demfit gives one line, not a raw file-system exception") {
+  Sandbox s("battery2/removed_cwd");
+  write_study(s, analytic_study());
+  const fs::path gone = s.work / "gone";
+  fs::create_directory(gone);
+  const fs::path err = s.root / "stderr.txt";
+  const pid_t child = fork();
+  if (child == 0) {
+    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(e, 2);
+    if (chdir(gone.c_str()) != 0 || rmdir(gone.c_str()) != 0) _exit(126);
+    const std::string study = (s.work / "study.json").string();
+    execl(DEMFIT_EXE, DEMFIT_EXE, "identify", study.c_str(), "--out", "out", "--no-plots", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  const std::string text = trust::read_text(err);
+  INFO(text);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK(text.rfind("demfit: error: demfit identify: ", 0) == 0);
+  CHECK(text.find("filesystem error") == std::string::npos);
+  CHECK(text.find("working folder") != std::string::npos);
+  CHECK(std::count(text.begin(), text.end(), '\n') == 1);
+}
+
 TEST_CASE("a shortened file name keeps its extension and stays unique") {
   const std::string long_name = std::string(120, 'p');
   const std::string csv = id::safe_slug("target_" + long_name + ".csv");
