@@ -1,9 +1,12 @@
 #include "cli_safety.hpp"
 
+#include "demfit/identify/safe_output.hpp"
+
 #include <sched.h>
 #include <signal.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -26,6 +29,51 @@ void require_finite(double value, const std::string& option) {
   if (!std::isfinite(value)) throw std::runtime_error(option + ": must be a finite number");
 }
 
+namespace {
+std::string excerpt(const std::string& text) {
+  return "'" + identify::printable(text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
+}
+}  // namespace
+
+double parse_number(const std::string& text, const std::string& field) {
+  double value = 0.0;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (first != last && *first == '+') ++first;  // from_chars takes no leading '+'
+  const auto result = std::from_chars(first, last, value);
+  if (text.empty() || result.ec == std::errc::invalid_argument || result.ptr != last)
+    throw std::runtime_error(field + ": " + excerpt(text) +
+                             " is not a number; give one number with a decimal point, e.g. 0.3 (no comma, no unit)");
+  if (result.ec == std::errc::result_out_of_range || !std::isfinite(value))
+    throw std::runtime_error(field + ": " + excerpt(text) + " is not a finite number in double range; give e.g. 0.3");
+  return value;
+}
+
+unsigned long long parse_count(const std::string& text, const std::string& field, unsigned long long max) {
+  unsigned long long value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec == std::errc::invalid_argument || result.ptr != text.data() + text.size())
+    throw std::runtime_error(field + ": " + excerpt(text) + " is not a whole number >= 0; give e.g. 1");
+  if (result.ec == std::errc::result_out_of_range || value > max)
+    throw std::runtime_error(field + ": " + excerpt(text) + " is above the limit of " + std::to_string(max));
+  return value;
+}
+
+void require_at_most(long long value, long long max, const std::string& option, const std::string& why) {
+  if (value > max)
+    throw std::runtime_error(option + ": " + std::to_string(value) + " is above the limit of " + std::to_string(max) +
+                             "; " + why);
+}
+
+CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& value) {
+        return value.empty() ? std::string("empty path; give a name (an empty value does not mean the default)")
+                             : std::string();
+      },
+      "PATH");
+}
+
 std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
                                                 const std::filesystem::path& study_file) {
   std::vector<std::filesystem::path> inputs{study_file};
@@ -35,6 +83,20 @@ std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
   const std::filesystem::path case_file = spec.base_dir / spec.model_reference;
   if (std::filesystem::is_regular_file(case_file, error)) inputs.push_back(case_file);
   return inputs;
+}
+
+CreatedParents::CreatedParents(const std::filesystem::path& target) {
+  std::error_code error;
+  for (std::filesystem::path p = target.parent_path(); !p.empty() && p != p.root_path(); p = p.parent_path()) {
+    if (std::filesystem::exists(std::filesystem::symlink_status(p, error))) break;
+    missing_.push_back(p);
+  }
+}
+
+CreatedParents::~CreatedParents() {
+  if (keep_) return;
+  std::error_code error;
+  for (const auto& p : missing_) std::filesystem::remove(p, error);  // removes only an empty folder
 }
 
 void remove_stale_staging(const std::filesystem::path& target) {

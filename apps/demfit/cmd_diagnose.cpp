@@ -1,5 +1,5 @@
 // demfit diagnose: is the misfit of an identified model noise, or a missing physical effect?
-// (issue #6; workflow in diagnose/include/demfit/diagnose/workflow.hpp, docs/diagnose.md)
+// (workflow in diagnose/include/demfit/diagnose/workflow.hpp, docs/diagnose.md)
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -166,6 +166,10 @@ bool uses_dem(const identify::StudySpec& spec) {
   return false;
 }
 
+// Documented upper limits: each replica or re-fit costs whole model runs.
+constexpr int kMaxScatterReplicas = 64;
+constexpr int kMaxRefitBest = 64;
+
 void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
   require_finite(o.noise, "--noise");
@@ -177,12 +181,16 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.refit_best < 1) throw std::runtime_error("--refit-best: must be >= 1");
   if (o.scatter_replicas < -1)
     throw std::runtime_error("--scatter-replicas: must be >= 0 (0 = data noise alone; e.g. 4 replica runs)");
+  require_at_most(o.scatter_replicas, kMaxScatterReplicas, "--scatter-replicas",
+                  "a few replica runs measure the scatter (default 4 for DEM studies)");
+  require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
   const identify::StudySpec spec = with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
                     : std::filesystem::path(o.out);
-  // Output folder rules before any work (issue #13); created, marked, when the diagnosis is written.
-  identify::check_output_folder(out, study_inputs(spec, o.study_file), "--out");
+  // Output folder rules before any work; created, marked, when the diagnosis is written.
+  const identify::OutputRequest request{identify::OutputKind::diagnose, study_inputs(spec, o.study_file)};
+  identify::check_output_folder(out, request);
   std::vector<diagnose::EffectCandidate> candidates;
   const auto model = model_and_candidates(spec, candidates);
   const bool dem = uses_dem(spec);
@@ -196,17 +204,17 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
-  // Curve names, units and x-overlap checked at the initial point, as for identify (issue #13); a
+  // Curve names, units and x-overlap checked at the initial point, as for identify; a
   // study's experiments run side by side over --jobs.
   identify::ThreadPoolEvaluator preflight_pool(*model, o.jobs, 1, static_cast<unsigned long>(spec.seed));
   const identify::StudySpec checked = identify::preflight_study(spec, *model, preflight_pool);
   const diagnose::Diagnosis d = diagnose::run_diagnosis(checked, *model, candidates, options);
-  identify::prepare_output_folder(out, study_inputs(spec, o.study_file), "--out");
+  identify::prepare_output_folder(out, request);
   const std::string warnings = diagnose::write_diagnosis(d, out, !o.no_plots);
   if (!warnings.empty()) std::fprintf(stderr, "demfit: %s", warnings.c_str());
   std::printf("verdict: %s%s\n%s\nresults: %s\n", diagnose::verdict_text(d.verdict),
               d.chosen >= 0 ? (" — " + d.refits[d.chosen].effect).c_str() : "", d.summary.c_str(),
-              (out / "report.md").string().c_str());
+              identify::printable((out / "report.md").string()).c_str());
 }
 
 }  // namespace
@@ -240,7 +248,7 @@ void register_diagnose(CLI::App& app) {
   cmd->add_option("--noise", o->noise,
                   "Noise standard deviation of the target y values, in the targets' y units (default: estimated "
                   "from successive differences of each target)");
-  cmd->add_option("--out", o->out, "Output folder (default: <study file stem>_diagnosis)");
+  cmd->add_option("--out", o->out, "Output folder (default: <study file stem>_diagnosis)")->check(non_empty_path());
   cmd->add_option("--jobs", o->jobs, "Model evaluations at once (default 1); results do not depend on it");
   cmd->add_option("--alpha", o->alpha,
                   "Family-wise level of the tests that call the base residual structural (default 0.01)");
@@ -252,7 +260,7 @@ void register_diagnose(CLI::App& app) {
                   "Runs of the base optimum moved by round-off-sized steps that measure the model's own trajectory "
                   "scatter (y units, per target); where it exceeds 1/4 of the data noise it joins the noise model as "
                   "correlated noise and residuals are whitened (default 4 for DEM studies, 0 for the analytic model; "
-                  "0 = data noise alone)");
+                  "0 = data noise alone; at most 64)");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

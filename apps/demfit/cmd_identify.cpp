@@ -74,7 +74,7 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
       std::printf("  warning: '%s' is not identifiable from these targets (its interval spans most of its bounds)\n",
                   v.name.c_str());
   }
-  std::printf("results: %s\n", (out / "report.md").string().c_str());
+  std::printf("results: %s\n", identify::printable((out / "report.md").string()).c_str());
 }
 
 // What the study simulates, resolved: for a DEM case the case with every default filled in (its
@@ -94,6 +94,21 @@ nlohmann::json resolved_model(const identify::StudySpec& spec) {
   return experiments;
 }
 
+// The output folder rules before any work, then the study's lock when the folder exists (a second
+// demfit on the same study fails at once). An existing store without --resume is refused here too,
+// before the initial-point run, with the store's own words.
+void claim_study_folder(const identify::RunOptions& options, const identify::OutputRequest& request,
+                        std::optional<identify::StoreLock>& lock) {
+  identify::check_output_folder(options.output_dir, request);
+  if (!std::filesystem::is_directory(options.output_dir)) return;
+  lock.emplace(options.output_dir);
+  const std::filesystem::path db = options.output_dir / "study.db";
+  std::error_code error;
+  if (!options.resume && std::filesystem::exists(std::filesystem::symlink_status(db, error)))
+    throw std::runtime_error("study store " + identify::quote_path(db) +
+                             " already exists; pass --resume to continue it, or choose another --out folder");
+}
+
 #if defined(DEMFIT_HAVE_SCALEOUT)
 // `mpirun -np K demfit identify STUDY.json --mpi`: every rank reads the study and builds the model
 // (a shared file system is assumed); rank 0 runs the loop and owns the store, the others evaluate.
@@ -104,15 +119,15 @@ void run_identify_rank0(const IdentifyOptions& o, identify::RunOptions options, 
   scaleout::MpiEvaluatorOptions mpi_options;
   mpi_options.run_timeout_seconds = o.run_timeout;
   scaleout::MpiEvaluator evaluator(session, mpi_options);
-  // As without MPI (issue #13): every configuration error before anything is created, the
+  // As without MPI: every configuration error before anything is created, the
   // initial point evaluated on a worker rank (curve names, units, overlap).
-  const auto inputs = study_inputs(parsed, o.study_file);
-  identify::check_output_folder(options.output_dir, inputs, "--out");
+  identify::OutputRequest request{identify::OutputKind::identify, study_inputs(parsed, o.study_file)};
   std::optional<identify::StoreLock> lock;
-  if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
+  claim_study_folder(options, request, lock);
   options.resolved_model = resolved_model(parsed);
   const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator, &options.initial_run);
-  identify::prepare_output_folder(options.output_dir, inputs, "--out");
+  request.lock_held = lock.has_value();
+  identify::prepare_output_folder(options.output_dir, request);
   if (!lock) lock.emplace(options.output_dir);
   options.evaluator = &evaluator;
   std::fprintf(stderr, "demfit: MPI: rank 0 runs the loop, %d worker rank(s) evaluate\n", session.size() - 1);
@@ -135,7 +150,7 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
     else
       run_identify_rank0(o, options, parsed, *model, session);
   } catch (const std::exception& e) {
-    if (session.rank() == 0) std::cerr << "demfit: error: " << e.what() << std::endl;
+    if (session.rank() == 0) std::cerr << "demfit: error: " << identify::printable(e.what()) << std::endl;
     status = 1;
   }
   // A normal finalisation, then the status: Open MPI 4.1's mpirun --enable-recovery reports an
@@ -146,10 +161,10 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
 }
 #endif
 
-// The report's warnings (issue #13) on stderr too, where a script's user sees them.
+// The report's warnings on stderr too, where a script's user sees them.
 void print_warnings(const std::filesystem::path& db) {
   for (const auto& w : identify::study_diagnostics(identify::StudyStore::open_existing(db)).warnings)
-    std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
+    std::fprintf(stderr, "demfit: warning: %s\n", identify::printable(w).c_str());
 }
 
 void run_identify(const IdentifyOptions& o) {
@@ -175,13 +190,12 @@ void run_identify(const IdentifyOptions& o) {
         "and rebuild (scripts/build)");
 #endif
   }
-  // Every configuration error before anything is created (issue #13): the study, the output
+  // Every configuration error before anything is created: the study, the output
   // folder rules, the model, then one evaluation at the initial point (curve names, units, overlap).
   const identify::StudySpec parsed = identify::load_study_file(o.study_file);
-  const auto inputs = study_inputs(parsed, o.study_file);
-  identify::check_output_folder(options.output_dir, inputs, "--out");
+  identify::OutputRequest request{identify::OutputKind::identify, study_inputs(parsed, o.study_file)};
   std::optional<identify::StoreLock> lock;
-  if (std::filesystem::is_directory(options.output_dir)) lock.emplace(options.output_dir);
+  claim_study_folder(options, request, lock);
   const auto model = make_model(parsed);
   options.resolved_model = resolved_model(parsed);
   // One pool for the initial-point check and the loop (as the MPI path shares its evaluator): the
@@ -189,7 +203,8 @@ void run_identify(const IdentifyOptions& o) {
   identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
                                      static_cast<unsigned long>(parsed.seed));
   const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
-  identify::prepare_output_folder(options.output_dir, inputs, "--out");
+  request.lock_held = lock.has_value();
+  identify::prepare_output_folder(options.output_dir, request);
   if (!lock) lock.emplace(options.output_dir);
   options.evaluator = &pool;
   const auto result = identify::run_study(spec, *model, options);
@@ -198,7 +213,7 @@ void run_identify(const IdentifyOptions& o) {
 }
 
 // The comment lines of an export: the 95 % intervals and identifiability of the identified
-// values, and the material context that NORMK and SHEARK are relative to (issue #13).
+// values, and the material context that NORMK and SHEARK are relative to.
 std::vector<std::string> export_comments(const identify::StudyStore& store, const nlohmann::json& study,
                                          const std::filesystem::path& db) {
   std::vector<std::string> lines;
@@ -239,12 +254,17 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
   return lines;
 }
 
-void run_export(const std::string& db, const std::string& keyword_file) {
+void run_export(const std::string& db, const std::string& keyword_file, bool force) {
   identify::check_user_text("--lsdyna", keyword_file);
+  if (keyword_file.empty())
+    throw std::runtime_error("--lsdyna: empty file name; give a new .k file, or - for standard output");
+  // Refused before the store is read: an existing file without --force, a device, a link, a folder.
   std::error_code error;
   if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
       std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
-    throw std::runtime_error("--lsdyna: '" + keyword_file + "' is the study store itself; give a new .k file name");
+    throw std::runtime_error("--lsdyna: " + identify::quote_path(keyword_file) +
+                             " is the study store itself; give a new .k file name");
+  if (keyword_file != "-") identify::check_user_file(keyword_file, force, "--lsdyna");
   const auto store = identify::StudyStore::open_existing(db);
   const nlohmann::json study = store.study_json();
   const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
@@ -270,9 +290,15 @@ void run_export(const std::string& db, const std::string& keyword_file) {
                             std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
                             objective;
   // The effects without an LS-DYNA field, with their off values: the parameter table.
-  identify::write_lsdyna_keywords(keyword_file, best->parameters, cases::parameter_descriptors(), title,
-                                  export_comments(store, study, db));
-  std::printf("wrote %s\n", keyword_file.c_str());
+  const std::string cards = identify::lsdyna_keywords(best->parameters, cases::parameter_descriptors(), title,
+                                                      export_comments(store, study, db));
+  if (keyword_file == "-") {  // standard output
+    std::fwrite(cards.data(), 1, cards.size(), stdout);
+    if (std::fflush(stdout) != 0) throw std::runtime_error("--lsdyna -: writing to standard output failed");
+    return;
+  }
+  identify::write_user_file(keyword_file, cards, force, "--lsdyna");
+  std::printf("wrote %s\n", identify::printable(keyword_file).c_str());
 }
 
 }  // namespace
@@ -284,7 +310,11 @@ void register_identify(CLI::App& app) {
       "Identify model parameters from measured curves (study JSON, format in docs/study_format.md). "
       "Writes study.db (SQLite store), best_parameters.json, histories (CSV), plots (PNG) and report.md.");
   identify->add_option("study", options->study_file, "Study file (JSON)")->required()->check(CLI::ExistingFile);
-  identify->add_option("--out", options->out, "Output folder (default: <study name>_results in the current folder)");
+  identify
+      ->add_option("--out", options->out,
+                   "Output folder (default: <study file stem>_results in the current folder); an existing one "
+                   "only if identify made it (marker .demfit-output naming identify) or it is empty")
+      ->check(non_empty_path());
   identify->add_option("--jobs", options->jobs,
                        "Simulations evaluated at once (default 1). Results do not depend on it.");
   identify->add_option("--threads-per-job", options->threads_per_job,
@@ -306,29 +336,42 @@ void register_identify(CLI::App& app) {
   auto* report =
       app.add_subcommand("report", "Rebuild the result files and report.md of a study from its study.db alone");
   report->add_option("store", *report_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
-  report->add_option("--out", *report_out, "Output folder (default: the store's folder)");
+  report
+      ->add_option("--out", *report_out,
+                   "Output folder (default: the store's folder); never a folder holding another study's store or "
+                   "results, or another command's output")
+      ->check(non_empty_path());
   report->add_flag("--no-plots", *report_no_plots, "Do not call gnuplot");
   report->callback([report_db, report_out, report_no_plots] {
-    const auto store = identify::StudyStore::open_existing(*report_db);
     const std::filesystem::path out =
         report_out->empty() ? std::filesystem::absolute(*report_db).parent_path() : std::filesystem::path(*report_out);
-    identify::prepare_output_folder(out, {*report_db}, "--out");
+    // The folder may hold this study's store or report only, never another study's results.
+    identify::OutputRequest request{identify::OutputKind::report, {*report_db}};
+    request.study_store = *report_db;
+    identify::check_output_folder(out, request);
+    const auto store = identify::StudyStore::open_existing(*report_db);
+    identify::prepare_output_folder(out, request);
     const auto summary = identify::write_report(store, out, !*report_no_plots);
     if (!summary.plot_warning.empty()) std::fprintf(stderr, "demfit: warning: %s\n", summary.plot_warning.c_str());
     for (const auto& w : identify::study_diagnostics(store).warnings)
-      std::fprintf(stderr, "demfit: warning: %s\n", w.c_str());
-    std::printf("%d files written to %s\n", summary.files_written, out.string().c_str());
+      std::fprintf(stderr, "demfit: warning: %s\n", identify::printable(w).c_str());
+    std::printf("%d files written to %s\n", summary.files_written, identify::printable(out.string()).c_str());
   });
 
   auto export_db = std::make_shared<std::string>();
   auto export_k = std::make_shared<std::string>();
+  auto export_force = std::make_shared<bool>(false);
   auto* exporter = app.add_subcommand(
       "export",
       "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
       "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
   exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
-  exporter->add_option("--lsdyna", *export_k, "Keyword file to write (e.g. out.k)")->required();
-  exporter->callback([export_db, export_k] { run_export(*export_db, *export_k); });
+  exporter
+      ->add_option("--lsdyna", *export_k,
+                   "Keyword file to write (e.g. out.k), a new regular file; - writes to standard output")
+      ->required();
+  exporter->add_flag("--force", *export_force, "Replace an existing keyword file (only a regular file is replaced)");
+  exporter->callback([export_db, export_k, export_force] { run_export(*export_db, *export_k, *export_force); });
 }
 
 }  // namespace demfit::apps

@@ -58,8 +58,8 @@ cases::ReproduceOptions options_of(const ReproduceArgs& a) {
   // Progress of single long simulations (drum reference runs); studies print their own lines.
   static cases::ProgressPrinter printer(10.0);
   o.progress = printer.callback();
-  // Never the working folder, a parent of it or a user's folder; created and marked (issue #13).
-  identify::prepare_output_folder(o.out_dir, {}, "--out");
+  // Never the working folder, a parent of it or a user's folder; created and marked.
+  identify::prepare_output_folder(o.out_dir, {identify::OutputKind::reproduce, {}});
   return o;
 }
 
@@ -90,7 +90,9 @@ void run_all(const ReproduceArgs& a) {
     std::string text;
     try {
       text = step(o);
-    } catch (const std::exception& e) { text = std::string("**") + name + " failed:** " + e.what() + "\n"; }
+    } catch (const std::exception& e) {
+      text = std::string("**") + name + " failed:** " + identify::printable(e.what()) + "\n";
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cout << text << '\n';
     char timing[96];
@@ -123,7 +125,7 @@ void register_reproduce(CLI::App& app) {
                                  "and drum targets are cached in $DEMFIT_CACHE_DIR (default ~/.cache/demfit).");
   cmd->require_subcommand(1);
   auto add_common = [args](CLI::App* sub) {
-    sub->add_option("--out", args->out, "results folder (default results/reproduce)");
+    sub->add_option("--out", args->out, "results folder (default results/reproduce)")->check(non_empty_path());
     sub->add_option("--data", args->data, "folder of the shipped data (default: ./data or the source tree's data/)");
     sub->add_option("--jobs", args->jobs, "simulations run at once (default 2)");
     sub->add_option("--threads", args->threads, "OpenMP threads per simulation (default 1)");

@@ -2,11 +2,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
+#include "demfit/identify/safe_output.hpp"
 #include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
 
@@ -77,13 +83,61 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& error, int ar
     message += "; the commands are";
     for (const CLI::App* sub : commands) message += (sub == commands.front() ? " " : ", ") + sub->get_name();
   }
+  // CLI11: "Could not convert: --jobs = 1e3" -> the option, the value and what it takes.
+  const std::string unconverted = "Could not convert: ";
+  if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr && message.rfind(unconverted, 0) == 0) {
+    const std::string rest = message.substr(unconverted.size());
+    const auto equals = rest.find(" = ");
+    if (equals != std::string::npos)
+      message = rest.substr(0, equals) + ": '" + rest.substr(equals + 3) +
+                "' is not a number of the kind this option takes (a whole number for counts, e.g. 2; otherwise a "
+                "decimal number with a point, e.g. 0.5, without a unit)";
+  }
   if (!named.misplaced_option.empty())
     message = "option '" + named.misplaced_option + "' belongs after the command (e.g. '" + named.path + " " +
               named.owner + " " + named.misplaced_option + " ...')";
-  for (char& c : message)  // an argument may hold a newline or an escape sequence: keep one plain line
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  std::cerr << "demfit: error: " << message << "; see '" << named.path << " --help'\n";
+  // An argument may hold a newline or an escape sequence: one plain line, control characters escaped.
+  std::cerr << "demfit: error: " << demfit::identify::printable(message) << "; see '" << named.path << " --help'\n";
   return 1;
+}
+
+// The one line printed for an error that reached main. Messages of demfit's own checks name the
+// field and the fix; exceptions of the standard library or the JSON library that escaped them
+// ("stod", "filesystem error: ...") are put in words naming the command and, where known, the
+// file. Control and bidirectional characters of any echoed name are escaped (identify::printable).
+std::string error_line(const std::string& command) {
+  std::string message;
+  try {
+    throw;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // what() is "filesystem error: <operation>: <reason> [path1] [path2]": the operation and the
+    // reason, the paths escaped.
+    std::string operation = e.what();
+    const std::string prefix = "filesystem error: ";
+    if (operation.rfind(prefix, 0) == 0) operation.erase(0, prefix.size());
+    operation = operation.substr(0, operation.find(" ["));
+    message = command + ": " + operation;
+    if (!e.path1().empty()) message += " " + demfit::identify::quote_path(e.path1());
+    message += e.path1().empty() && e.path2().empty()
+                   ? "; check that the working folder still exists"
+                   : "; check that the path exists and that you may read and write it";
+  } catch (const nlohmann::json::exception& e) {
+    message = command + ": a JSON value has the wrong type or is missing (" + e.what() +
+              "); check the input files against docs/study_format.md and docs/cases.md";
+  } catch (const std::invalid_argument& e) {
+    message = command + ": a value is not a number (" + e.what() + "); check the numbers given on the command line " +
+              "and in the input files";
+  } catch (const std::out_of_range& e) {
+    message = command + ": a value is out of range (" + e.what() + "); check the numbers given on the command " +
+              "line and in the input files";
+  } catch (const std::bad_alloc&) {
+    message = command + ": out of memory; a count in the input (points, pixels, particles) is too large";
+  } catch (const std::exception& e) { message = e.what(); } catch (...) {
+    message = command + ": unknown error";
+  }
+  message = demfit::identify::printable(message);
+  if (message.size() > 560) message = message.substr(0, 557) + "...";
+  return message;
 }
 
 }  // namespace
@@ -110,10 +164,8 @@ int main(int argc, char** argv) {
   demfit::apps::register_parameters(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return report_parse_error(app, e, argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "demfit: error: " << e.what() << '\n';
+  } catch (const CLI::ParseError& e) { return report_parse_error(app, e, argc, argv); } catch (...) {
+    std::cerr << "demfit: error: " << error_line(named_command(app, argc, argv).path) << '\n';
     return 1;
   }
   return 0;

@@ -42,7 +42,7 @@ std::size_t column_index(const std::vector<std::string>& header, const std::stri
   std::string hint;
   if (header.size() == 1 && header[0].find_first_of(";\t") != std::string::npos)
     hint = "; the columns are separated by ';' or tabs: save the file with comma separators and decimal points";
-  throw std::runtime_error("curve file '" + path.string() + "': no column '" + name + "'; the header has: " + known +
+  throw std::runtime_error("curve file " + quote_path(path) + ": no column '" + name + "'; the header has: " + known +
                            hint);
 }
 
@@ -56,7 +56,7 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
     std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
     for (char& c : shown)
       if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line) + ": '" + shown +
+    throw std::runtime_error("curve file " + quote_path(path) + " line " + std::to_string(line) + ": '" + shown +
                              "' is not a number; fix the value");
   }
   return value;
@@ -76,7 +76,7 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
     // Excel writes a UTF-8 byte-order mark before the header: accept it.
     if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (line.size() > kMaxCurveLineBytes)
-      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) +
+      throw std::runtime_error("curve file " + quote_path(path) + " line " + std::to_string(line_number) +
                                ": longer than " + std::to_string(kMaxCurveLineBytes) +
                                " bytes; is this a curve CSV file?");
     const std::string content = trim(line);
@@ -89,42 +89,34 @@ Curve parse_curve_csv(std::istream& in, const std::filesystem::path& path, const
       continue;
     }
     if (fields.size() != header.size())
-      throw std::runtime_error("curve file '" + path.string() + "' line " + std::to_string(line_number) + ": " +
+      throw std::runtime_error("curve file " + quote_path(path) + " line " + std::to_string(line_number) + ": " +
                                std::to_string(fields.size()) + " fields, header has " + std::to_string(header.size()) +
                                (fields.size() > header.size() ? "; a decimal comma splits a number in two: use points"
                                                               : "; give one value per column"));
     if (curve.x.size() >= kMaxCurvePoints)
-      throw std::runtime_error("curve file '" + path.string() + "': more than " + std::to_string(kMaxCurvePoints) +
+      throw std::runtime_error("curve file " + quote_path(path) + ": more than " + std::to_string(kMaxCurvePoints) +
                                " points; thin the curve (a few hundred points describe it)");
     curve.x.push_back(parse_number(fields[ix], path, line_number));
     curve.y.push_back(parse_number(fields[iy], path, line_number));
   }
   if (header.empty())
     throw std::runtime_error(
-        "curve file '" + path.string() +
-        "': no header line; the first line names the columns with units, e.g. volume_cm3,pressure_MPa");
+        "curve file " + quote_path(path) +
+        ": no header line; the first line names the columns with units, e.g. volume_cm3,pressure_MPa");
   if (curve.x.size() < 2)
-    throw std::runtime_error("curve file '" + path.string() + "': fewer than 2 points; a curve needs at least 2");
+    throw std::runtime_error("curve file " + quote_path(path) + ": fewer than 2 points; a curve needs at least 2");
   return curve;
 }
 
 Curve read_curve_csv(const std::filesystem::path& path, const std::string& x_column, const std::string& y_column) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error))
-    throw std::runtime_error("curve file '" + path.string() + "' is a folder; give a CSV file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("curve file '" + path.string() + "' cannot be opened; check the path");
-  const auto size = std::filesystem::file_size(path, error);
-  if (!error && size > kMaxCurveFileBytes)
-    throw std::runtime_error("curve file '" + path.string() + "': " + std::to_string(size) +
-                             " bytes, above the limit of " + std::to_string(kMaxCurveFileBytes) +
-                             " bytes; thin the curve");
+  // A regular file of at most kMaxCurveFileBytes: a device such as /dev/zero is refused unread.
+  std::istringstream in(read_input_file(path, kMaxCurveFileBytes, "curve file " + quote_path(path)));
   return parse_curve_csv(in, path, x_column, y_column);
 }
 
 void write_curve_csv(const std::filesystem::path& path, const Curve& curve) {
   if (curve.x.size() != curve.y.size())
-    throw std::runtime_error("write_curve_csv: x and y sizes differ for '" + path.string() + "'");
+    throw std::runtime_error("write_curve_csv: x and y sizes differ for " + quote_path(path));
   std::string text = curve.x_label + "," + curve.y_label + "\n";
   char buffer[64];
   for (std::size_t i = 0; i < curve.x.size(); ++i) {

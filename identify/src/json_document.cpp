@@ -1,5 +1,7 @@
 #include "demfit/identify/json_document.hpp"
 
+#include "demfit/identify/safe_output.hpp"
+
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -98,18 +100,9 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
 }
 
 nlohmann::json read_json_file(const std::filesystem::path& path, const std::string& what) {
-  const std::string source = what + " '" + path.string() + "'";
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw std::runtime_error(source + " is a folder; give a JSON file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(source + " cannot be opened; check the path");
-  const auto size = std::filesystem::file_size(path, error);
-  if (!error && size > kMaxJsonBytes)
-    throw std::runtime_error(source + ": " + std::to_string(size) + " bytes, above the limit of " +
-                             std::to_string(kMaxJsonBytes) + " bytes for a JSON input");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_json_document(text.str(), source);
+  const std::string source = what + " " + quote_path(path);
+  // A regular file of at most kMaxJsonBytes: a device such as /dev/zero is refused unread.
+  return parse_json_document(read_input_file(path, kMaxJsonBytes, source), source);
 }
 
 }  // namespace demfit::identify

@@ -185,7 +185,9 @@ std::string lsdyna_keywords(const ParameterSet& parameters, const std::vector<Pa
 void write_lsdyna_keywords(const std::filesystem::path& path, const ParameterSet& parameters,
                            const std::vector<ParameterDescriptor>& model_parameters, const std::string& title,
                            const std::vector<std::string>& comments) {
-  write_file_atomically(path, lsdyna_keywords(parameters, model_parameters, title, comments));
+  // Only a regular file is replaced: never a device, a link (e.g. to /dev/stdout) or a folder.
+  write_user_file(path, lsdyna_keywords(parameters, model_parameters, title, comments), /*overwrite=*/true,
+                  "LS-DYNA keyword file");
 }
 
 ParameterSet parse_lsdyna_keywords(const std::string& text, const std::vector<ParameterDescriptor>& model_parameters) {

@@ -1,4 +1,5 @@
-// Output that never destroys a user's files (see safe_output.hpp; issue #13).
+// Output that never destroys a user's files (see safe_output.hpp): the atomic writer, user text
+// and file names, bounded reading of input files.
 #include "demfit/identify/safe_output.hpp"
 
 #include <fcntl.h>
@@ -7,6 +8,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -19,7 +21,7 @@ namespace {
 
 [[noreturn]] void fail_write(const fs::path& path, const fs::path& temporary, int error, const char* step) {
   ::unlink(temporary.c_str());
-  throw std::runtime_error("writing '" + path.string() + "' failed (" + step + ": " + std::strerror(error) +
+  throw std::runtime_error("writing " + quote_path(path) + " failed (" + step + ": " + std::strerror(error) +
                            "); check free disk space and permissions");
 }
 
@@ -35,64 +37,14 @@ int open_exclusive(const fs::path& temporary) {
   return fd;
 }
 
-// Absolute, with symbolic links of the existing part resolved, so "." and "a/.." compare equal.
-fs::path resolved(const fs::path& path) {
-  std::error_code error;
-  fs::path out = fs::weakly_canonical(fs::absolute(path, error), error);
-  return error ? fs::absolute(path).lexically_normal() : out;
-}
-
-// True when `inner` is `outer` or lies below it.
-bool is_within(const fs::path& inner, const fs::path& outer) {
-  auto i = inner.begin();
-  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
-    if (o->empty()) continue;  // trailing separator
-    if (i == inner.end() || *i != *o) return false;
-  }
-  return true;
-}
-
-bool folder_is_empty(const fs::path& folder) {
-  std::error_code error;
-  return fs::directory_iterator(folder, error) == fs::directory_iterator() && !error;
-}
-
-// The rules every output folder obeys; returns true when the folder exists (and is allowed).
-bool check_folder(const fs::path& folder, const std::vector<fs::path>& inputs, const std::string& option,
-                  bool replace) {
-  if (folder.empty()) throw std::runtime_error(option + ": empty folder name; give a new folder, e.g. results/run1");
-  check_user_text(option, folder.string());
-  const fs::path target = resolved(folder);
-  const fs::path cwd = resolved(fs::current_path());
-  std::string shown = "'";  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
-  shown += folder.string();
-  shown += "'";
-  if (target == cwd)
-    throw std::runtime_error(option + ": " + shown +
-                             " is the working folder; demfit writes into a folder of its own, "
-                             "give a new name such as results/run1");
-  if (is_within(cwd, target))
-    throw std::runtime_error(option + ": " + shown + " is a parent of the working folder; give a new folder name");
-  std::error_code error;
-  const fs::file_status status = fs::symlink_status(folder, error);
-  if (!fs::exists(status)) return false;
-  if (fs::is_symlink(status))
-    throw std::runtime_error(option + ": " + shown +
-                             " is a symbolic link; give a real folder (demfit does not write through links)");
-  if (!fs::is_directory(status))
-    throw std::runtime_error(option + ": " + shown + " is an existing file, not a folder; choose another name");
-  const bool marked = fs::exists(fs::symlink_status(folder / kOutputMarker, error));
-  if (replace) {
-    for (const fs::path& input : inputs)
-      if (!input.empty() && is_within(resolved(input), target))
-        throw std::runtime_error(option + ": " + shown + " holds the input '" + input.string() +
-                                 "'; demfit would overwrite it: give a new output folder");
-  }
-  if (!marked && !folder_is_empty(folder))
-    throw std::runtime_error(option + ": " + shown + " exists and was not created by demfit (no " + kOutputMarker +
-                             " inside); choose a new folder, or add an empty " + kOutputMarker +
-                             " file to let demfit replace its content");
-  return true;
+// The code point of a Unicode bidirectional control (U+202A..U+202E, U+2066..U+2069) whose UTF-8
+// form (E2 80 AA..AE, E2 81 A6..A9) starts at text[i], else 0.
+unsigned bidi_control_at(const std::string& text, std::size_t i) {
+  if (i + 2 >= text.size() || static_cast<unsigned char>(text[i]) != 0xE2) return 0;
+  const auto b = static_cast<unsigned char>(text[i + 1]), d = static_cast<unsigned char>(text[i + 2]);
+  if ((b == 0x80 && d >= 0xAA && d <= 0xAE) || (b == 0x81 && d >= 0xA6 && d <= 0xA9))
+    return (b == 0x80 ? 0x2000u : 0x2040u) + (d - 0x80u);
+  return 0;
 }
 
 bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
@@ -100,11 +52,11 @@ bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid)
 }  // namespace
 
 void write_file_atomically(const fs::path& path, const std::string& content) {
-  if (path.filename().empty()) throw std::runtime_error("cannot write '" + path.string() + "': not a file name");
+  if (path.filename().empty()) throw std::runtime_error("cannot write " + quote_path(path) + ": not a file name");
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
   std::error_code error;
   if (fs::is_directory(fs::symlink_status(path, error)))
-    throw std::runtime_error("cannot write '" + path.string() + "': it is a folder; give a file name");
+    throw std::runtime_error("cannot write " + quote_path(path) + ": it is a folder; give a file name");
   // The pid keeps concurrent processes, the sequence number concurrent threads of one process
   // (two evaluations caching the same fill) from sharing a temporary; remove_stale_temporaries
   // knows the form "<name>.tmp<pid>-<sequence>".
@@ -113,7 +65,7 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
   temporary += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(sequence.fetch_add(1));
   const int fd = open_exclusive(temporary);
   if (fd < 0)
-    throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(errno) +
+    throw std::runtime_error("cannot write " + quote_path(path) + ": " + std::strerror(errno) +
                              "; check the folder permissions");
   const char* data = content.data();
   std::size_t left = content.size();
@@ -136,56 +88,134 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
 void check_user_text(const std::string& field, const std::string& text) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x20 || c == 0x7f) {
-      char code[8];
-      std::snprintf(code, sizeof code, "0x%02X", c);
-      throw std::runtime_error(field + ": contains a control character (byte " + code + " at position " +
-                               std::to_string(i) + "); use printable text");
-    }
+    const unsigned bidi = bidi_control_at(text, i);
+    if (c >= 0x20 && c != 0x7f && bidi == 0) continue;
+    char code[24];
+    if (bidi != 0)
+      std::snprintf(code, sizeof code, "U+%04X", bidi);
+    else
+      std::snprintf(code, sizeof code, "byte 0x%02X", c);
+    throw std::runtime_error(field + ": contains a " + (bidi != 0 ? "bidirectional " : "") + "control character (" +
+                             code + " at position " + std::to_string(i) + "); use printable text");
   }
 }
 
 std::string safe_slug(const std::string& text) {
+  constexpr std::size_t kMaxSlug = 80;
   std::string out;
   for (char c : text) {
     const bool keep =
         (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
     out += keep ? c : '_';
-    if (out.size() >= 80) break;
   }
   while (!out.empty() && out.front() == '.') out.front() = '_';
-  return out.empty() ? "unnamed" : out;
+  if (out.empty()) return "unnamed";
+  if (out.size() <= kMaxSlug) return out;
+  // Shortened: the extension kept (the file's type), a hash of the whole text (unique names).
+  const auto dot = out.rfind('.');
+  const std::string extension = dot != std::string::npos && out.size() - dot <= 8 ? out.substr(dot) : "";
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a, 64 bit
+  for (char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  char digits[20];
+  std::snprintf(digits, sizeof digits, "-%012llx", static_cast<unsigned long long>(hash & 0xffffffffffffull));
+  return out.substr(0, kMaxSlug - extension.size() - std::strlen(digits)) + digits + extension;
+}
+
+std::string printable(const std::string& text) {
+  std::string out;
+  char code[12];
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) {
+      std::snprintf(code, sizeof code, "\\x%02X", c);
+      out += code;
+      continue;
+    }
+    if (const unsigned bidi = bidi_control_at(text, i)) {
+      std::snprintf(code, sizeof code, "\\u%04X", bidi);
+      out += code;
+      i += 2;
+      continue;
+    }
+    out += static_cast<char>(c);
+  }
+  return out;
+}
+
+std::string quote_path(const fs::path& path) {
+  std::string out = "'";  // appended: GCC 12 warns (-Wrestrict) on "literal" + string
+  out += printable(path.string());
+  out += "'";
+  return out;
+}
+
+std::string read_input_file(const fs::path& path, std::size_t max_bytes, const std::string& what) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then tells what the path is.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw std::runtime_error(what + " cannot be opened (" + std::strerror(errno) + "); check the path");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    const bool folder = S_ISDIR(info.st_mode);
+    ::close(fd);
+    throw std::runtime_error(what + (folder ? " is a folder" : " is not a regular file (a device, pipe or socket)") +
+                             "; give the path of a file");
+  }
+  if (static_cast<std::uint64_t>(info.st_size) > max_bytes) {
+    ::close(fd);
+    throw std::runtime_error(what + ": " + std::to_string(info.st_size) + " bytes, above the limit of " +
+                             std::to_string(max_bytes) + " bytes");
+  }
+  std::string content;
+  char buffer[65536];
+  for (;;) {  // at most max_bytes + 1 bytes: a file that grows while read is refused, not followed
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n < 0) {
+      const int e = errno;
+      ::close(fd);
+      throw std::runtime_error(what + " cannot be read (" + std::strerror(e) + ")");
+    }
+    if (n == 0) break;
+    content.append(buffer, static_cast<std::size_t>(n));
+    if (content.size() > max_bytes) {
+      ::close(fd);
+      throw std::runtime_error(what + ": more than " + std::to_string(max_bytes) + " bytes, above the limit");
+    }
+  }
+  ::close(fd);
+  return content;
+}
+
+void check_user_file(const fs::path& path, bool overwrite, const std::string& option) {
+  check_user_text(option, path.string());
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(path, error);
+  if (fs::exists(status)) {
+    if (fs::is_symlink(status))
+      throw std::runtime_error(option + ": " + quote_path(path) +
+                               " is a symbolic link; demfit replaces only regular files: give a new file name");
+    if (!fs::is_regular_file(status))
+      throw std::runtime_error(option + ": " + quote_path(path) +
+                               " exists and is not a regular file (a folder, device or pipe); give a new file name");
+    if (!overwrite)
+      throw std::runtime_error(option + ": " + quote_path(path) +
+                               " already exists; give a new file name, or add --force to replace it");
+  }
+  if (path.has_parent_path() && !fs::is_directory(path.parent_path(), error))
+    throw std::runtime_error(option + ": the folder of " + quote_path(path) + " does not exist; create it first");
+}
+
+void write_user_file(const fs::path& path, const std::string& content, bool overwrite, const std::string& option) {
+  check_user_file(path, overwrite, option);
+  write_file_atomically(path, content);
 }
 
 fs::path path_inside(const fs::path& folder, const std::string& file_name) {
   check_user_text("file name", file_name);
   if (file_name.empty() || file_name == "." || file_name == ".." || file_name.find('/') != std::string::npos)
-    throw std::runtime_error("file name '" + file_name + "' would leave the output folder '" + folder.string() + "'");
+    throw std::runtime_error("file name " + quote_path(file_name) + " would leave the output folder " +
+                             quote_path(folder));
   return folder / file_name;
-}
-
-void prepare_output_folder(const fs::path& folder, const std::vector<fs::path>& inputs, const std::string& option) {
-  const bool exists = check_folder(folder, inputs, option, /*replace=*/false);
-  if (!exists) {
-    std::error_code error;
-    fs::create_directories(folder, error);
-    if (error) throw std::runtime_error(option + ": cannot create '" + folder.string() + "': " + error.message());
-  }
-  if (!fs::exists(fs::symlink_status(folder / kOutputMarker))) mark_output_folder(folder, option);
-  remove_stale_temporaries(folder);
-}
-
-void check_output_folder(const fs::path& folder, const std::vector<fs::path>& inputs, const std::string& option) {
-  check_folder(folder, inputs, option, /*replace=*/false);
-}
-
-void check_replaceable_folder(const fs::path& folder, const std::vector<fs::path>& inputs, const std::string& option) {
-  check_folder(folder, inputs, option, /*replace=*/true);
-}
-
-void mark_output_folder(const fs::path& folder, const std::string& command) {
-  write_file_atomically(folder / kOutputMarker, "This folder was created by demfit (" + command +
-                                                    "). demfit may replace it or the files in it on a later run.\n");
 }
 
 int remove_stale_temporaries(const fs::path& folder) {

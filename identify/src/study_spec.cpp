@@ -22,6 +22,9 @@ using detail::JsonReader;
 // Documented limits (docs/study_format.md).
 constexpr int kMaxPointsPerIteration = 10000;
 constexpr int kMaxIterations = 100000;
+// Profile abscissae of an image target and points of a mapped curve: each costs memory and time
+// per run; a few hundred describe any curve.
+constexpr int kMaxProfilePoints = 100000;
 
 VariableSpec parse_variable(const nlohmann::json& json, const std::string& path) {
   JsonReader in(json, path);
@@ -78,7 +81,8 @@ ImageTargetSpec parse_image_target(JsonReader& in) {
   image.material_is_dark = material == "dark";
   if (!(image.margin >= 0.0 && image.margin < 1.0))
     in.fail("image_margin", "must be in [0, 1) (fraction of the drum radius)");
-  if (image.points < 2) in.fail("image_points", "must be >= 2");
+  if (image.points < 2 || image.points > kMaxProfilePoints)
+    in.fail("image_points", "must be 2 to " + std::to_string(kMaxProfilePoints));
   return image;
 }
 
@@ -134,7 +138,8 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
                               std::to_string(i) + " is not)");
   if (!(t.weight > 0.0)) in.fail("weight", "must be > 0");
   if (t.scale < 0.0) in.fail("scale", "must be >= 0 (0 = max|y| of the target)");
-  if (t.mapping_points < 0 || t.mapping_points == 1) in.fail("mapping_points", "must be 0 (auto) or >= 2");
+  if (t.mapping_points < 0 || t.mapping_points == 1 || t.mapping_points > kMaxProfilePoints)
+    in.fail("mapping_points", "must be 0 (auto) or 2 to " + std::to_string(kMaxProfilePoints));
   return t;
 }
 

@@ -143,7 +143,8 @@ TEST_CASE("a missing argument or option mistake fails in one line naming it with
       run_demfit(std::string("identify '") + DEMFIT_SOURCE_DIR + "/cases/table1_study.json' --bogus", dir), "--bogus",
       dir);
   check_clean_failure(run_demfit("reproduce", dir), "a command is required", dir);
-  check_clean_failure(run_demfit("reproduce table1 --jobs \"$(printf '2\\nx')\"", dir), "--jobs = 2?x",
+  check_clean_failure(run_demfit("reproduce table1 --jobs \"$(printf '2\\nx')\"", dir),
+                      "--jobs: '2\\x0Ax' is not a number",
                       dir);  // one line
 }
 

@@ -147,12 +147,12 @@ TEST_CASE("stale temporaries of a killed run are removed on the next run, live o
   trust::write_text(s.work / "out" / ".demfit-output", "");
   trust::write_text(s.work / "out" / "report.md.tmp999999999", "half");  // no such process
   trust::write_text(s.work / "out" / ("report.md.tmp" + std::to_string(getppid())), "live");
-  id::prepare_output_folder(s.work / "out", {}, "--out");
+  id::prepare_output_folder(s.work / "out", {id::OutputKind::identify, {}});
   CHECK(!fs::exists(s.work / "out" / "report.md.tmp999999999"));
   CHECK(fs::exists(s.work / "out" / ("report.md.tmp" + std::to_string(getppid()))));
   trust::write_text(s.work / "out" / "fill.txt.tmp999999999-3", "half");  // today's form: <pid>-<sequence>
   trust::write_text(s.work / "out" / ("fill.txt.tmp" + std::to_string(getppid()) + "-3"), "live");
-  id::prepare_output_folder(s.work / "out", {}, "--out");
+  id::prepare_output_folder(s.work / "out", {id::OutputKind::identify, {}});
   CHECK(!fs::exists(s.work / "out" / "fill.txt.tmp999999999-3"));
   CHECK(fs::exists(s.work / "out" / ("fill.txt.tmp" + std::to_string(getppid()) + "-3")));
 }
