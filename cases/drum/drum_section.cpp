@@ -31,6 +31,11 @@ const std::array<Field, 12> kDrumFields{{
     {"surface_points", &DrumSpec::surface_points, Sign::any, -kUnbounded, kUnbounded, 2},
 }};
 
+// Upper limits of the drum's count fields (docs/cases.md "Limits").
+constexpr long long kMaxSurfaceSnapshots = 1000;
+constexpr long long kMaxProfilePoints = 100000;
+constexpr long long kMaxImagePixels = 8192;
+
 DrumImageSpec parse_drum_image(const json& j) {
   const char* p = "drum.image";
   require_known_keys(j, p, {"pixels", "margin", "points"});
@@ -39,6 +44,11 @@ DrumImageSpec parse_drum_image(const json& j) {
   image.pixels = read_integer(j, p, "pixels", image.pixels, 32);
   image.margin = read_bounded(j, p, "margin", image.margin, 0.0, 0.95);
   image.points = read_integer(j, p, "points", image.points, 2);
+  if (image.pixels > kMaxImagePixels)
+    throw std::runtime_error("'drum.image.pixels' must be at most " + std::to_string(kMaxImagePixels) +
+                             " (pixels across the drum)");
+  if (image.points > kMaxProfilePoints)
+    throw std::runtime_error("'drum.image.points' must be at most " + std::to_string(kMaxProfilePoints));
   return image;
 }
 
@@ -81,6 +91,15 @@ DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base
   if (s.surface_window > s.duration) {
     throw std::runtime_error("'drum.surface_window' must not exceed 'drum.duration'");
   }
+  // Counts bounded so that no input allocates gigabytes (docs/cases.md "Limits").
+  if (s.torque_interval > s.duration)
+    throw std::runtime_error(
+        "'drum.torque_interval' must not exceed 'drum.duration': give a sampling interval shorter than the run, "
+        "e.g. 0.01");
+  if (s.surface_snapshots > kMaxSurfaceSnapshots)
+    throw std::runtime_error("'drum.surface_snapshots' must be at most " + std::to_string(kMaxSurfaceSnapshots));
+  if (s.surface_points > kMaxProfilePoints)
+    throw std::runtime_error("'drum.surface_points' must be at most " + std::to_string(kMaxProfilePoints));
   if (j.contains("size_distribution"))
     s.size_distribution =
         parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);

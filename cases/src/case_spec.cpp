@@ -383,7 +383,9 @@ void apply_setting(json& document, const std::string& assignment) {
   json value;
   try {
     value = json::parse(text);
-  } catch (const json::parse_error&) {
+  } catch (const json::out_of_range&) {  // 1e999: a number JSON cannot hold
+    throw std::runtime_error("--set '" + name + "': " + text + " is out of range; give a finite number");
+  } catch (const json::exception&) {
     value = text;  // a bare word: a string (e.g. coarse_graining=cvf)
   }
   std::string path = parameter_path(name);
