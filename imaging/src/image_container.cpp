@@ -102,11 +102,14 @@ Size bmp_declared_size(std::string_view bytes, const std::string& name) {
 }
 
 Size png_declared_size(std::string_view bytes, const std::string& name) {
-  if (bytes.size() < 24)
+  std::size_t at = 8;
+  // Apple's CgBI chunk (iPhone-optimised PNGs, which stb_image reads) may come before IHDR.
+  if (bytes.size() >= 24 && bytes.substr(12, 4) == "CgBI") at += 12 + big_endian(bytes, 8, 4);
+  if (bytes.size() < at + 16)
     throw truncated(name, "the PNG ends at byte " + std::to_string(bytes.size()) + " inside its header");
-  if (bytes.substr(12, 4) != "IHDR")
-    throw corrupt(name, "the first PNG chunk is '" + chunk_type(bytes, 12) + "', not 'IHDR'");
-  return {big_endian(bytes, 16, 4), big_endian(bytes, 20, 4)};
+  if (bytes.substr(at + 4, 4) != "IHDR")
+    throw corrupt(name, "the first PNG chunk is '" + chunk_type(bytes, at + 4) + "', not 'IHDR'");
+  return {big_endian(bytes, at + 8, 4), big_endian(bytes, at + 12, 4)};
 }
 
 void check_bmp_pixel_data(std::string_view bytes, const std::string& name) {

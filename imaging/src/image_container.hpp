@@ -25,7 +25,8 @@ struct Size {
 };
 Size bmp_declared_size(std::string_view bytes, const std::string& name);
 
-// Width and height [px] declared by a PNG's IHDR chunk (the first chunk, PNG specification 11.2.2).
+// Width and height [px] declared by a PNG's IHDR chunk (the first chunk, PNG specification 11.2.2;
+// after an Apple CgBI chunk if there is one).
 // Throws (one line naming `name`) when the file ends before them or the first chunk is not IHDR.
 Size png_declared_size(std::string_view bytes, const std::string& name);
 

@@ -150,6 +150,10 @@ TEST_CASE("BMP, PNG and JPEG headers declaring far more pixels than the limit ar
   bmp.resize(126, '\0');
   write_bytes(dir / "bomb.bmp", bmp);
   write_bytes(dir / "bomb.png", grey_png(100000, 100000, zero_bomb(4)));
+  // An iPhone-optimised PNG puts an Apple CgBI chunk before IHDR; its IHDR is read all the same.
+  std::string cgbi = grey_png(100000, 100000, zero_bomb(4));
+  cgbi.insert(8, png_chunk("CgBI", std::string("\x50\x00\x20\x02", 4)));
+  write_bytes(dir / "bomb_cgbi.png", cgbi);
   // JPEG sizes are 16-bit: the largest, 65535 x 65535, patched into a valid JPEG's frame header.
   std::string jpeg = encode_jpeg(to_rgb(small_drum()), 90);
   const std::size_t frame = jpeg.find("\xFF\xC0");
@@ -158,7 +162,7 @@ TEST_CASE("BMP, PNG and JPEG headers declaring far more pixels than the limit ar
   write_bytes(dir / "bomb.jpg", jpeg);
   for (const auto& [file, declared] :
        {std::pair{"bomb.bmp", "100000 x 100000"}, std::pair{"bomb.png", "100000 x 100000"},
-        std::pair{"bomb.jpg", "65535 x 65535"}}) {
+        std::pair{"bomb_cgbi.png", "100000 x 100000"}, std::pair{"bomb.jpg", "65535 x 65535"}}) {
     const auto start = std::chrono::steady_clock::now();
     CHECK_THROWS_WITH(read_grey_image(dir / file), Catch::Contains(file) && Catch::Contains(declared) &&
                                                        Catch::Contains("50 megapixels") &&
