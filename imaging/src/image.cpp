@@ -140,16 +140,22 @@ void check_declared_size(const container::Size& size, const ImageLimits& limits,
 }
 
 // The declared size, checked against the limits, after the container checks of the format; a
-// JPEG's `bytes` are cut at its End Of Image marker. stb_image only ever sees a file whose container
+// JPEG's `bytes` are cut at its End Of Image marker; an OS/2 BMP's are replaced by `rewritten`, the
+// same picture with the Windows header. stb_image only ever sees a file whose container
 // was checked here first: it trusts sizes, offsets and table counts, and Debian's stb_image 2.27
 // writes past a JPEG Huffman table that declares more than 256 codes.
-container::Size check_container(std::string_view& bytes, const ImageLimits& limits, const std::string& name) {
+container::Size check_container(std::string_view& bytes, std::string& rewritten, const ImageLimits& limits,
+                                const std::string& name) {
   container::Size size;
   switch (container::detect_format(bytes)) {
     case container::Format::bmp:
       size = container::bmp_declared_size(bytes, name);
       check_declared_size(size, limits, name);
       container::check_bmp_pixel_data(bytes, name);
+      if (container::is_core_bmp(bytes)) {
+        rewritten = container::windows_bmp_from_core(bytes);
+        bytes = rewritten;
+      }
       break;
     case container::Format::png:
       size = container::png_declared_size(bytes, name);
@@ -188,7 +194,8 @@ GreyImage decode_grey_image(std::string_view bytes, const std::string& source, c
   if (bytes.size() > limits.file_bytes || bytes.size() > std::size_t{INT_MAX})
     throw std::runtime_error(name + " is " + std::to_string(bytes.size()) + " bytes, above the " +
                              std::to_string(limits.file_bytes >> 20) + " MiB limit for a drum photo");
-  const container::Size size = check_container(bytes, limits, name);
+  std::string rewritten;  // an OS/2 BMP rewritten with the Windows header
+  const container::Size size = check_container(bytes, rewritten, limits, name);
   // stb holds at most the compressed file plus 16 bytes per declared pixel (4 channels of 16 bits,
   // twice: the inflated PNG rows and the image made from them) plus 64 MiB of tables and rows.
   const std::size_t limit = bytes.size() + 16 * static_cast<std::size_t>(size.width * size.height) + (64u << 20);

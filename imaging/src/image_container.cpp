@@ -2,7 +2,9 @@
 // chunk checksums, the extent of a JPEG up to its End Of Image marker.
 #include "image_container.hpp"
 
+#include <algorithm>
 #include <array>
+#include <utility>
 #include <cstdio>
 #include <stdexcept>
 
@@ -133,6 +135,41 @@ void check_bmp_pixel_data(std::string_view bytes, const std::string& name) {
     throw truncated(name, "its header declares " + std::to_string(size.width) + " x " + std::to_string(size.height) +
                               " pixels of " + std::to_string(bits) + " bits, " + std::to_string(needed) +
                               " bytes with the header, but the file holds " + std::to_string(bytes.size()));
+}
+
+bool is_core_bmp(std::string_view bytes) { return bytes.size() >= 18 && little_endian(bytes, 14, 4) == 12; }
+
+std::string windows_bmp_from_core(std::string_view bytes) {
+  const std::uint32_t width = little_endian(bytes, 18, 2), height = little_endian(bytes, 20, 2);
+  const std::uint32_t bits = little_endian(bytes, 24, 2), offset = little_endian(bytes, 10, 4);
+  const std::uint32_t entries = bits <= 8 ? std::min<std::uint32_t>(1u << bits, (offset - 26) / 3) : 0;
+  const std::uint32_t stride = (width * bits + 31) / 32 * 4, data = stride * height;
+  const std::uint32_t new_offset = 14 + 40 + 4 * entries;
+  std::string out = "BM";
+  auto put = [&out](std::uint32_t value, int size) {
+    for (int k = 0; k < size; ++k) out.push_back(static_cast<char>((value >> (8 * k)) & 0xFFu));
+  };
+  put(new_offset + data, 4);
+  put(0, 4);
+  put(new_offset, 4);
+  for (const auto& [value, size] : {std::pair{40u, 4},
+                                    {width, 4},
+                                    {height, 4},
+                                    {1u, 2},
+                                    {bits, 2},
+                                    {0u, 4},
+                                    {data, 4},
+                                    {0u, 4},
+                                    {0u, 4},
+                                    {entries, 4},
+                                    {0u, 4}})
+    put(value, size);
+  for (std::uint32_t k = 0; k < entries; ++k) {
+    out.append(bytes.substr(26 + 3 * k, 3));
+    out.push_back('\0');
+  }
+  out.append(bytes.substr(offset, data));
+  return out;
 }
 
 void check_png_chunks(std::string_view bytes, const std::string& name) {

@@ -34,6 +34,13 @@ Size png_declared_size(std::string_view bytes, const std::string& name);
 // declares: pixel data offset + row stride (padded to 4 bytes) x rows > file size.
 void check_bmp_pixel_data(std::string_view bytes, const std::string& name);
 
+// The same picture as a BMP with the 40-byte Windows header, for a BMP with the 12-byte OS/2
+// header (3-byte palette entries become 4-byte ones). stb_image 2.27 counts an OS/2 palette 12
+// bytes short and leaves the last four of 256 entries unset (index 255 read as 0), so OS/2 BMPs
+// are decoded through this copy. Call after check_bmp_pixel_data.
+std::string windows_bmp_from_core(std::string_view bytes);
+bool is_core_bmp(std::string_view bytes);  // a BMP with the 12-byte OS/2 BITMAPCOREHEADER
+
 // Throws (one line naming `name` and the chunk) when a PNG chunk's CRC-32 (PNG specification,
 // section 5.3: over the chunk type and data) differs from the stored one, or when the file ends
 // inside a chunk or before the IEND chunk.

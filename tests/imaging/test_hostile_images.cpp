@@ -294,3 +294,38 @@ TEST_CASE("a drum diameter outside 1 mm .. 10 m is refused by the surface extrac
     CHECK(std::abs(line.angle_deg + std::atan(0.5) * 180.0 / M_PI) < 0.5);
   }
 }
+
+TEST_CASE("an 8-bit BMP reads all 256 palette entries with the OS/2 header as with the Windows header") {
+  const fs::path dir = scratch("palette");
+  for (const bool core : {true, false}) {
+    // 16 x 16 pixels holding the indices 0..255; entry i is the grey level 255 - i, so an entry left
+    // unset (0) is told apart from the last ones.
+    const std::uint32_t header = core ? 12 : 40, entry = core ? 3 : 4, offset = 14 + header + 256 * entry;
+    std::string bmp = "BM";
+    put_le(bmp, offset + 256, 4);
+    put_le(bmp, 0, 4);
+    put_le(bmp, offset, 4);
+    put_le(bmp, header, 4);
+    put_le(bmp, 16, core ? 2 : 4);
+    put_le(bmp, 16, core ? 2 : 4);
+    put_le(bmp, 1, 2);
+    put_le(bmp, 8, 2);
+    if (!core) bmp.append(24, '\0');
+    for (int i = 0; i < 256; ++i) {  // blue, green, red (and a reserved 0 with the Windows header)
+      bmp.append(3, static_cast<char>(255 - i));
+      if (!core) bmp.push_back('\0');
+    }
+    for (int i = 0; i < 256; ++i) bmp.push_back(static_cast<char>(i));  // bottom-up rows of 16
+    write_bytes(dir / "palette.bmp", bmp);
+    INFO((core ? "OS/2 header" : "Windows header"));
+    const GreyImage read = read_grey_image(dir / "palette.bmp");
+    REQUIRE(read.width == 16);
+    int wrong = 0;
+    for (int row = 0; row < 16; ++row)
+      for (int column = 0; column < 16; ++column) {
+        const int index = (15 - row) * 16 + column;
+        wrong += read.value[static_cast<std::size_t>(row) * 16 + column] != static_cast<float>(255 - index) / 255.0f;
+      }
+    CHECK(wrong == 0);
+  }
+}
