@@ -106,11 +106,12 @@ void put_le(std::string& out, std::uint32_t value, int bytes) {
   for (int k = 0; k < bytes; ++k) out.push_back(static_cast<char>((value >> (8 * k)) & 0xFF));
 }
 
-// A 24-bit BMP, bottom-up rows padded to 4 bytes, with the 12-byte OS/2 header (core) or the
-// 40-byte Windows header.
-std::string encode_bmp(const demfit::imaging::GreyImage& image, bool core) {
-  const std::uint32_t header = core ? 12 : 40, offset = 14 + header;
-  const std::uint32_t stride = (3 * image.width + 3) / 4 * 4;
+// A BMP, bottom-up rows padded to 4 bytes, with the 12-byte OS/2 header (core) or the 40-byte
+// Windows header; 24 bits a pixel, or 8 with a 256-entry grey palette (as the GranuDrum photos).
+std::string encode_bmp(const demfit::imaging::GreyImage& image, bool core, int bits) {
+  const std::uint32_t header = core ? 12 : 40, palette = bits == 8 ? 256 * (core ? 3 : 4) : 0;
+  const std::uint32_t offset = 14 + header + palette, bytes = static_cast<std::uint32_t>(bits / 8);
+  const std::uint32_t stride = (bytes * image.width + 3) / 4 * 4;
   std::string out = "BM";
   put_le(out, offset + stride * image.height, 4);
   put_le(out, 0, 4);
@@ -119,19 +120,20 @@ std::string encode_bmp(const demfit::imaging::GreyImage& image, bool core) {
   put_le(out, image.width, core ? 2 : 4);
   put_le(out, image.height, core ? 2 : 4);
   put_le(out, 1, 2);
-  put_le(out, 24, 2);
+  put_le(out, bits, 2);
   if (!core) out.append(24, '\0');
+  for (std::uint32_t level = 0; bits == 8 && level < 256; ++level) out.append(core ? 3 : 4, static_cast<char>(level));
   for (int row = image.height - 1; row >= 0; --row) {
     for (int column = 0; column < image.width; ++column)
-      out.append(3, static_cast<char>(static_cast<unsigned char>(
-                        255.0f * image.value[static_cast<std::size_t>(row) * image.width + column])));
-    out.append(stride - 3 * image.width, '\0');
+      out.append(bytes, static_cast<char>(static_cast<unsigned char>(
+                            255.0f * image.value[static_cast<std::size_t>(row) * image.width + column])));
+    out.append(stride - bytes * image.width, '\0');
   }
   return out;
 }
 
 // The seeds: the text documents above and a 40 x 40 px drum (dark bed below the line z = -0.4 x,
-// light above) as BMP (both headers), PNG and JPEG.
+// light above) as BMP (both headers, 24-bit and 8-bit paletted), PNG and JPEG.
 std::vector<std::string> make_seeds() {
   using namespace demfit::imaging;
   GreyImage drum;
@@ -142,8 +144,8 @@ std::vector<std::string> make_seeds() {
       drum.value.push_back(z < -0.4 * x ? 0.1f : 0.9f);
     }
   std::vector<std::string> seeds = kTextSeeds;
-  seeds.push_back(encode_bmp(drum, true));
-  seeds.push_back(encode_bmp(drum, false));
+  for (const bool core : {true, false})
+    for (const int bits : {24, 8}) seeds.push_back(encode_bmp(drum, core, bits));
   seeds.push_back(encode_png(to_rgb(drum)));
   seeds.push_back(encode_jpeg(to_rgb(drum), 75));
   return seeds;
@@ -255,6 +257,14 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(out);
   const int current = ::open((out / "current.input").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   const std::vector<std::string> seeds = make_seeds();
+  for (std::size_t k = kTextSeeds.size(); k < seeds.size(); ++k) {  // unmutated, every image seed reads
+    try {
+      demfit::imaging::decode_grey_image(seeds[k], "image seed " + std::to_string(k));
+    } catch (const std::runtime_error& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
+  }
   std::mt19937_64 rng(seed);
   const auto start = std::chrono::steady_clock::now();
   long executions = 0, findings = 0;
