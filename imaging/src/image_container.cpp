@@ -242,9 +242,12 @@ JpegLayout jpeg_layout(std::string_view bytes, const std::string& name) {
   while (true) {
     if (at >= bytes.size())
       throw truncated(name, "the JPEG ends at byte " + std::to_string(at) + " before End Of Image");
-    if (byte_at(bytes, at) != 0xFF)
-      throw corrupt(name,
-                    "a JPEG marker is expected at byte " + std::to_string(at) + ", found " + hex(byte_at(bytes, at)));
+    // Bytes other than FF between segments are skipped one by one, as stb_image does, so that every
+    // segment stb_image will read is the one checked here.
+    if (byte_at(bytes, at) != 0xFF) {
+      ++at;
+      continue;
+    }
     while (at < bytes.size() && byte_at(bytes, at) == 0xFF) ++at;  // fill bytes
     if (at >= bytes.size()) throw truncated(name, "the JPEG ends inside a marker, before End Of Image");
     const unsigned marker = byte_at(bytes, at++);

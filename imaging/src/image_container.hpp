@@ -51,7 +51,8 @@ void check_png_chunks(std::string_view bytes, const std::string& name);
 // that bytes after it (phone trailers, appended data) are ignored; `size` = width and height of
 // its frame header (SOFn). Huffman table segments are checked on the way (at most 256 codes a
 // table). Throws (one line naming `name`) when the file ends before End Of Image (truncated), the
-// marker structure is broken, a table is invalid or there is no frame header.
+// marker structure is broken, a table is invalid or there is no frame header. Bytes other than FF
+// between segments are skipped, as stb_image skips them.
 struct JpegLayout {
   std::size_t length = 0;
   Size size;

@@ -329,3 +329,15 @@ TEST_CASE("an 8-bit BMP reads all 256 palette entries with the OS/2 header as wi
     CHECK(wrong == 0);
   }
 }
+
+TEST_CASE("a JPEG with stray bytes between its header segments decodes to the same pixels") {
+  const fs::path dir = scratch("stray");
+  const std::string jpeg = encode_jpeg(to_rgb(small_drum()), 90);
+  REQUIRE(jpeg.compare(0, 4, "\xFF\xD8\xFF\xE0") == 0);  // Start Of Image, then the JFIF segment
+  const std::size_t after_jfif = 4 + (static_cast<unsigned char>(jpeg[4]) << 8 | static_cast<unsigned char>(jpeg[5]));
+  write_bytes(dir / "plain.jpg", jpeg);
+  write_bytes(dir / "stray.jpg", std::string(jpeg).insert(after_jfif, "stray padding"));
+  const GreyImage plain = read_grey_image(dir / "plain.jpg"), stray = read_grey_image(dir / "stray.jpg");
+  REQUIRE(stray.width == plain.width);
+  CHECK(stray.value == plain.value);
+}
