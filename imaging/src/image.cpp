@@ -14,7 +14,7 @@
 
 #include "image_container.hpp"
 
-// stb_image allocates through a byte budget (decode_budget below): a file whose compressed data
+// stb_image allocates through a byte budget (namespace budget below): a file whose compressed data
 // expands beyond what its declared size needs (a zlib stream longer than the picture, corrupt
 // JPEG tables) makes stb fail with "outofmem" instead of taking the machine's memory.
 namespace demfit::imaging::budget {

@@ -1,7 +1,8 @@
 // Hostile image files: decompression bombs are refused from their header or stopped by the decoding
 // budget, corrupted PNG chunks and truncated BMPs (every header variant) are refused rather than
-// read as zeros, phone trailers after a JPEG's End Of Image are ignored, and pictures that are not
-// drum photos (noise, a checkerboard) give no surface.
+// read as zeros, OS/2 palettes are read whole, phone trailers after a JPEG's End Of Image and stray
+// bytes between its segments are ignored, pictures that are not drum photos (noise,
+// checkerboards) give no surface, and drum diameters outside 1 mm .. 10 m are refused.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
