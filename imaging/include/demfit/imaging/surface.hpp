@@ -36,11 +36,13 @@
 
 namespace demfit::imaging {
 
-// Inner drum diameters accepted [m]: 1 mm to 10 m covers every laboratory and pilot drum; a value
-// outside is a unit mistake (e.g. 84 given as metres) and would give a meaningless or non-finite
-// pixel size.
+// Inner drum diameters accepted [m]. Below 1 mm no drum exists and the frame arithmetic breaks
+// down (1e-300 m gave a non-finite angle). The upper end, 100 m, only keeps the arithmetic
+// meaningful: a plausible value that is wrong for the drum (84 typed for 84 mm) is refused with the
+// field's name by the callers, which know the drum: identify's study preflight compares it with
+// the simulated drum, and `demfit target from-image` refuses more than 10 m.
 inline constexpr double kMinDrumDiameter = 1e-3;
-inline constexpr double kMaxDrumDiameter = 10.0;
+inline constexpr double kMaxDrumDiameter = 100.0;
 
 // Throws std::runtime_error (one line, prefixed by `what`) unless kMinDrumDiameter <= diameter <=
 // kMaxDrumDiameter.
