@@ -132,8 +132,23 @@ std::string encode_bmp(const demfit::imaging::GreyImage& image, bool core, int b
   return out;
 }
 
+// A progressive JPEG (T.81 annex G) written byte by byte, as stb_image_write has no progressive
+// mode: 16 x 16 px, one component, one DC-only first scan in which every block's DC difference is
+// 0 (category 0, the only code of a one-entry Huffman table, "0"), so it decodes to flat grey 128.
+// It seeds stb_image's progressive decoder for the mutations.
+std::string progressive_jpeg() {
+  std::string jpeg = "\xFF\xD8"s;
+  jpeg += "\xFF\xDB\x00\x43\x00"s + std::string(64, '\x01');                // quantisation table 0: all 1
+  jpeg += "\xFF\xC2\x00\x0B\x08\x00\x10\x00\x10\x01\x01\x11\x00"s;          // SOF2: 16 x 16, 1 component
+  jpeg += "\xFF\xC4\x00\x14\x00\x01"s + std::string(15, '\x00') + "\x00"s;  // DC table 0: one 1-bit code
+  jpeg += "\xFF\xDA\x00\x08\x01\x01\x00\x00\x00\x00"s;                      // SOS: DC first scan
+  jpeg += "\x0F\xFF\xD9"s;  // four blocks coded "0", padded with 1 bits; End Of Image
+  return jpeg;
+}
+
 // The seeds: the text documents above and a 40 x 40 px drum (dark bed below the line z = -0.4 x,
-// light above) as BMP (both headers, 24-bit and 8-bit paletted), PNG and JPEG.
+// light above) as BMP (both headers, 24-bit and 8-bit paletted), PNG and JPEG, and a
+// progressive JPEG.
 std::vector<std::string> make_seeds() {
   using namespace demfit::imaging;
   GreyImage drum;
@@ -148,6 +163,7 @@ std::vector<std::string> make_seeds() {
     for (const int bits : {24, 8}) seeds.push_back(encode_bmp(drum, core, bits));
   seeds.push_back(encode_png(to_rgb(drum)));
   seeds.push_back(encode_jpeg(to_rgb(drum), 75));
+  seeds.push_back(progressive_jpeg());
   return seeds;
 }
 
