@@ -1,18 +1,27 @@
-// Seeded mutation fuzzer of demfit's input readers (issue #13): JSON documents (study and case
-// files through their strict parsers) and curve CSV files. Compiled with the project (and with
-// the sanitizers under scripts/sanitize); scripts/fuzz runs it for a bounded time.
+// Seeded mutation fuzzer of demfit's input readers: JSON documents (study and case files through
+// their strict parsers), curve CSV files, and drum images (BMP with both header kinds, PNG, JPEG
+// through imaging::decode_grey_image, the path read_grey_image takes, then extract_surface).
+// Compiled with the project (and with the sanitizers under scripts/sanitize); scripts/fuzz runs it
+// for a bounded time. The image seeds are made here, at start-up, from a drawn 40 x 40 px drum.
 //
 //   fuzz_readers SECONDS [SEED] [OUT_DIR]
 //
-// Each execution mutates one of the seed inputs (byte flips, inserted JSON/CSV tokens, deleted and
-// duplicated ranges) and feeds it to the readers. A reader may throw std::runtime_error (a clean
-// one-line error) and nothing else: any other exception is a finding, saved to OUT_DIR. A crash
-// (signal or sanitizer report) ends the process; OUT_DIR/current.input then holds the input.
-// Prints "executions N crashes 0 findings F" at the end.
+// Each execution mutates one of the seed inputs (byte flips, inserted JSON/CSV/image tokens, deleted
+// and duplicated ranges; a mutated PNG gets its chunk CRCs recomputed half of the time, so that
+// mutations reach the decoder and not only the checksum test) and feeds it to the readers. Images
+// are read under small limits (1 MiB file, 1024 px a side, 1 megapixel) so that a mutated header
+// cannot slow the run down; the limit checks themselves are the same code as for photos.
+// A reader may throw std::runtime_error (a clean one-line error) and nothing else: any other
+// exception is a finding, saved to OUT_DIR; so is an image read with an inconsistent size or a
+// grey level outside [0, 1], or a surface with a non-finite point. A crash (signal or sanitizer
+// report) ends the process; OUT_DIR/current.input then holds the input. Prints
+// "executions N crashes 0 findings F" at the end, with how many images were read and how many of
+// them gave a surface.
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -20,16 +29,21 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/identify/curve_io.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/study_spec.hpp"
+#include "demfit/imaging/image.hpp"
+#include "demfit/imaging/surface.hpp"
 
 namespace {
 
-const std::vector<std::string> kSeeds = {
+using namespace std::string_literals;
+
+const std::vector<std::string> kTextSeeds = {
     R"({"demfit_study_version": 1, "name": "fuzz", "model": {"case": "analytic", "overrides": {"points": 11},
         "fixed_parameters": {"slope": 0.5}},
         "variables": [{"name": "amplitude", "lower": 0.5, "upper": 2.0, "initial": 1.0},
@@ -77,7 +91,94 @@ const std::vector<std::string> kTokens = {"[",
                                           "\x00",
                                           "\xff\xfe",
                                           "[[[[[[[[[[[[",
-                                          "]]]]]]]]"};
+                                          "]]]]]]]]",
+                                          "\xFF\xD9",
+                                          "\xFF\xDA\x00\x08"s,
+                                          "\xFF\xC0\x00\x11\x08\xFF\xFF"s,
+                                          "IEND",
+                                          "IDAT",
+                                          "\xFF\xFF\xFF\x7F",
+                                          "\x00\x00\x01\x00"s,
+                                          "\x0C\x00\x00\x00"s,
+                                          "BM"};
+
+void put_le(std::string& out, std::uint32_t value, int bytes) {
+  for (int k = 0; k < bytes; ++k) out.push_back(static_cast<char>((value >> (8 * k)) & 0xFF));
+}
+
+// A BMP, bottom-up rows padded to 4 bytes, with the 12-byte OS/2 header (core) or the 40-byte
+// Windows header; 24 bits a pixel, or 8 with a 256-entry grey palette (as the GranuDrum photos).
+std::string encode_bmp(const demfit::imaging::GreyImage& image, bool core, int bits) {
+  const std::uint32_t header = core ? 12 : 40, palette = bits == 8 ? 256 * (core ? 3 : 4) : 0;
+  const std::uint32_t offset = 14 + header + palette, bytes = static_cast<std::uint32_t>(bits / 8);
+  const std::uint32_t stride = (bytes * image.width + 3) / 4 * 4;
+  std::string out = "BM";
+  put_le(out, offset + stride * image.height, 4);
+  put_le(out, 0, 4);
+  put_le(out, offset, 4);
+  put_le(out, header, 4);
+  put_le(out, image.width, core ? 2 : 4);
+  put_le(out, image.height, core ? 2 : 4);
+  put_le(out, 1, 2);
+  put_le(out, bits, 2);
+  if (!core) out.append(24, '\0');
+  for (std::uint32_t level = 0; bits == 8 && level < 256; ++level) out.append(core ? 3 : 4, static_cast<char>(level));
+  for (int row = image.height - 1; row >= 0; --row) {
+    for (int column = 0; column < image.width; ++column)
+      out.append(bytes, static_cast<char>(static_cast<unsigned char>(
+                            255.0f * image.value[static_cast<std::size_t>(row) * image.width + column])));
+    out.append(stride - bytes * image.width, '\0');
+  }
+  return out;
+}
+
+// A progressive JPEG (T.81 annex G) written byte by byte, as stb_image_write has no progressive
+// mode: 16 x 16 px, one component, one DC-only first scan in which every block's DC difference is
+// 0 (category 0, the only code of a one-entry Huffman table, "0"), so it decodes to flat grey 128.
+// It seeds stb_image's progressive decoder for the mutations.
+std::string progressive_jpeg() {
+  std::string jpeg = "\xFF\xD8"s;
+  jpeg += "\xFF\xDB\x00\x43\x00"s + std::string(64, '\x01');                // quantisation table 0: all 1
+  jpeg += "\xFF\xC2\x00\x0B\x08\x00\x10\x00\x10\x01\x01\x11\x00"s;          // SOF2: 16 x 16, 1 component
+  jpeg += "\xFF\xC4\x00\x14\x00\x01"s + std::string(15, '\x00') + "\x00"s;  // DC table 0: one 1-bit code
+  jpeg += "\xFF\xDA\x00\x08\x01\x01\x00\x00\x00\x00"s;                      // SOS: DC first scan
+  jpeg += "\x0F\xFF\xD9"s;  // four blocks coded "0", padded with 1 bits; End Of Image
+  return jpeg;
+}
+
+// The seeds: the text documents above and a 40 x 40 px drum (dark bed below the line z = -0.4 x,
+// light above) as BMP (both headers, 24-bit and 8-bit paletted), PNG and JPEG, and a
+// progressive JPEG.
+std::vector<std::string> make_seeds() {
+  using namespace demfit::imaging;
+  GreyImage drum;
+  drum.width = drum.height = 40;
+  for (int row = 0; row < 40; ++row)
+    for (int column = 0; column < 40; ++column) {
+      const double x = pixel_x(column, 40, 0.084), z = pixel_z(row, 40, 0.084);
+      drum.value.push_back(z < -0.4 * x ? 0.1f : 0.9f);
+    }
+  std::vector<std::string> seeds = kTextSeeds;
+  for (const bool core : {true, false})
+    for (const int bits : {24, 8}) seeds.push_back(encode_bmp(drum, core, bits));
+  seeds.push_back(encode_png(to_rgb(drum)));
+  seeds.push_back(encode_jpeg(to_rgb(drum), 75));
+  seeds.push_back(progressive_jpeg());
+  return seeds;
+}
+
+// Rewrites the CRC of every whole chunk of a PNG (after its 8-byte signature).
+void fix_png_crcs(std::string& png) {
+  std::size_t at = 8;
+  while (at + 12 <= png.size()) {
+    std::uint32_t length = 0;
+    for (int k = 0; k < 4; ++k) length = (length << 8) | static_cast<unsigned char>(png[at + k]);
+    if (length > png.size() || at + 12 + length > png.size()) return;
+    const std::uint32_t crc = demfit::imaging::png_crc32(std::string_view(png).substr(at + 4, 4 + length));
+    for (int k = 0; k < 4; ++k) png[at + 8 + length + k] = static_cast<char>((crc >> (8 * (3 - k))) & 0xFF);
+    at += 12 + length;
+  }
+}
 
 std::string mutate(std::string text, std::mt19937_64& rng) {
   auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n); };
@@ -108,7 +209,34 @@ std::string mutate(std::string text, std::mt19937_64& rng) {
     }
   }
   if (text.size() > (1u << 16)) text.resize(1u << 16);
+  if (text.compare(0, 4, "\x89PNG") == 0 && rng() % 2 == 0) fix_png_crcs(text);
   return text;
+}
+
+// Executions in which the image reader returned a picture, and the extraction a surface.
+long images_read = 0, surfaces_found = 0;
+
+// The image reader, then the surface extraction on what it read. Returns "" or what went wrong
+// other than a one-line refusal.
+std::string execute_image(const std::string& bytes) {
+  using namespace demfit::imaging;
+  const ImageLimits limits{std::uintmax_t{1} << 20, 1024, 1 << 20};
+  try {
+    const GreyImage image = decode_grey_image(bytes, "fuzz image", limits);
+    ++images_read;
+    if (image.width <= 0 || image.height <= 0 || image.width > limits.side || image.height > limits.side ||
+        image.value.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
+      return "image read with inconsistent size " + std::to_string(image.width) + " x " + std::to_string(image.height);
+    for (const float v : image.value)
+      if (!(v >= 0.0f && v <= 1.0f)) return "image read with a grey level outside [0, 1]";
+    try {
+      const SurfaceProfile profile = extract_surface(image, DrumFrame{0.084}, ProfileOptions{});
+      ++surfaces_found;
+      for (std::size_t i = 0; i < profile.x.size(); ++i)
+        if (!std::isfinite(profile.x[i]) || !std::isfinite(profile.z[i])) return "surface with a non-finite point";
+    } catch (const std::runtime_error&) {}
+  } catch (const std::runtime_error&) {}
+  return {};
 }
 
 // One execution: every reader on the text. Returns "" or the name of an unexpected exception.
@@ -127,6 +255,7 @@ std::string execute(const std::string& text) {
       std::istringstream in(text);
       demfit::identify::parse_curve_csv(in, "fuzz.csv", "x_1", "y_1");
     } catch (const std::runtime_error&) {}
+    if (const std::string problem = execute_image(text); !problem.empty()) return problem;
   } catch (const std::exception& e) { return std::string("unexpected exception: ") + e.what(); }
   return {};
 }
@@ -143,12 +272,21 @@ int main(int argc, char** argv) {
   const std::filesystem::path out = argc > 3 ? argv[3] : "fuzz-findings";
   std::filesystem::create_directories(out);
   const int current = ::open((out / "current.input").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const std::vector<std::string> seeds = make_seeds();
+  for (std::size_t k = kTextSeeds.size(); k < seeds.size(); ++k) {  // unmutated, every image seed reads
+    try {
+      demfit::imaging::decode_grey_image(seeds[k], "image seed " + std::to_string(k));
+    } catch (const std::runtime_error& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
+  }
   std::mt19937_64 rng(seed);
   const auto start = std::chrono::steady_clock::now();
   long executions = 0, findings = 0;
   while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
     for (int batch = 0; batch < 64; ++batch) {
-      const std::string input = mutate(kSeeds[rng() % kSeeds.size()], rng);
+      const std::string input = mutate(seeds[rng() % seeds.size()], rng);
       if (current >= 0 && ::ftruncate(current, 0) == 0)
         if (::pwrite(current, input.data(), input.size(), 0) < 0) return 3;
       const std::string problem = execute(input);
@@ -162,7 +300,7 @@ int main(int argc, char** argv) {
   }
   if (current >= 0) ::close(current);
   std::filesystem::remove(out / "current.input");
-  std::printf("executions %ld crashes 0 findings %ld (seed %llu, %.0f s)\n", executions, findings,
-              static_cast<unsigned long long>(seed), seconds);
+  std::printf("executions %ld crashes 0 findings %ld (seed %llu, %.0f s; images read %ld, surfaces found %ld)\n",
+              executions, findings, static_cast<unsigned long long>(seed), seconds, images_read, surfaces_found);
   return findings == 0 ? 0 : 1;
 }

@@ -4,10 +4,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <climits>
+#include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <sstream>
 #include <stdexcept>
+
+#include "image_container.hpp"
+
+// stb_image allocates through a byte budget (namespace budget below): a file whose compressed data
+// expands beyond what its declared size needs (a zlib stream longer than the picture, corrupt
+// JPEG tables) makes stb fail with "outofmem" instead of taking the machine's memory.
+namespace demfit::imaging::budget {
+void* allocate(std::size_t size);
+void* reallocate(void* block, std::size_t size);
+void release(void* block);
+}  // namespace demfit::imaging::budget
+#define STBI_MALLOC(size) demfit::imaging::budget::allocate(size)
+#define STBI_REALLOC(block, size) demfit::imaging::budget::reallocate(block, size)
+#define STBI_FREE(block) demfit::imaging::budget::release(block)
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -27,51 +44,137 @@
 #pragma GCC diagnostic pop
 
 namespace demfit::imaging {
+namespace budget {
 namespace {
 
-std::string read_bytes(const std::filesystem::path& file) {
+// Bytes stb_image may hold at once in this thread, and how many it holds. Each block carries its
+// size in a header of max_align_t's size, so that release and reallocate can account for it.
+thread_local std::size_t limit_bytes = 0;
+thread_local std::size_t live_bytes = 0;
+constexpr std::size_t kHeader = alignof(std::max_align_t);
+
+// Sets the budget for one decoding and restores "nothing allowed" afterwards.
+class Scope {
+ public:
+  explicit Scope(std::size_t limit) { limit_bytes = limit; }
+  ~Scope() { limit_bytes = 0; }
+  Scope(const Scope&) = delete;
+  Scope& operator=(const Scope&) = delete;
+};
+
+std::size_t block_size(void* block) {
+  std::size_t size = 0;
+  std::memcpy(&size, static_cast<char*>(block) - kHeader, sizeof size);
+  return size;
+}
+
+}  // namespace
+
+void* allocate(std::size_t size) {
+  if (size > limit_bytes || live_bytes > limit_bytes - size) return nullptr;
+  char* raw = static_cast<char*>(std::malloc(size + kHeader));
+  if (raw == nullptr) return nullptr;
+  std::memcpy(raw, &size, sizeof size);
+  live_bytes += size;
+  return raw + kHeader;
+}
+
+void release(void* block) {
+  if (block == nullptr) return;
+  live_bytes -= block_size(block);
+  std::free(static_cast<char*>(block) - kHeader);
+}
+
+void* reallocate(void* block, std::size_t size) {
+  if (block == nullptr) return allocate(size);
+  const std::size_t old_size = block_size(block);
+  if (size > old_size && (size - old_size > limit_bytes || live_bytes > limit_bytes - (size - old_size)))
+    return nullptr;
+  char* raw = static_cast<char*>(std::realloc(static_cast<char*>(block) - kHeader, size + kHeader));
+  if (raw == nullptr) return nullptr;
+  std::memcpy(raw, &size, sizeof size);
+  live_bytes = live_bytes - old_size + size;
+  return raw + kHeader;
+}
+
+}  // namespace budget
+
+namespace {
+
+std::string quoted(const std::string& source) { return "image '" + source + "'"; }
+
+std::string read_bytes(const std::filesystem::path& file, std::uintmax_t limit) {
+  const std::string name = quoted(file.string());
   std::error_code error;
   if (!std::filesystem::is_regular_file(file, error))
-    throw std::runtime_error("image '" + file.string() + "' does not exist or is not a file; check the path");
+    throw std::runtime_error(name + " does not exist or is not a file; check the path");
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (!error && size > limit)
+    throw std::runtime_error(name + " is " + std::to_string(size) + " bytes, above the " + std::to_string(limit >> 20) +
+                             " MiB limit for a drum photo; crop it to the drum or save it compressed");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open image '" + file.string() + "'; check its read permission");
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!in) throw std::runtime_error("cannot open " + name + "; check its read permission");
+  std::string bytes;
+  std::string chunk(std::size_t{1} << 20, '\0');
+  while (in && bytes.size() <= limit) {  // reads at most one chunk past the limit
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    bytes.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (bytes.size() > limit)
+    throw std::runtime_error(name + " is above the " + std::to_string(limit >> 20) +
+                             " MiB limit for a drum photo; crop it to the drum or save it compressed");
+  return bytes;
 }
 
-std::uint32_t little_endian(const std::string& bytes, std::size_t at, int size) {
-  std::uint32_t v = 0;
-  for (int k = size - 1; k >= 0; --k)
-    v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
-  return v;
+// Refuses a declared size above the limits before anything the size of the picture is allocated.
+void check_declared_size(const container::Size& size, const ImageLimits& limits, const std::string& name) {
+  const std::string declared = std::to_string(size.width) + " x " + std::to_string(size.height) + " pixels";
+  std::ostringstream megapixels;
+  megapixels << static_cast<double>(limits.pixels) / 1e6;
+  if (size.width <= 0 || size.height <= 0)
+    throw std::runtime_error(name + " declares " + declared + "; give a BMP, PNG or JPEG file with a picture in it");
+  if (size.width > limits.side || size.height > limits.side || size.width * size.height > limits.pixels)
+    throw std::runtime_error(name + " declares " + declared + ", above the limit of " + std::to_string(limits.side) +
+                             " pixels a side and " + megapixels.str() +
+                             " megapixels; crop the photo to the drum or scale it down");
 }
 
-// stb_image pads a truncated file with zeros instead of failing (BMP and JPEG), so truncation is
-// checked from the container itself: an uncompressed BMP must hold offset + stride * rows bytes;
-// a JPEG must end with its End Of Image marker FF D9 (entropy-coded data cannot contain it, so it
-// is searched for in the last 1 KiB to allow a little trailing padding).
-bool looks_truncated(const std::string& bytes) {
-  if (bytes.size() >= 2 && bytes[0] == 'B' && bytes[1] == 'M') {
-    if (bytes.size() < 54) return true;
-    const std::uint32_t offset = little_endian(bytes, 10, 4);
-    const std::uint32_t header = little_endian(bytes, 14, 4);
-    if (header < 40) return false;  // old OS/2 header: leave it to stb
-    const auto width = static_cast<std::int32_t>(little_endian(bytes, 18, 4));
-    const auto height = static_cast<std::int32_t>(little_endian(bytes, 22, 4));
-    const std::uint32_t bits = little_endian(bytes, 28, 2);
-    const std::uint32_t compression = little_endian(bytes, 30, 4);
-    if (compression != 0 && compression != 3) return false;  // RLE: size not known in advance
-    const std::uint64_t stride = ((static_cast<std::uint64_t>(std::abs(width)) * bits + 31) / 32) * 4;
-    return offset + stride * static_cast<std::uint64_t>(std::abs(height)) > bytes.size();
+// The declared size, checked against the limits, after the container checks of the format; a
+// JPEG's `bytes` are cut at its End Of Image marker; an OS/2 BMP's are replaced by `rewritten`, the
+// same picture with the Windows header. stb_image only ever sees a file whose container
+// was checked here first: it trusts sizes, offsets and table counts, and Debian's stb_image 2.27
+// writes past a JPEG Huffman table that declares more than 256 codes.
+container::Size check_container(std::string_view& bytes, std::string& rewritten, const ImageLimits& limits,
+                                const std::string& name) {
+  container::Size size;
+  switch (container::detect_format(bytes)) {
+    case container::Format::bmp:
+      size = container::bmp_declared_size(bytes, name);
+      check_declared_size(size, limits, name);
+      container::check_bmp_pixel_data(bytes, name);
+      if (container::is_core_bmp(bytes)) {
+        rewritten = container::windows_bmp_from_core(bytes);
+        bytes = rewritten;
+      }
+      break;
+    case container::Format::png:
+      size = container::png_declared_size(bytes, name);
+      check_declared_size(size, limits, name);
+      container::check_png_chunks(bytes, name);
+      break;
+    case container::Format::jpeg: {
+      const container::JpegLayout layout = container::jpeg_layout(bytes, name);
+      size = layout.size;
+      check_declared_size(size, limits, name);
+      bytes = bytes.substr(0, layout.length);
+      break;
+    }
+    case container::Format::other:
+      throw std::runtime_error(name +
+                               " cannot be decoded (its first bytes are not those of a BMP, PNG or JPEG file); "
+                               "give a BMP, PNG or JPEG file");
   }
-  if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xFF &&
-      static_cast<unsigned char>(bytes[1]) == 0xD8) {
-    const std::size_t from = bytes.size() > 1024 ? bytes.size() - 1024 : 2;
-    for (std::size_t k = bytes.size() - 1; k > from; --k)
-      if (static_cast<unsigned char>(bytes[k - 1]) == 0xFF && static_cast<unsigned char>(bytes[k]) == 0xD9)
-        return false;
-    return true;
-  }
-  return false;
+  return size;
 }
 
 void append_bytes(void* context, void* data, int size) {
@@ -80,23 +183,46 @@ void append_bytes(void* context, void* data, int size) {
 
 }  // namespace
 
-GreyImage read_grey_image(const std::filesystem::path& file) {
-  const std::string bytes = read_bytes(file);
-  if (bytes.empty()) throw std::runtime_error("image '" + file.string() + "' is empty; give a BMP, PNG or JPEG file");
-  const std::string truncated =
-      "image '" + file.string() + "' is truncated (its data ends before the picture does); copy the file again";
-  if (looks_truncated(bytes)) throw std::runtime_error(truncated);
+GreyImage read_grey_image(const std::filesystem::path& file, const ImageLimits& limits) {
+  const std::string bytes = read_bytes(file, limits.file_bytes);
+  return decode_grey_image(bytes, file.string(), limits);
+}
+
+GreyImage decode_grey_image(std::string_view bytes, const std::string& source, const ImageLimits& limits) {
+  const std::string name = quoted(source);
+  if (bytes.empty()) throw std::runtime_error(name + " is empty; give a BMP, PNG or JPEG file");
+  if (bytes.size() > limits.file_bytes || bytes.size() > std::size_t{INT_MAX})
+    throw std::runtime_error(name + " is " + std::to_string(bytes.size()) + " bytes, above the " +
+                             std::to_string(limits.file_bytes >> 20) + " MiB limit for a drum photo");
+  std::string rewritten;  // an OS/2 BMP rewritten with the Windows header
+  const container::Size size = check_container(bytes, rewritten, limits, name);
+  // stb holds at most the compressed file plus 16 bytes per declared pixel (4 channels of 16 bits,
+  // twice: the inflated PNG rows and the image made from them) plus 64 MiB of tables and rows.
+  const std::size_t limit = bytes.size() + 16 * static_cast<std::size_t>(size.width * size.height) + (64u << 20);
+  budget::Scope scope(limit);
   int width = 0, height = 0, channels = 0;
   unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
                                                 static_cast<int>(bytes.size()), &width, &height, &channels, 1);
-  if (pixels == nullptr && std::string(stbi_failure_reason()) == "outofdata") throw std::runtime_error(truncated);
-  if (pixels == nullptr)
-    throw std::runtime_error("image '" + file.string() + "' cannot be decoded (" + stbi_failure_reason() +
-                             "); give a BMP, PNG or JPEG file");
+  if (pixels == nullptr) {
+    const std::string reason = stbi_failure_reason();
+    if (reason == "outofdata")
+      throw std::runtime_error(name + " is truncated (its data ends before the picture does); copy the file again");
+    if (reason == "outofmem")
+      throw std::runtime_error(name + " needs more than " + std::to_string(limit >> 20) + " MiB to decode its " +
+                               std::to_string(size.width) + " x " + std::to_string(size.height) +
+                               " pixels; the file is corrupt or not a plain photo: re-export it");
+    throw std::runtime_error(name + " cannot be decoded (" + reason + "); give a BMP, PNG or JPEG file");
+  }
+  if (width != size.width || height != size.height) {
+    stbi_image_free(pixels);
+    throw std::runtime_error(name + " is corrupted (decoded " + std::to_string(width) + " x " + std::to_string(height) +
+                             " pixels, its header declares " + std::to_string(size.width) + " x " +
+                             std::to_string(size.height) + "); re-export it");
+  }
   GreyImage image;
   image.width = width;
   image.height = height;
-  image.source = file.string();
+  image.source = source;
   image.value.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (std::size_t k = 0; k < image.value.size(); ++k) image.value[k] = static_cast<float>(pixels[k]) / 255.0f;
   stbi_image_free(pixels);

@@ -10,9 +10,7 @@
 namespace demfit::imaging {
 
 OccupancyAccumulator::OccupancyAccumulator(const DrumFrame& frame, int pixels) : frame_(frame), pixels_(pixels) {
-  if (!(frame.diameter > 0.0) || !std::isfinite(frame.diameter))
-    throw std::runtime_error("occupancy image: drum diameter is " + std::to_string(frame.diameter) +
-                             " m; give the inner drum diameter (> 0), e.g. 0.084 m");
+  check_drum_diameter(frame.diameter, "occupancy image");
   if (pixels < 32)
     throw std::runtime_error("occupancy image: " + std::to_string(pixels) + " pixels across; give at least 32");
   covered_count_.assign(static_cast<std::size_t>(pixels) * pixels, 0);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -37,9 +38,7 @@ void check_inputs(const GreyImage& image, const DrumFrame& frame, const ProfileO
                              " pixels wide; at least 32 are needed to find a surface");
   if (image.value.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     throw std::runtime_error(name + ": pixel buffer size is not width x height");
-  if (!(frame.diameter > 0.0) || !std::isfinite(frame.diameter))
-    throw std::runtime_error("drum diameter is " + std::to_string(frame.diameter) +
-                             " m; give the inner drum diameter (> 0), e.g. 0.084 m");
+  check_drum_diameter(frame.diameter, name);
   if (!(options.margin >= 0.0 && options.margin < 1.0))
     throw std::runtime_error("margin is " + std::to_string(options.margin) +
                              "; give a fraction of the radius in [0, 1), e.g. 0.1");
@@ -153,6 +152,49 @@ std::vector<double> column_heights(const GreyImage& image, const Grid& grid, con
   return height;
 }
 
+// The bed-shape fractions of rule 5 (surface.hpp).
+void measure_bed_shape(const Grid& grid, const std::vector<unsigned char>& bed, int material_count,
+                       const std::vector<double>& height, SurfaceProfile& profile) {
+  const int n = grid.n;
+  long bed_count = 0, below = 0, bed_below = 0;
+  int first = -1, last = -1, covered = 0;
+  for (int column = 0; column < n; ++column) {
+    for (int row = grid.top[column]; row >= 0 && row <= grid.bottom[column]; ++row) {
+      const bool is_bed = bed[static_cast<std::size_t>(row) * n + column];
+      bed_count += is_bed;
+      if (!std::isnan(height[column]) && pixel_z(row, n, grid.diameter) < height[column]) {
+        ++below;
+        bed_below += is_bed;
+      }
+    }
+    if (std::isnan(height[column])) continue;
+    if (first < 0) first = column;
+    last = column;
+    ++covered;
+  }
+  profile.bed_share = material_count > 0 ? static_cast<double>(bed_count) / material_count : 0.0;
+  profile.bed_solidity = below > 0 ? static_cast<double>(bed_below) / below : 0.0;
+  profile.surface_cover = first >= 0 ? static_cast<double>(covered) / (last - first + 1) : 0.0;
+}
+
+void check_bed_shape(const GreyImage& image, const SurfaceProfile& profile) {
+  auto refuse = [&](const std::string& what, double value, double least) {
+    std::ostringstream text;
+    text.precision(3);
+    text << image_name(image) << " does not look like a drum photo: " << what << " is " << value << " (at least "
+         << least << " for one powder bed resting on the drum bottom under one free surface, threshold "
+         << profile.threshold_used << "); check that it is a drum photo cropped to the drum, the contrast "
+         << "(--inverted) and the threshold";
+    throw std::runtime_error(text.str());
+  };
+  if (profile.bed_share < kMinBedShare)
+    refuse("the share of the material pixels connected to the drum bottom", profile.bed_share, kMinBedShare);
+  if (profile.bed_solidity < kMinBedSolidity)
+    refuse("the share of the pixels below the surface that are bed", profile.bed_solidity, kMinBedSolidity);
+  if (profile.surface_cover < kMinSurfaceCover)
+    refuse("the share of the columns across the chord with a surface", profile.surface_cover, kMinSurfaceCover);
+}
+
 // `points` abscissae from the first to the last column with a surface; z interpolated linearly
 // between neighbouring columns; abscissae next to a column without surface are dropped.
 void sample_profile(const Grid& grid, const std::vector<double>& height, int points, SurfaceProfile& profile) {
@@ -179,6 +221,14 @@ void sample_profile(const Grid& grid, const std::vector<double>& height, int poi
 
 }  // namespace
 
+void check_drum_diameter(double diameter, const std::string& what) {
+  if (diameter >= kMinDrumDiameter && diameter <= kMaxDrumDiameter) return;
+  std::ostringstream text;
+  text << what << ": drum diameter " << diameter << " m is outside " << kMinDrumDiameter * 1e3 << " mm .. "
+       << kMaxDrumDiameter << " m; give the inner drum diameter in metres, e.g. 0.084 m for 84 mm";
+  throw std::runtime_error(text.str());
+}
+
 double pixel_x(int column, int n, double diameter) { return -0.5 * diameter + column * diameter / (n - 1); }
 double pixel_z(int row, int n, double diameter) { return 0.5 * diameter - row * diameter / (n - 1); }
 
@@ -186,6 +236,7 @@ ProfileOptions occupancy_profile_options(const ProfileOptions& photo_options) {
   ProfileOptions options = photo_options;
   options.threshold = 0.5;
   options.material_is_dark = false;
+  options.require_single_bed = false;
   return options;
 }
 
@@ -207,7 +258,9 @@ SurfaceProfile extract_surface(const GreyImage& image, const DrumFrame& frame, c
   const std::vector<unsigned char> bed =
       bed_mask(image, grid, profile.threshold_used, options.material_is_dark, material_count);
   class_levels(image, grid, profile.threshold_used, options.material_is_dark, profile);
-  sample_profile(grid, column_heights(image, grid, bed, profile.threshold_used), options.points, profile);
+  const std::vector<double> height = column_heights(image, grid, bed, profile.threshold_used);
+  sample_profile(grid, height, options.points, profile);
+  measure_bed_shape(grid, bed, material_count, height, profile);
   if (profile.x.size() < 2) {
     const std::string what =
         material_count == 0 ? "no pixel is material" : "the material fills the circle or does not reach its bottom";
@@ -216,6 +269,7 @@ SurfaceProfile extract_surface(const GreyImage& image, const DrumFrame& frame, c
         std::to_string(profile.threshold_used) + ", material " + (options.material_is_dark ? "dark" : "light") +
         "); check that it is a drum photo, the threshold, the contrast (--inverted) and the margin");
   }
+  if (options.require_single_bed) check_bed_shape(image, profile);
   return profile;
 }
 

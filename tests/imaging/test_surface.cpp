@@ -1,4 +1,4 @@
-// Free-surface extraction on pictures drawn with a known surface (issue 14's test targets).
+// Free-surface extraction on pictures drawn with a known surface.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// demfit::imaging — image targets for drum experiments (issue 14). One include for all of it.
+// demfit::imaging — image targets for drum experiments. One include for all of it.
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/occupancy.hpp"
 #include "demfit/imaging/overlay.hpp"

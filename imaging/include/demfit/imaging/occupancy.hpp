@@ -15,7 +15,8 @@ namespace demfit::imaging {
 // Extract its surface with occupancy_profile_options(...) (material = occupancy > 0.5).
 class OccupancyAccumulator {
  public:
-  // Throws std::runtime_error when diameter <= 0 or pixels < 32.
+  // Throws std::runtime_error when the diameter is outside [kMinDrumDiameter, kMaxDrumDiameter]
+  // or pixels < 32.
   OccupancyAccumulator(const DrumFrame& frame, int pixels);
 
   // Positions in the drum frame (x right, z up, metres, origin on the axis) and radii [m] of one
