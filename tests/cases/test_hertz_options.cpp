@@ -151,7 +151,7 @@ TEST_CASE("A Hertz drum's effect candidates are the Hertz law's own, cohesion in
 TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS = ratio x particle FRICS",
           "[cases][hertz]") {
   const CaseSpec tied = parse_case(hertz_drum_document());  // frics 0.4, tied
-  CHECK(tied.wall.frics == 0.4);                             // the ratio 1 is the tie itself
+  CHECK(tied.wall.frics == 0.4);                            // the ratio 1 is the tie itself
   const CaseSpec half = detail::with_parameters(tied, {{"wall_friction_ratio", 0.5}});
   CHECK(half.wall.frics == Approx(0.2).epsilon(1e-15));
   CHECK(half.wall.fricd == tied.contact.fricr);  // rolling stays tied
@@ -166,8 +166,8 @@ TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS =
   CHECK(parse_case(written).wall.frics == Approx(0.2).epsilon(1e-15));
   CHECK_FALSE(to_json(tied)["wall_contact"].contains("friction_ratio"));
   document["wall_contact"].erase("friction_as_particles");
-  CHECK_THAT(error_of(document), Catch::Contains("'wall_contact.friction_ratio'") &&
-                                     Catch::Contains("friction_as_particles"));
+  CHECK_THAT(error_of(document),
+             Catch::Contains("'wall_contact.friction_ratio'") && Catch::Contains("friction_as_particles"));
   // An untied case varies wall_frics itself.
   json untied = hertz_drum_document();
   untied["wall_contact"].erase("friction_as_particles");
