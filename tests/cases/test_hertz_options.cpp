@@ -174,3 +174,22 @@ TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS =
   CHECK_THROWS_WITH(detail::with_parameters(parse_case(untied), {{"wall_friction_ratio", 0.5}}),
                     Catch::Contains("vary wall_frics"));
 }
+
+TEST_CASE("The shipped GranuDrum case offers cohesion, released wall friction, rolling resistance and released e = 0.3",
+          "[cases][hertz][effects]") {
+  const CaseSpec spec = parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/granudrum_mcc.json"));
+  const auto effects = effects_for_case(spec);
+  std::vector<std::string> names;
+  for (const EffectInfo& e : effects) names.push_back(e.parameters.at(0).name);
+  CHECK(names == std::vector<std::string>{"cohesion_energy_density", "wall_friction_ratio", "fricr", "restitution"});
+  // E = 5 MPa on an elastic wall of the same material: the full 1e5 J/m^3 range fits the limit.
+  CHECK(effects[0].parameters[0].upper == 1.0e5);
+  CHECK(effects[1].parameters[0].off_value == 1.0);
+  CHECK(effects[3].parameters[0].off_value == 0.3);
+  // diagnose keeps a candidate only while its parameter is at its off value in the model: true for
+  // cohesion, the wall-friction ratio and the released restitution; the case's rolling friction
+  // 0.2 is already part of its base model, so diagnose notes rolling_resistance and leaves it out.
+  const auto values = detail::parameters_of(spec);
+  for (const std::size_t k : {0u, 1u, 3u}) CHECK(values.at(names[k]) == effects[k].parameters[0].off_value);
+  CHECK(values.at("fricr") == 0.2);
+}
