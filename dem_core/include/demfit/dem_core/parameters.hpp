@@ -92,11 +92,6 @@ struct ContactParameters {
   [[nodiscard]] bool effects_enabled() const {
     return unloading_stiffness_ratio != 1.0 || surface_energy != 0.0 || stiffness_exponent != 1.0;
   }
-  /// True when a setting of the Hertz–Mindlin law only is away from its default.
-  [[nodiscard]] bool hertz_options_enabled() const {
-    return cohesion_energy_density != 0.0 || cohesion_model != CohesionModel::sjkr ||
-           rolling_model != RollingModel::constant_torque;
-  }
 };
 
 /// Particle-to-wall parameters (*DEFINE_DE_TO_SURFACE_COUPLING card 2 semantics).
