@@ -4,7 +4,6 @@
 
 #include <array>
 #include <fstream>
-#include <utility>
 #include <optional>
 #include <numbers>
 #include <stdexcept>
@@ -47,36 +46,10 @@ std::vector<std::string> keys_with(std::vector<std::string> keys, std::string_vi
   return keys;
 }
 
-// The Hertz law's model selections: their case-file spellings (LIGGGHTS' model names).
-constexpr std::pair<dem_core::CohesionModel, const char*> kCohesionModels[] = {
-    {dem_core::CohesionModel::sjkr, "sjkr"}, {dem_core::CohesionModel::sjkr2, "sjkr2"}};
-constexpr std::pair<dem_core::RollingModel, const char*> kRollingModels[] = {
-    {dem_core::RollingModel::constant_torque, "cdt"}, {dem_core::RollingModel::elastic_plastic, "epsd2"}};
-
-template <class Model, std::size_t N>
-const char* model_name(const std::pair<Model, const char*> (&models)[N], Model model) {
-  for (const auto& [m, name] : models)
-    if (m == model) return name;
-  throw std::logic_error("a contact model without a case-file name");
-}
-
-// Reads `contact.<key>` as one of `models` (fallback when absent); errors name the field.
-template <class Model, std::size_t N>
-Model read_model(const json& contact, const char* key, const std::pair<Model, const char*> (&models)[N],
-                 Model fallback) {
-  const std::string text = read_string(contact, "contact", key, model_name(models, fallback));
-  std::string names;
-  for (const auto& [m, name] : models) {
-    if (text == name) return m;
-    names += (names.empty() ? "\"" : " or \"") + std::string(name) + "\"";
-  }
-  throw std::runtime_error("'contact." + std::string(key) + "' must be " + names + " (got \"" + text + "\")");
-}
-
 // The Hertz-only keys, refused in an lsdyna_linear file with the fix named.
 void refuse_hertz_keys(const json& contact) {
   if (contact.contains("rolling_model") &&
-      read_model(contact, "rolling_model", kRollingModels, dem_core::RollingModel::constant_torque) !=
+      read_contact_model(contact, "rolling_model", dem_core::kRollingModels, dem_core::RollingModel::constant_torque) !=
           dem_core::RollingModel::constant_torque)
     throw std::runtime_error(
         "'contact.rolling_model' = \"epsd2\" needs law hertz_mindlin: lsdyna_linear has the constant torque "
@@ -109,8 +82,9 @@ void parse_hertz_contact(const json& j, CaseSpec& spec) {
         "'contact.restitution' is missing: law hertz_mindlin needs the coefficient of restitution in " +
         find_parameter("restitution")->valid.to_string());
   read_parameter_fields(j, "contact", kHertz, spec);
-  spec.contact.cohesion_model = read_model(j, "cohesion_model", kCohesionModels, spec.contact.cohesion_model);
-  spec.contact.rolling_model = read_model(j, "rolling_model", kRollingModels, spec.contact.rolling_model);
+  ContactSpec& c = spec.contact;
+  c.cohesion_model = read_contact_model(j, "cohesion_model", dem_core::kCohesionModels, c.cohesion_model);
+  c.rolling_model = read_contact_model(j, "rolling_model", dem_core::kRollingModels, c.rolling_model);
   spec.contact.fricd = spec.contact.frics;  // one Coulomb coefficient, no velocity dependence (LIGGGHTS' hertz model)
   spec.contact.dc = 0.0;
 }
@@ -293,8 +267,8 @@ json to_json(const CaseSpec& s) {
       j["particle"].erase("radius_spread");
       j["contact"] = {{"law", to_string(s.law)}};
       write_parameter_fields(j["contact"], "contact", s.law, s);
-      j["contact"]["cohesion_model"] = model_name(kCohesionModels, s.contact.cohesion_model);
-      j["contact"]["rolling_model"] = model_name(kRollingModels, s.contact.rolling_model);
+      j["contact"]["cohesion_model"] = dem_core::model_name(dem_core::kCohesionModels, s.contact.cohesion_model);
+      j["contact"]["rolling_model"] = dem_core::model_name(dem_core::kRollingModels, s.contact.rolling_model);
       j["wall_contact"] = {{"youngs_modulus", s.wall.youngs_modulus}, {"poisson_ratio", s.wall.poisson_ratio}};
       if (s.wall_friction_as_particles) {
         j["wall_contact"]["friction_as_particles"] = true;

@@ -121,8 +121,8 @@ std::vector<EffectInfo> build(double cohesion_upper, const std::string& case_nam
 constexpr double kHertzCohesionUpper = 1.0e5;
 
 double hertz_cohesion_upper(const CaseSpec& spec) {
-  const double particle = (1.0 - spec.material.poisson_ratio * spec.material.poisson_ratio) /
-                          spec.material.youngs_modulus;
+  const double particle =
+      (1.0 - spec.material.poisson_ratio * spec.material.poisson_ratio) / spec.material.youngs_modulus;
   const double wall = spec.wall.hertz_normal_compliance();
   const dem_core::CohesionModel model = spec.contact.cohesion_model;
   const double limit = std::min(dem_core::hertz_cohesion_limit(1.0 / (2.0 * particle), model, false),
@@ -185,8 +185,8 @@ std::vector<EffectInfo> hertz_effects(const CaseSpec& spec) {
                    {fitting("wall_friction_ratio", 0.0, 2.0)},
                    {name},
                    {}});
-  all.push_back({"rolling_resistance", rolling_text(spec.contact.rolling_model), {fitting("fricr", 0.0, 0.3)},
-                 {name}, {}});
+  all.push_back(
+      {"rolling_resistance", rolling_text(spec.contact.rolling_model), {fitting("fricr", 0.0, 0.3)}, {name}, {}});
   // Released: the case fixes e (e.g. 0.3 for the GranuDrum powder); free over the range where
   // restitution-based damping is meaningful for granular media (0.05 heavily damped to 0.95
   // nearly elastic).

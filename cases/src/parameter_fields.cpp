@@ -1,8 +1,10 @@
 // The case-file fields of the parameter table: which keys a section holds, reading and writing
 // them (see parameter_table.hpp). The case parser and to_json use these, so a new row's field
 // is read, range-checked and written back without further edits.
+#include <stdexcept>
 #include <string>
 
+#include "demfit/cases/json_fields.hpp"
 #include "demfit/cases/parameter_table.hpp"
 
 namespace demfit::cases {
@@ -19,6 +21,24 @@ std::pair<std::string, std::string> field_of(const ParameterRow& row, dem_core::
 }
 
 }  // namespace
+
+template <class Model, std::size_t N>
+Model read_contact_model(const nlohmann::json& contact, const char* key,
+                         const std::pair<Model, const char*> (&models)[N], Model fallback) {
+  const std::string text = read_string(contact, "contact", key, dem_core::model_name(models, fallback));
+  std::string names;
+  for (const auto& [m, name] : models) {
+    if (text == name) return m;
+    names += (names.empty() ? "\"" : " or \"") + std::string(name) + "\"";
+  }
+  throw std::runtime_error("'contact." + std::string(key) + "' must be " + names + " (got \"" + text + "\")");
+}
+template dem_core::CohesionModel read_contact_model(const nlohmann::json&, const char*,
+                                                    const std::pair<dem_core::CohesionModel, const char*> (&)[2],
+                                                    dem_core::CohesionModel);
+template dem_core::RollingModel read_contact_model(const nlohmann::json&, const char*,
+                                                   const std::pair<dem_core::RollingModel, const char*> (&)[2],
+                                                   dem_core::RollingModel);
 
 std::vector<std::string> parameter_keys(std::string_view section, dem_core::ContactLawKind law) {
   std::vector<std::string> keys;

@@ -17,20 +17,8 @@
 namespace demfit::dem_core {
 namespace {
 
-const char* cohesion_model_name(CohesionModel model) {
-  switch (model) {
-    case CohesionModel::sjkr:
-      return "sjkr";
-    case CohesionModel::sjkr2:
-      return "sjkr2";
-  }
-  return "?";
-}
-
 // (1 - nu^2)/E of a material [1/Pa] (the Hertz particle compliance).
-double normal_compliance(const Material& m) {
-  return (1.0 - m.poisson_ratio * m.poisson_ratio) / youngs_modulus(m);
-}
+double normal_compliance(const Material& m) { return (1.0 - m.poisson_ratio * m.poisson_ratio) / youngs_modulus(m); }
 
 void require_stable_cohesion(const TimeStepInputs& inputs) {
   const ContactParameters& c = inputs.contact;
@@ -43,12 +31,12 @@ void require_stable_cohesion(const TimeStepInputs& inputs) {
     const double own = normal_compliance(inputs.materials[a]);
     for (std::size_t b = a; b < used.size(); ++b)
       if (used[b])
-        limit = std::min(limit, hertz_cohesion_limit(1.0 / (own + normal_compliance(inputs.materials[b])),
-                                                     c.cohesion_model, false));
+        limit = std::min(
+            limit, hertz_cohesion_limit(1.0 / (own + normal_compliance(inputs.materials[b])), c.cohesion_model, false));
     // Against the softest wall (a rigid one adds no compliance; no walls: the limit is looser
     // than the pairs' anyway).
-    limit = std::min(limit, hertz_cohesion_limit(1.0 / (own + inputs.max_wall_hertz_compliance), c.cohesion_model,
-                                                  true));
+    limit =
+        std::min(limit, hertz_cohesion_limit(1.0 / (own + inputs.max_wall_hertz_compliance), c.cohesion_model, true));
   }
   if (c.cohesion_energy_density <= limit) return;
   char message[400];
@@ -56,7 +44,7 @@ void require_stable_cohesion(const TimeStepInputs& inputs) {
                 "contact.cohesion_energy_density = %.4g J/m^3 exceeds the limit %.4g J/m^3 of these particles "
                 "(%s: the cohesive force must not exceed the Hertz force at an overlap of %.0f %% of the radius, "
                 "or overlaps outgrow the time step): lower it",
-                c.cohesion_energy_density, limit, cohesion_model_name(c.cohesion_model),
+                c.cohesion_energy_density, limit, model_name(kCohesionModels, c.cohesion_model),
                 100.0 * kCohesionPlannedOverlap);
   throw std::runtime_error(message);
 }

@@ -17,8 +17,8 @@ TimeStepEstimate estimate_time_step(ContactLawKind law, const ParticleState& par
                                     double max_wall_sfp, double max_wall_damp, double factor,
                                     double max_wall_hertz_compliance) {
   if (particles.size() == 0) throw std::runtime_error("time step: no particles yet; add particles before stepping");
-  const TimeStepInputs inputs{particles,     materials, contact, max_wall_sfp, max_wall_damp,
-                              factor,        max_wall_hertz_compliance};
+  const TimeStepInputs inputs{
+      particles, materials, contact, max_wall_sfp, max_wall_damp, factor, max_wall_hertz_compliance};
   return with_contact_law(law, contact, [&]<class Law>(std::type_identity<Law>) { return Law::time_step(inputs); });
 }
 

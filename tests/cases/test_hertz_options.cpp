@@ -151,7 +151,7 @@ TEST_CASE("A Hertz drum's effect candidates are the Hertz law's own, cohesion in
 TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS = ratio x particle FRICS",
           "[cases][hertz]") {
   const CaseSpec tied = parse_case(hertz_drum_document());  // frics 0.4, tied
-  CHECK(tied.wall.frics == 0.4);                             // the ratio 1 is the tie itself
+  CHECK(tied.wall.frics == 0.4);                            // the ratio 1 is the tie itself
   const CaseSpec half = detail::with_parameters(tied, {{"wall_friction_ratio", 0.5}});
   CHECK(half.wall.frics == Approx(0.2).epsilon(1e-15));
   CHECK(half.wall.fricd == tied.contact.fricr);  // rolling stays tied
@@ -166,11 +166,30 @@ TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS =
   CHECK(parse_case(written).wall.frics == Approx(0.2).epsilon(1e-15));
   CHECK_FALSE(to_json(tied)["wall_contact"].contains("friction_ratio"));
   document["wall_contact"].erase("friction_as_particles");
-  CHECK_THAT(error_of(document), Catch::Contains("'wall_contact.friction_ratio'") &&
-                                     Catch::Contains("friction_as_particles"));
+  CHECK_THAT(error_of(document),
+             Catch::Contains("'wall_contact.friction_ratio'") && Catch::Contains("friction_as_particles"));
   // An untied case varies wall_frics itself.
   json untied = hertz_drum_document();
   untied["wall_contact"].erase("friction_as_particles");
   CHECK_THROWS_WITH(detail::with_parameters(parse_case(untied), {{"wall_friction_ratio", 0.5}}),
                     Catch::Contains("vary wall_frics"));
+}
+
+TEST_CASE("The shipped GranuDrum case offers cohesion, released wall friction, rolling resistance and released e = 0.3",
+          "[cases][hertz][effects]") {
+  const CaseSpec spec = parse_case(read_case_json(std::string(DEMFIT_SOURCE_DIR) + "/cases/granudrum_mcc.json"));
+  const auto effects = effects_for_case(spec);
+  std::vector<std::string> names;
+  for (const EffectInfo& e : effects) names.push_back(e.parameters.at(0).name);
+  CHECK(names == std::vector<std::string>{"cohesion_energy_density", "wall_friction_ratio", "fricr", "restitution"});
+  // E = 5 MPa on an elastic wall of the same material: the full 1e5 J/m^3 range fits the limit.
+  CHECK(effects[0].parameters[0].upper == 1.0e5);
+  CHECK(effects[1].parameters[0].off_value == 1.0);
+  CHECK(effects[3].parameters[0].off_value == 0.3);
+  // diagnose keeps a candidate only while its parameter is at its off value in the model: true for
+  // cohesion, the wall-friction ratio and the released restitution; the case's rolling friction
+  // 0.2 is already part of its base model, so diagnose notes rolling_resistance and leaves it out.
+  const auto values = detail::parameters_of(spec);
+  for (const std::size_t k : {0u, 1u, 3u}) CHECK(values.at(names[k]) == effects[k].parameters[0].off_value);
+  CHECK(values.at("fricr") == 0.2);
 }

@@ -151,8 +151,8 @@ TEST_CASE("A cohesion above the time step's limit is refused with the limit; jus
   // R* = 1/2, a^2 = delta - delta^2/4; a sphere on a rigid floor: R* = 1, a^2 = 2 delta - delta^2,
   // E* twice the pair's. The pair limit is the lower one.
   const double delta = 0.05;
-  const double pair = static_cast<double>(hertz_force(kPairModulus, 0.5L, delta)) /
-                      (std::numbers::pi * (delta - 0.25 * delta * delta));
+  const double pair =
+      static_cast<double>(hertz_force(kPairModulus, 0.5L, delta)) / (std::numbers::pi * (delta - 0.25 * delta * delta));
   const double floor = static_cast<double>(hertz_force(2.0L * kPairModulus, 1.0L, delta)) /
                        (std::numbers::pi * (2.0 * delta - delta * delta));
   REQUIRE(pair < floor);

@@ -1,9 +1,13 @@
 #pragma once
-// Catalogue of the physical effects the base LS-DYNA model can lack (issue #6): for each, the
-// identified parameters that switch it on (names accepted by parameter_names(), --set, study
-// variables and fixed overrides), their bounds, their off value (= the base model), the cases it
-// applies to and the curves it changes. Physics: dem_core/contact_effects.hpp, docs/cases.md
-// section "Effects". The diagnosis workflow (diagnose/) uses this as its list of candidates.
+// Catalogue of the physical effects a case's base model can lack: for each, the identified
+// parameters that switch it on (names accepted by parameter_names(), --set, study variables and
+// fixed overrides), their bounds, their off value (= the base model), the cases it applies to
+// and the curves it changes. The effects depend on the case's contact law: the LS-DYNA law's
+// effects library (dem_core/contact_effects.hpp, docs/cases.md "Effects"), or for Hertz–Mindlin
+// SJKR cohesion, wall and rolling friction and the released restitution (dem_core/
+// contact_law_hertz.hpp, docs/cases.md "Hertz–Mindlin cohesion"). A "released" parameter is one
+// the case fixes: its off value is the case's own value. The diagnosis workflow (diagnose/) uses
+// this as its list of candidates.
 #include <string>
 #include <vector>
 
@@ -26,10 +30,11 @@ struct EffectInfo {
   std::vector<std::string> curves;  // simulated curves it changes; empty = all
 };
 
-// The effects that apply to a case, in a fixed order, with that case's bounds: cohesion's
-// follows the particle the simulation carries (e.g. a drum's coarse particle at
-// drum.scale_factor). `effects_for_case(name, overrides)`: the built-in case ("pellet_compression"
-// or "rotary_drum") with `overrides` merged in; throws std::runtime_error naming an unknown case.
+// The effects that apply to a case, in a fixed order, with that case's bounds: under the LS-DYNA
+// law cohesion's follows the particle the simulation carries (e.g. a drum's coarse particle at
+// drum.scale_factor); under Hertz–Mindlin it stops below the case's cohesion limit. `effects_for_case(name,
+// overrides)`: the built-in case ("pellet_compression" or "rotary_drum") with `overrides` merged in; throws
+// std::runtime_error naming an unknown case.
 std::vector<EffectInfo> effects_for_case(const std::string& case_name, const nlohmann::json& overrides = {});
 std::vector<EffectInfo> effects_for_case(const CaseSpec& spec);
 

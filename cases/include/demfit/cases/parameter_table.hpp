@@ -89,6 +89,13 @@ void read_parameter_fields(const nlohmann::json& object, std::string_view sectio
 void write_parameter_fields(nlohmann::json& object, std::string_view section, dem_core::ContactLawKind law,
                             const CaseSpec& spec);
 
+// Reads `contact.<key>` as one of the named `models` (dem_core::kCohesionModels,
+// kRollingModels); `fallback` when absent; an unknown name is an error naming the field and the
+// accepted names.
+template <class Model, std::size_t N>
+Model read_contact_model(const nlohmann::json& contact, const char* key,
+                         const std::pair<Model, const char*> (&models)[N], Model fallback);
+
 // One line per row for `demfit simulate --set` help: "name [unit] range: meaning".
 std::string parameter_help_text();
 

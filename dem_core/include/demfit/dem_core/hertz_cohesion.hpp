@@ -40,9 +40,8 @@ inline double plane_intersection_radius2(double radius, double overlap) { return
 inline double sjkr_contact_area(CohesionModel model, const ContactGeometry& g) {
   switch (model) {
     case CohesionModel::sjkr: {
-      const double a2 = g.second_radius > 0.0
-                            ? sphere_intersection_radius2(g.first_radius, g.second_radius, g.overlap)
-                            : plane_intersection_radius2(g.first_radius, g.overlap);
+      const double a2 = g.second_radius > 0.0 ? sphere_intersection_radius2(g.first_radius, g.second_radius, g.overlap)
+                                              : plane_intersection_radius2(g.first_radius, g.overlap);
       return std::numbers::pi * a2;
     }
     case CohesionModel::sjkr2:

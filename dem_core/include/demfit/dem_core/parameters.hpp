@@ -4,6 +4,10 @@
 // LS-DYNA names (NORMK, SHEARK, ...) appear here only as field names of the input structs,
 // because they are the quantities the user identifies; the kernel uses physical names.
 
+#include <cstddef>
+#include <stdexcept>
+#include <utility>
+
 namespace demfit::dem_core {
 
 /// Which contact law the pair/wall loops are instantiated with (chosen once per simulation;
@@ -25,6 +29,19 @@ enum class RollingModel {
   constant_torque,  ///< cdt: M_r = -mu_r |F_n| R* omega_rel/|omega_rel| (SPEC 1); both laws
   elastic_plastic,  ///< epsd2: incremental rolling spring k_r = k_t R*^2, capped at mu_r R* F_n
 };
+
+/// The models' names in case files and messages (LIGGGHTS' names), one row per value.
+inline constexpr std::pair<CohesionModel, const char*> kCohesionModels[] = {{CohesionModel::sjkr, "sjkr"},
+                                                                            {CohesionModel::sjkr2, "sjkr2"}};
+inline constexpr std::pair<RollingModel, const char*> kRollingModels[] = {{RollingModel::constant_torque, "cdt"},
+                                                                          {RollingModel::elastic_plastic, "epsd2"}};
+/// The name of `model` in `models` (kCohesionModels, kRollingModels); a logic error without a row.
+template <class Model, std::size_t N>
+const char* model_name(const std::pair<Model, const char*> (&models)[N], Model model) {
+  for (const auto& [m, name] : models)
+    if (m == model) return name;
+  throw std::logic_error("a contact model without a name row (dem_core/parameters.hpp)");
+}
 
 /// Particle material (solid spheres: m = rho 4/3 pi R^3, I = 2/5 m R^2).
 struct Material {
@@ -74,11 +91,6 @@ struct ContactParameters {
   /// True when any effect of the effects library is switched on (selects the effects law).
   [[nodiscard]] bool effects_enabled() const {
     return unloading_stiffness_ratio != 1.0 || surface_energy != 0.0 || stiffness_exponent != 1.0;
-  }
-  /// True when a setting of the Hertz–Mindlin law only is away from its default.
-  [[nodiscard]] bool hertz_options_enabled() const {
-    return cohesion_energy_density != 0.0 || cohesion_model != CohesionModel::sjkr ||
-           rolling_model != RollingModel::constant_torque;
   }
 };
 
