@@ -38,9 +38,9 @@ struct DiagnoseCliOptions {
   bool no_plots = false;
 };
 
-// Whether a catalogue parameter exists under the case's contact law. The catalogue's effects are
-// those of the LS-DYNA law; a Hertz–Mindlin case refuses every parameter but its own (the list of
-// cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
+// Whether a catalogue parameter exists under the case's contact law. The catalogue offers each law
+// its own effects (cases/src/effect_catalogue.cpp); a case refuses every parameter of another law
+// (cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
 bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& parameter) {
   const cases::ParameterRow* row = cases::find_parameter(parameter);
   return row && row->applies_to(case_spec.law);

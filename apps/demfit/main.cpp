@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
       "friction) from measured curves.\nAll quantities are SI unless a name states its unit "
       "(e.g. volume_cm3, pressure_MPa)."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "demfit 0.1.0");
+  app.set_version_flag("--version", "demfit " DEMFIT_VERSION " (commit " DEMFIT_COMMIT ")");
   demfit::apps::register_simulate(app);
   demfit::apps::register_identify(app);
   demfit::apps::register_reproduce(app);

@@ -9,6 +9,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "demfit/identify/study_spec.hpp"
+#include "demfit/identify/study_store.hpp"
 #include "hostile_battery.hpp"
 
 using namespace hostile;
@@ -98,20 +100,34 @@ TEST_CASE("export writes only a new regular file, or standard output") {
 
 namespace {
 
-// A finished analytic study in work/out whose store claims a DEM case, so that export writes it.
+// A finished pellet study in work/out, written through the store's own API (every row carries
+// its checksum, so an SQL edit would be refused): one successful run, stored as the answer.
 void exportable_study(const Sandbox& s) {
-  json study = analytic_study();
-  study["stopping"]["max_iterations"] = 2;
-  write_study(s, study);
-  const auto r = s.run({"identify", "study.json", "--out", "out", "--no-plots"});
-  INFO(r.err);
-  REQUIRE(r.status == 0);
-  sqlite3* db = nullptr;
-  REQUIRE(sqlite3_open((s.work / "out" / "study.db").c_str(), &db) == SQLITE_OK);
-  const char* claim =
-      "UPDATE meta SET value = json_set(value, '$.model.case', 'pellet_compression') WHERE key = 'study_json'";
-  REQUIRE(sqlite3_exec(db, claim, nullptr, nullptr, nullptr) == SQLITE_OK);
-  sqlite3_close(db);
+  namespace id = demfit::identify;
+  const json study = {{"demfit_study_version", 1},
+                      {"name", "exportable"},
+                      {"model", {{"case", "pellet_compression"}}},
+                      {"variables", {{{"name", "frics"}, {"lower", 0.1}, {"upper", 0.9}, {"initial", 0.3}}}},
+                      {"targets",
+                       {{{"curve", "pressure_volume"},
+                         {"x_column", "volume_cm3"},
+                         {"y_column", "pressure_MPa"},
+                         {"x", {60.0, 55.0, 50.0}},
+                         {"y", {0.1, 0.5, 2.0}}}}}};
+  fs::create_directories(s.work / "out");
+  auto store = id::StudyStore::open_for_run(s.work / "out" / "study.db", id::parse_study(study, s.work), false,
+                                            nullptr);
+  id::EvaluationRecord r;
+  r.kind = "initial";
+  r.unit_x = {0.25};
+  r.parameters = {{"frics", 0.3}, {"normk", 0.875046}, {"sheark", 0.299582}};
+  r.curves["pressure_volume"] = id::Curve{"volume_cm3", "pressure_MPa", {60.0, 55.0, 50.0}, {0.1, 0.5, 2.0}};
+  r.objective = 0.01;
+  r.wall_seconds = 1.0;
+  r.ok = true;
+  store.add_evaluation(r);
+  store.put_result({{"best_iteration", 0}, {"best_point", 0}, {"best_objective", 0.01},
+                    {"best_parameters", r.parameters}, {"converged", false}, {"uncertainty", nullptr}});
 }
 
 }  // namespace
