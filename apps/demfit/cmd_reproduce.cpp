@@ -77,7 +77,7 @@ void run_all(const ReproduceArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   std::string report =
       "# demfit reproduce all" + std::string(a.quick ? " --quick" : "") +
-      "\n\nThe paper's studies reproduced end to end (SPEC section 2). Quick mode uses fewer runs and a "
+      "\n\nThe paper's studies reproduced end to end (docs/spec.md section 2). Quick mode uses fewer runs and a "
       "cheaper drum (12.5 mm instead of 25 mm long, 0.25 s densification, 1 s of rotation); "
       "see docs/reproduce.md for the measured full-mode results and times.\n\n";
   const std::pair<const char*, Step> steps[] = {{"table2", cases::reproduce_table2},
@@ -121,7 +121,7 @@ void run_granudrum(const ReproduceArgs& a) {
 void register_reproduce(CLI::App& app) {
   auto args = std::make_shared<ReproduceArgs>();
   auto* cmd = app.add_subcommand("reproduce",
-                                 "Reproduce the paper's tables and figures (SPEC 2). Writes into --out; settled fills "
+                                 "Reproduce the paper's tables and figures (docs/spec.md 2). Writes into --out; settled fills "
                                  "and drum targets are cached in $DEMFIT_CACHE_DIR (default ~/.cache/demfit).");
   cmd->require_subcommand(1);
   auto add_common = [args](CLI::App* sub) {

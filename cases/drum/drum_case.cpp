@@ -1,4 +1,4 @@
-// Rotary drum (SPEC 2.2, paper section 3): the cached fill (drum_powder.cpp), then rotation at
+// Rotary drum (docs/spec.md 2.2, paper section 3): the cached fill (drum_powder.cpp), then rotation at
 // the given speed; outputs the drive torque history and the free surface at the end time.
 // Frame: drum axis = z (end walls at z = 0 and z = length), gravity -y.
 #include "drum_case.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the rotary-drum case kind (SPEC 2.2; the general drum of issue 14): its case-file
+// Internal: the rotary-drum case kind (docs/spec.md 2.2 and the general drum): its case-file
 // section and its run.
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-// Drum fill (SPEC 2.2, paper section 3): the powder of the case (fill amount rule, Table 2 coarse
+// Drum fill (docs/spec.md 2.2, paper section 3): the powder of the case (fill amount rule, Table 2 coarse
 // graining, size distribution) packed in the lower part of the drum and densified under gravity;
 // the result is cached by fill_key. Frame: drum axis = z, gravity -y.
 #include "drum_powder.hpp"

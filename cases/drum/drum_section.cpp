@@ -1,4 +1,4 @@
-// The "drum" section of a case file (SPEC 2.2; the general drum of issue 14): its plain fields are
+// The "drum" section of a case file (docs/spec.md 2.2 and the general drum): its plain fields are
 // rows of kDrumFields (section_fields.hpp); the fill amount (exactly one of four keys), the
 // coarse-graining model, the size distribution and the image options need their own code.
 #include <array>

@@ -1,4 +1,4 @@
-// Pellet compression (SPEC 2.1, paper section 2): pour and settle the pellets in the rigid
+// Pellet compression (docs/spec.md 2.1, paper section 2): pour and settle the pellets in the rigid
 // cylinder (cached), then push a piston down at constant speed until the piston pressure reaches
 // P_max, optionally unload, and report pressure against bed volume.
 #include "pellet_case.hpp"
@@ -86,7 +86,7 @@ Fill pour_and_settle(const CaseSpec& spec, const CaseRunOptions& options) {
   if (options.progress) options.progress("settle", 0.0, spec.pellet.settle_time);
   // Frictionless settling first, then friction restored (dem_core::settle densification): a
   // frictional lattice pour arches in a cylinder only ~10 pellets wide and stays near phi = 0.5;
-  // SPEC 2.1 asks for a random packing near phi = 0.6 filling the 64 mm container.
+  // docs/spec.md 2.1 asks for a random packing near phi = 0.6 filling the 64 mm container.
   dem_core::SettleOptions settle_options;
   settle_options.max_time = spec.pellet.settle_time;
   settle_options.frictionless = true;
@@ -166,12 +166,12 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
     result.curves["pressure_volume_cycle"] = cycle;
   }
   CurveTable history{
-      {"pellet compression history (SPEC 2.1); piston force and bottom force are the forces the pellets exert"},
+      {"pellet compression history (docs/spec.md 2.1); piston force and bottom force are the forces the pellets exert"},
       {"time_s", "piston_travel_mm", "volume_cm3", "pressure_MPa", "piston_force_N", "bottom_force_N",
        "kinetic_energy_J", "elastic_energy_J"},
       std::vector<std::vector<double>>(8)};
   double worst_ratio = 0.0;
-  // SPEC 2.1: the compression is quasi-static while the bed's kinetic energy stays below 1 % of
+  // docs/spec.md 2.1: the compression is quasi-static while the bed's kinetic energy stays below 1 % of
   // its elastic energy. The study warns when a run crosses it (identify::kQuasiStaticCurve).
   constexpr double quasi_static_limit = 0.01;
   identify::Curve quasi_static = empty_curve(kind, identify::kQuasiStaticCurve);
@@ -180,7 +180,7 @@ CaseResult run_pellet_compression(const CaseSpec& fill_spec, const CaseSpec& spe
     const double values[8] = {s.time,         s.travel * 1e3, s.volume_cm3, s.pressure_mpa,
                               s.piston_force, s.bottom_force, s.kinetic,    s.elastic};
     for (int c = 0; c < 8; ++c) history.values[c].push_back(values[c]);
-    // Quasi-static check (SPEC 2.1) once the bed carries load (> 10 % of P_max).
+    // Quasi-static check (docs/spec.md 2.1) once the bed carries load (> 10 % of P_max).
     if (i < run.loading_end && s.pressure_mpa * 1e6 > 0.1 * spec.pellet.max_pressure && s.elastic > 0.0) {
       worst_ratio = std::max(worst_ratio, s.kinetic / s.elastic);
       quasi_static.x.push_back(s.volume_cm3);

@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the pellet-compression case kind (SPEC 2.1): its case-file section and its run.
+// Internal: the pellet-compression case kind (docs/spec.md 2.1): its case-file section and its run.
 #include <nlohmann/json.hpp>
 
 #include "demfit/cases/case_runner.hpp"

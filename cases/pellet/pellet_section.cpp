@@ -1,4 +1,4 @@
-// The "pellet" section of a case file (SPEC 2.1): every field is one row of kPelletFields, from
+// The "pellet" section of a case file (docs/spec.md 2.1): every field is one row of kPelletFields, from
 // which its accepted keys, reading and JSON text follow (section_fields.hpp).
 #include <array>
 

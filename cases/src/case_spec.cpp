@@ -73,7 +73,7 @@ void parse_lsdyna_contact(json contact, const json& wall, CaseSpec& spec) {
   read_parameter_fields(wall, "wall_contact", kLsDyna, spec);
 }
 
-// Hertz–Mindlin contact (issue 12 item 3): restitution, sliding and rolling friction; the
+// Hertz–Mindlin contact: restitution, sliding and rolling friction; the
 // LS-DYNA springs and dampers do not exist in this law, so their keys are refused.
 void parse_hertz_contact(const json& j, CaseSpec& spec) {
   require_known_keys(j, "contact", keys_with({"law", "cohesion_model", "rolling_model"}, "contact", kHertz));

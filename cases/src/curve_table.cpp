@@ -13,7 +13,7 @@ void write_curve_table(const std::filesystem::path& path, const CurveTable& tabl
   if (table.columns.size() != table.values.size()) {
     throw std::runtime_error("curve table '" + path.string() + "': column names and data differ in count");
   }
-  // Built in memory, then written through the one atomic writer (issue #13): a full disk or a
+  // Built in memory, then written through the one atomic writer: a full disk or a
   // planted link never leaves a half-written or redirected curve.
   std::ostringstream out;
   for (const std::string& line : table.comments) out << "# " << line << '\n';

@@ -1,5 +1,5 @@
 // The parameter table (see parameter_table.hpp). Physics of each row: dem_core/parameters.hpp
-// (LS-DYNA semantics, SPEC 1), dem_core/contact_effects.hpp (effects), docs/cases.md.
+// (LS-DYNA semantics, docs/spec.md 1), dem_core/contact_effects.hpp (effects), docs/cases.md.
 #include "demfit/cases/parameter_table.hpp"
 
 #include <cmath>
@@ -86,7 +86,7 @@ std::vector<ParameterRow> wall_rows() {
   };
 }
 
-// Effects library (issue #6): pairs and walls; off at the off value (the plain LS-DYNA law).
+// Effects library: pairs and walls; off at the off value (the plain LS-DYNA law).
 std::vector<ParameterRow> effect_rows() {
   return {
       {"unloading_stiffness_ratio", "-", "plasticity (Walton-Braun): unloading stiffness k2 = ratio k1",
@@ -120,11 +120,11 @@ std::vector<ParameterRow> effect_rows() {
 
 std::vector<ParameterRow> law_and_fill_rows() {
   return {
-      // Hertz-Mindlin (issue 12): shared by pairs and walls; required in a hertz_mindlin file.
+      // Hertz-Mindlin: shared by pairs and walls; required in a hertz_mindlin file.
       {"restitution", "-", "coefficient of restitution of pairs and walls (Hertz-Mindlin damping)", closed(1e-3, 1.0),
        kNone, false, 0.0, Home::pair_contact, "", Law::hertz_mindlin, false, "contact.restitution", nullptr,
        DEMFIT_FIELD(contact.restitution)},
-      // Drum fill amount (issue 14): a parameter only in the form the case gives it.
+      // Drum fill amount: a parameter only in the form the case gives it.
       {"particle_count", "-", "drum fill: count N0 of original (s = 1) particles (changes the fill)", closed(1.0, kInf),
        kNone, false, 0.0, Home::fill, "", Law::both, true, "drum.particle_count", nullptr, fill_count,
        [](CaseSpec& s, double v) {

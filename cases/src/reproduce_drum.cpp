@@ -1,5 +1,5 @@
 // `demfit reproduce figures` (Figs. 4-5) and `demfit reproduce table3` (Table 3): the rotary
-// drum studies of paper section 3 (SPEC 2.2, 2.3).
+// drum studies of paper section 3 (docs/spec.md 2.2, 2.3).
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -53,7 +53,7 @@ CaseSpec drum_spec(const json& study, CoarseGraining model, double s) {
 }
 
 // Runs gnuplot on a script file in `dir`, from an argument vector (never a shell: --out may hold
-// any text, issue #13); a missing gnuplot is a warning in the text, not an error.
+// any text); a missing gnuplot is a warning in the text, not an error.
 std::string run_gnuplot(const fs::path& dir, const std::string& script) {
   if (identify::run_program({"gnuplot", script}, dir) != 0)
     return "(gnuplot not available or failed: PNG not written; data in CSV)\n";
@@ -156,7 +156,7 @@ std::string replicate_text(const identify::Model& model, const identify::StudySp
 
 // How far the answer's spheres interpenetrate, from one more run at the answer (the drum summary's
 // line, dem_core/overlap_statistics.hpp): a soft NORMK can make the coarse bed as dense as the fine
-// one by overlap instead of by packing (docs/reproduce.md Table 3 reading 13), which the surface
+// one by overlap instead of by packing (docs/measurements/2026-12-06-table3-soft-normk-and-transfer.md), which the surface
 // error alone does not show.
 std::string overlap_text(const json& study, const identify::ParameterSet& best, const ReproduceOptions& o) {
   CaseRunOptions run;
@@ -263,11 +263,11 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   t += replicate_text(*model, spec, r.best, error_before, error_after, target, o.quick ? 4 : 8, context);
   t += overlap_text(study, r.best, o);
   t += "Runs used: " + std::to_string(r.runs) + " (" + std::to_string(r.failed_runs) + " failed), " +
-       std::to_string(r.iterations) + " iterations, wall time in this session " + fmt("%.0f", r.wall_seconds) +
+       std::to_string(r.iterations) + " iterations, wall time of this run " + fmt("%.0f", r.wall_seconds) +
        " s with " + std::to_string(o.jobs) +
        " parallel runs; the paper used 1,600 runs (16 x 100) at 390-4,688 s CPU each.\n";
   t += "The target (" + std::string(computed ? "computed now" : "read from cache") +
-       ") is the s = 1 SCG run's free surface; our drum geometry is SPEC 2.2's choice, so optimal values differ from "
+       ") is the s = 1 SCG run's free surface; our drum geometry is docs/spec.md 2.2's choice, so optimal values differ from "
        "the paper's.\n";
   return t;
 }

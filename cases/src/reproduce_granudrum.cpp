@@ -1,4 +1,4 @@
-// `demfit reproduce granudrum` (issue 14 items 4-5): calibrate sliding friction, rolling friction
+// `demfit reproduce granudrum`: calibrate sliding friction, rolling friction
 // and the fill amount jointly on the 15 and 45 rpm GranuDrum photos, then report the photo and
 // the best simulated surface side by side and overlaid, the identified values with intervals, the
 // runs and wall time, and the surface errors per speed (RMS gap in mm, differing area in mm^2).

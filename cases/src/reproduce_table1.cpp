@@ -1,4 +1,4 @@
-// `demfit reproduce table1` (paper Table 1, SPEC 2.1): K_bulk from E and nu, then NORMK and SHEARK
+// `demfit reproduce table1` (paper Table 1, docs/spec.md 2.1): K_bulk from E and nu, then NORMK and SHEARK
 // identified from the shipped synthetic pressure-volume curve, starting from the LS-DYNA defaults.
 #include <cmath>
 #include <cstdio>
@@ -81,7 +81,7 @@ std::string reproduce_table1(const ReproduceOptions& o) {
   t += "Runs used: " + std::to_string(r.runs - r.interval_check_runs) + " to the answer, " +
        std::to_string(r.interval_check_runs) + " more to check the intervals (" + std::to_string(r.failed_runs) +
        " failed), " + std::to_string(r.iterations) + " iterations, " + (r.converged ? "converged" : "iteration limit") +
-       ", the answer's objective " + fmt("%.3g", r.best_objective) + ", wall time in this session " +
+       ", the answer's objective " + fmt("%.3g", r.best_objective) + ", wall time of this run " +
        fmt("%.0f", r.wall_seconds) + " s with " + std::to_string(o.jobs) + " parallel runs.\n";
   return t;
 }

@@ -1,4 +1,4 @@
-// Time step of the LS-DYNA linear law (SPEC 1), plain or with the effects library.
+// Time step of the LS-DYNA linear law (docs/spec.md 1), plain or with the effects library.
 //
 // For a pair, m*/k_n = (m_j a_i + m_i a_j)/(m_i + m_j) with a_i = m_i/k_i, a weighted mean of the
 // per-particle a_i, so the stiffest pair is bounded by min_i a_i (exact for a pair of equal

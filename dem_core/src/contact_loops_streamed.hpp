@@ -1,5 +1,5 @@
 #pragma once
-// Pair loads in PairLoadOrder::ascending_first_member (issue 16): every particle sums gravity,
+// Pair loads in PairLoadOrder::ascending_first_member: every particle sums gravity,
 // then its pair loads in ascending first member, then its walls, and nothing is stored per pair
 // (own_row_first keeps each pair's force and second torque, 48 bytes, plus a transposed index for
 // the gather). One thread computes the rows in ascending order and adds each touching pair's

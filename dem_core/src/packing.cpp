@@ -133,7 +133,7 @@ double drum_fill_height(double radius, double fraction) {
 
 namespace {
 
-// Feasibility before any lattice is built (issue #13: impossible fills once spun silently). The
+// Feasibility before any lattice is built (impossible fills once spun silently). The
 // lattice of spacing 2 r_max (1 + gap) holds at most the simple-cubic fraction pi/6 of the region
 // (face-centred cubic: pi/(3 sqrt 2)), so a larger solid volume can never be placed; a sphere wider than the region
 // fits nowhere; and a lattice of more than kMaxLatticeSites sites would take minutes and gigabytes.

@@ -1,5 +1,5 @@
 #pragma once
-// Pair contact histories across a neighbour-list rebuild, carried in place (issue 16: a rebuild
+// Pair contact histories across a neighbour-list rebuild, carried in place (a rebuild
 // used to hold the old and the new history arrays at once, 24 bytes per pair twice, the peak of a
 // dense bed's memory). First each new pair finds its old pair (`pair_sources`, parallel, while the
 // old list still exists); the old list is then freed and the history array is permuted in place

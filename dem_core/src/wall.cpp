@@ -1,4 +1,4 @@
-// Wall geometry tests, wall kinematics and wall construction (SPEC 1, particle-to-wall).
+// Wall geometry tests, wall kinematics and wall construction (docs/spec.md 1, particle-to-wall).
 #include "demfit/dem_core/wall.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Curve CSV reading/writing (SPEC 4: header names each column with its unit).
+// Curve CSV reading/writing (docs/spec.md 4: header names each column with its unit).
 #include "demfit/identify/curve_io.hpp"
 
 #include <charconv>

@@ -64,7 +64,7 @@ int JsonReader::integer_or(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
   const auto& value = raw(key);
   if (!value.is_number_integer()) fail(key, "expected an integer, got " + json_excerpt(value));
-  // get<int>() would wrap silently (issue #13: max_iterations overflow).
+  // get<int>() would wrap silently (max_iterations overflow).
   if (value.is_number_unsigned()
           ? value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())
           : (value.get<std::int64_t>() > std::numeric_limits<int>::max() ||

@@ -120,7 +120,7 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
     }
   }
   in.text_or("source", "");  // informational (where inline data came from)
-  // Names reach file names, plots and reports: printable text only (issue #13).
+  // Names reach file names, plots and reports: printable text only.
   check_user_text("study: " + in.field("curve"), t.curve);
   check_user_text("study: " + in.field("name"), t.name);
   t.metric = parse_metric(in);

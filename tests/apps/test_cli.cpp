@@ -181,7 +181,7 @@ std::string displayed_openmp_environment(const std::string& environment, const f
 }  // namespace
 
 TEST_CASE("demfit starts OpenMP with a bounded spin before sleeping unless the user chose a waiting policy") {
-  // Issue 16: a setenv in main comes after libgomp has read its environment, so it was ignored.
+  // a setenv in main comes after libgomp has read its environment, so it was ignored.
   const fs::path dir = scratch("openmp_waiting");
   const std::string chosen = displayed_openmp_environment("", dir);
   INFO(chosen);

@@ -1,4 +1,4 @@
-// The CLI's parameter documentation is derived from the parameter table (issue 12 item 1):
+// The CLI's parameter documentation is derived from the parameter table:
 // `demfit simulate --help` lists every row with unit and range, and docs/parameters.md is what
 // `demfit parameters` prints.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-# demfit diagnose on a study with several experiments (issue 14 item 6): two analytic experiments
+# demfit diagnose on a study with several experiments: two analytic experiments
 # sharing the variables, both matched to the same data with a hidden stiffening. The diagnosis must
 # run through the experiments (curves "<experiment>/response") and name the hidden effect, as it
 # does for the single-model study of tests/diagnose/cli_diagnose.cmake.

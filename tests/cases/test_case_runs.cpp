@@ -79,7 +79,7 @@ TEST_CASE(
   const double area = std::numbers::pi * 0.012 * 0.012;
   CHECK(curve.x.front() > 120 * sphere_volume(spec.material.radius) * 1e6);
   CHECK(curve.x.front() < area * 0.3 * 1e6);
-  // The quasi-static check curve is the history's kinetic/elastic energy over SPEC 2.1's 1 % limit,
+  // The quasi-static check curve is the history's kinetic/elastic energy over docs/spec.md 2.1's 1 % limit,
   // at every loading sample that carries more than 10 % of the maximum pressure.
   const auto& check = result.curves.at(demfit::identify::kQuasiStaticCurve);
   const auto& volume = history.values[2];
@@ -255,7 +255,7 @@ TEST_CASE(
     "noisy curve",
     "[slow]") {
   // The Table 1 chain on 120 pellets: curve at NORMK 0.875046, SHEARK 0.299582 plus 1 % noise,
-  // identified from the LS-DYNA defaults with the regression uncertainty (issue #4). The
+  // identified from the LS-DYNA defaults with the regression uncertainty. The
   // least-squares centre must lie within its 95 % interval of the generating NORMK, NORMK must not
   // be flagged; SHEARK either holds the truth in its interval or is flagged unidentifiable.
   const SmallPelletModel model;

@@ -1,4 +1,4 @@
-// Table 2 (SPEC 2.3): every row for s = 1, 2, 4 and both models, derived here from r0, rho0,
+// Table 2 (docs/spec.md 2.3): every row for s = 1, 2, 4 and both models, derived here from r0, rho0,
 // s and phi, and the rows checked against each other (mass = density x volume, ...).
 #include <catch2/catch.hpp>
 

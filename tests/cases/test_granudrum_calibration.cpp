@@ -1,4 +1,4 @@
-// The shipped GranuDrum calibration (issue 14 item 4): its study files load with both photo
+// The shipped GranuDrum calibration: its study files load with both photo
 // targets, and `reproduce granudrum`'s report parts (surface errors, side-by-side and overlay
 // pictures, the anchor path) work on known profiles and a tiny drum.
 #include <catch2/catch.hpp>

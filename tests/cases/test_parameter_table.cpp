@@ -1,4 +1,4 @@
-// The parameter table (issue 12 item 1) is the one place a model parameter's range lives: the
+// The parameter table is the one place a model parameter's range lives: the
 // case parser, with_parameters, dem_core's own validation and the effect catalogue agree with it.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// ChunkBalance (issue 16): where T threads split the pair rows of PairLoadOrder::
+// ChunkBalance: where T threads split the pair rows of PairLoadOrder::
 // ascending_first_member. The split never changes results (test_pair_load_order.cpp runs 1, 2
 // and 3 threads bit-identically with it); these tests check that it finds equal times.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// Two-sphere head-on collisions against closed-form results (SPEC 1).
+// Two-sphere head-on collisions against closed-form results (docs/spec.md 1).
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Effects library (issue #6, contact_effects.hpp): plasticity, cohesion and nonlinear stiffness
+// Effects library (contact_effects.hpp): plasticity, cohesion and nonlinear stiffness
 // against closed-form results (polydispersity and the bookkeeping: test_effects_bookkeeping.cpp).
 // Every expected number is derived here.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// Effects library (issue #6, contact_effects.hpp), the bookkeeping around the physics of
+// Effects library (contact_effects.hpp), the bookkeeping around the physics of
 // test_effects.cpp: polydisperse radii, thread-count determinism with every effect on, and the
 // refusal of out-of-range effect parameters. Every expected number is derived here.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// SimulationSettings::pair_load_order (issue 16): summing each particle's pair loads in
+// SimulationSettings::pair_load_order: summing each particle's pair loads in
 // ascending first member stores nothing per pair. Runs stay bit-identical for any thread count,
 // even when neighbours in space are far apart in memory (many pairs cross the threads' chunks),
 // and the physics equals the own-row-first order up to floating-point round-off.

@@ -1,4 +1,4 @@
-// SimulationSettings::reorder_particles (issue 16): slab order at neighbour-list rebuilds moves
+// SimulationSettings::reorder_particles: slab order at neighbour-list rebuilds moves
 // particles in memory, never in space. Runs stay bit-identical between thread counts, particles
 // keep their ids, and the physics equals the unreordered run up to floating-point round-off.
 #include <catch2/catch.hpp>

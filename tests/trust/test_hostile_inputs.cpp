@@ -1,4 +1,4 @@
-// The battery of issue #13: bad or hostile inputs given to demfit on the command line. Each one
+// The first battery: bad or hostile inputs given to demfit on the command line. Each one
 // must end with exit status != 0 and ONE line "demfit: error: ..." naming the field, leave every
 // file of the working folder and of the rest of the disk as it was, and leave no partial output.
 #include <catch2/catch.hpp>

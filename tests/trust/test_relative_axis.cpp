@@ -1,4 +1,4 @@
-// Relative axes from first contact (issue #13, "fill offset"): a bed holding 2 % more powder is
+// Relative axes from first contact ("fill offset"): a bed holding 2 % more powder is
 // shifted on the absolute volume axis but identical on the axes measured from first contact.
 #include <catch2/catch.hpp>
 

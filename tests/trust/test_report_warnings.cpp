@@ -1,4 +1,4 @@
-// The report says what a confident-looking answer may hide (issue #13): an optimum on a bound, a
+// The report says what a confident-looking answer may hide: an optimum on a bound, a
 // study stopped at the iteration limit, a verification run far from its prediction, and a misfit
 // far above the noise of the data, with the misfit in the curve's own units, and runs far from
 // quasi-static.

@@ -1,5 +1,5 @@
 // Files are never lost, links never followed, write errors never silent, stores never shared
-// (issue #13), checked on the command line where it matters and on the library where it is exact.
+//, checked on the command line where it matters and on the library where it is exact.
 #include <catch2/catch.hpp>
 
 #include <sqlite3.h>

@@ -1,4 +1,4 @@
-// A study is checked against its model at the initial point (issue #13): units converted within
+// A study is checked against its model at the initial point: units converted within
 // a dimension, a dimension mismatch, an unknown curve and a target outside the model's x-range
 // refused; impossible fills refused before the packing generator builds anything.
 #include <catch2/catch.hpp>

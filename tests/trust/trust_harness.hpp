@@ -1,5 +1,5 @@
 #pragma once
-// Running demfit on hostile inputs (issue #13): a sandbox folder per input (work/ is the working
+// Running demfit on hostile inputs: a sandbox folder per input (work/ is the working
 // folder of the command, outside/ stands for the rest of the user's disk), the command run from an
 // argument vector (no shell), and a snapshot of every file so that a test can assert that nothing
 // outside the output folder changed and that no partial output remained.

@@ -25,7 +25,7 @@ struct CaseKindRow {
   CaseKind kind;
   const char* name;     // "case" in the case file
   const char* section;  // the kind's own case-file section (no other kind may carry it)
-  const char* summary;  // what it models (SPEC section)
+  const char* summary;  // what it models (docs/spec.md section)
   std::vector<CaseCurve> curves;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// A case file, typed (SPEC 2, SPEC 4). Parsing is strict: unknown keys, wrong types and
+// A case file, typed (docs/spec.md 2, docs/spec.md 4). Parsing is strict: unknown keys, wrong types and
 // impossible values are errors naming the dotted field. Every quantity is SI (m, kg, s, Pa)
 // unless the key names its unit (e.g. "rpm"). to_json() gives the resolved case with every
 // default filled in; parse_case(to_json(spec)) == spec.
@@ -17,7 +17,7 @@
 namespace demfit::cases {
 
 // Particle material (one species per case). The particle spring is NORMK * K * R with
-// K = E / (3 (1 - 2 nu)) (paper section 2, SPEC 1).
+// K = E / (3 (1 - 2 nu)) (paper section 2, docs/spec.md 1).
 struct MaterialSpec {
   double radius = 1.0e-3;         // [m]
   double density = 1000.0;        // [kg/m^3]
@@ -32,7 +32,7 @@ struct MaterialSpec {
 
 // *CONTROL_DISCRETE_ELEMENT (particle pairs, with the effects library) and
 // *DEFINE_DE_TO_SURFACE_COUPLING card 2 (walls: fricd is the wall ROLLING friction), LS-DYNA
-// semantics (SPEC 1): the case holds dem_core's own parameter sets. Parsing resolves FRICD to
+// semantics (docs/spec.md 1): the case holds dem_core's own parameter sets. Parsing resolves FRICD to
 // FRICS when the file omits it, so a parsed case never carries dem_core's "unset" (-1).
 using ContactSpec = dem_core::ContactParameters;
 using WallContactSpec = dem_core::WallContactParameters;
@@ -42,7 +42,7 @@ struct TimeStepSpec {
   double factor = 0.15;  // automatic step = factor * 2 pi sqrt(m*/k_n) of the stiffest pair
 };
 
-// SPEC 2.1. The cylinder axis is z, the bottom plate at z = 0.
+// docs/spec.md 2.1. The cylinder axis is z, the bottom plate at z = 0.
 struct PelletSpec {
   double container_diameter = 0.036;  // [m]
   double container_height = 0.064;    // [m]
@@ -65,7 +65,7 @@ struct PelletSpec {
 // The coarse model carries Table 2's total mass: SCG count = N0 / s^3, CVF count = phi N0 / s^3.
 enum class FillBy { fill_fraction, fill_volume, particle_count, fill_mass };
 
-// The simulated side of a photo comparison (issue 14): occupancy image of the particles
+// The simulated side of a photo comparison: occupancy image of the particles
 // projected along the drum axis, averaged over the surface window, then the photo's surface
 // extraction (demfit::imaging). Off unless "image" is given in the drum object.
 struct DrumImageSpec {
@@ -75,7 +75,7 @@ struct DrumImageSpec {
   long long points = 41;   // abscissae of free_surface_image
 };
 
-// SPEC 2.2. Drum axis z through the origin, gravity -y.
+// docs/spec.md 2.2. Drum axis z through the origin, gravity -y.
 struct DrumSpec {
   double diameter = 0.1;          // inner diameter [m]
   double length = 0.025;          // axial length between the end walls [m]
@@ -91,7 +91,7 @@ struct DrumSpec {
   double surface_window = 0.1;      // free surface averaged over [duration - window, duration] [s]
   long long surface_snapshots = 5;  // snapshots averaged in that window
   long long surface_points = 41;    // abscissae of the free_surface curve
-  // General drum (issue 14); at their defaults the case is the paper's drum, unchanged.
+  // General drum; at their defaults the case is the paper's drum, unchanged.
   FillBy fill_by = FillBy::fill_fraction;
   double fill_volume_ml = 0.0;             // bulk fill volume [mL] (fill_by == fill_volume)
   long long particle_count = 0;            // original-particle count N0 (fill_by == particle_count)
@@ -124,7 +124,7 @@ struct CaseSpec {
   CaseKind kind = CaseKind::pellet_compression;
   std::string description;
   MaterialSpec material;
-  // "contact.law": lsdyna_linear (default; SPEC 1) or hertz_mindlin (rotary_drum only). Under
+  // "contact.law": lsdyna_linear (default; docs/spec.md 1) or hertz_mindlin (rotary_drum only). Under
   // hertz_mindlin the case gives contact.restitution/frics/fricr and the wall's material
   // (wall.youngs_modulus, wall.poisson_ratio) with wall.frics and wall.fricd (= wall rolling
   // friction, key "fricr" in the file); restitution is shared by pairs and walls.

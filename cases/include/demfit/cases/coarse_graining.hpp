@@ -1,5 +1,5 @@
 #pragma once
-// Coarse-graining models of the paper's Table 2 (SPEC 2.3): a coarse particle of scale factor s
+// Coarse-graining models of the paper's Table 2 (docs/spec.md 2.3): a coarse particle of scale factor s
 // replaces s^3 original particles.
 //   SCG (simple):               r = s r0,            v = s^3 v0,      m = s^3 m0, rho = rho0,
 //                               total mass M0.

@@ -1,6 +1,6 @@
 #pragma once
 // Settled particle fills cached on disk, keyed by a hash of everything that determines them
-// (SPEC/issue #5: "the settled fill may be generated once per seed and reused"). A fill is the
+// (docs/spec.md: "the settled fill may be generated once per seed and reused"). A fill is the
 // particles' centres and radii after settling; an evaluation then starts from it at rest.
 //
 // File: <cache_dir>/<prefix>_<16 hex digits>.fill, text: the key JSON on line 1, then one line

@@ -1,6 +1,6 @@
 #pragma once
 // Automatic extraction of the free surface of a granular bed in a drum cross-section
-// (SPEC 2.2 `free_surface`; the paper extracted its target by hand, Fig. 7).
+// (docs/spec.md 2.2 `free_surface`; the paper extracted its target by hand, Fig. 7).
 //
 // Frame: the drum axis is the z axis through the origin, gravity points along -y; the profile is
 // height y [m] as a function of the horizontal coordinate x [m] in the cross-section (all

@@ -1,5 +1,5 @@
 #pragma once
-// The model parameters of the DEM cases, one row each (issue 12 item 1): name, unit, meaning,
+// The model parameters of the DEM cases, one row each: name, unit, meaning,
 // valid range, default, the off value of an effect, where the parameter lives, its LS-DYNA card
 // and field, the contact laws it belongs to, its case-file field and how to read and write it on
 // a CaseSpec. Everything else is derived from this table: case-file ranges of these fields,

@@ -1,5 +1,5 @@
 #pragma once
-// `demfit reproduce ...`: the paper's studies end to end (issue #5). Each function writes its
+// `demfit reproduce ...`: the paper's studies end to end. Each function writes its
 // files into `out_dir` (created) and returns the Markdown text it also prints.
 #include <filesystem>
 #include <string>

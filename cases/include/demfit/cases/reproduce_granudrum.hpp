@@ -1,5 +1,5 @@
 #pragma once
-// `demfit reproduce granudrum [--quick] [--anchor]` (issue 14 items 4-5): the shipped calibration
+// `demfit reproduce granudrum [--quick] [--anchor]`: the shipped calibration
 // study on the GranuDrum MCC photos (cases/granudrum_calibration*.json) and its report.
 #include <filesystem>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// A case-file section's plain fields as one table (issue 12: one source of truth per fact): each
+// A case-file section's plain fields as one table (one source of truth per fact): each
 // row is the key, the member of the section's struct it fills and the rule its value obeys. The
 // section's accepted keys, its strict reading and its JSON text are all derived from the table,
 // so a new field is one row (plus its physics), never three edits that can drift apart.

@@ -1,5 +1,5 @@
 #pragma once
-// Particle size distribution of a drum fill (issue 14): measured sizes from a CSV column, or
+// Particle size distribution of a drum fill: measured sizes from a CSV column, or
 // size classes with number or mass fractions; lower/upper size cut-offs; deterministic sampling
 // from the fill seed. Sizes are stored as sphere DIAMETERS in metres.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Seeded Gaussian noise for synthetic "measured" curves (issue #6; SPEC 2.1 shipped data).
+// Seeded Gaussian noise for synthetic "measured" curves (docs/spec.md 2.1 shipped data).
 // Noise on y: N(0, (relative * max|y|)^2), independent per point. The generator is
 // std::mt19937_64 with a Box-Muller transform written here, so the same seed gives the same
 // numbers with any standard library (std::normal_distribution is implementation-defined).

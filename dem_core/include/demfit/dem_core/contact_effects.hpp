@@ -1,5 +1,5 @@
 #pragma once
-// Effects library (issue #6): the normal part of the LS-DYNA linear law with three optional
+// Effects library: the normal part of the LS-DYNA linear law with three optional
 // physical effects the base model lacks. Each is off at its default (ContactParameters):
 //
 // 1. Plasticity, Walton & Braun (1986, J. Rheol. 30:949) hysteretic spring. Loading on the

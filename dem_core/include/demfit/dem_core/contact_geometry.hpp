@@ -27,7 +27,7 @@ struct ContactGeometry {
 /// Per-contact memory of the plain laws (LS-DYNA linear, Hertz–Mindlin), carried across steps
 /// and across neighbour-list rebuilds; reset (set to default) when the contact ends. A law with
 /// more memory declares its own history type that starts with this field (contact_laws.hpp);
-/// this one stays 24 bytes per contact (issue 16: memory per particle).
+/// this one stays 24 bytes per contact (memory per particle).
 struct ContactHistory {
   Vec3 tangential_displacement{};  ///< incremental tangential spring elongation xi_t [m]
 };

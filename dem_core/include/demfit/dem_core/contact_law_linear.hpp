@@ -1,5 +1,5 @@
 #pragma once
-// LS-DYNA linear spring-dashpot law (*CONTROL_DISCRETE_ELEMENT, SPEC 1), composed of a normal
+// LS-DYNA linear spring-dashpot law (*CONTROL_DISCRETE_ELEMENT, docs/spec.md 1), composed of a normal
 // part, the Coulomb tangential spring and constant-torque rolling resistance. The law is a
 // template on its normal part: LinearNormal (the plain LS-DYNA law) or EffectsNormal
 // (plasticity, cohesion, nonlinear stiffness; contact_effects.hpp). The simulation picks the
@@ -17,7 +17,7 @@ namespace demfit::dem_core {
 
 /// Normal spring-dashpot: k_n = 1/(sum of compliances) (springs in series, k_i = NORMK K_i R_i),
 /// c_n = 2 NDAMP sqrt(m* k_n). The elastic part k_n delta is never attractive; the viscous part
-/// is not clipped, so restitution is exactly e = exp(-pi zeta/sqrt(1-zeta^2)) (SPEC 1).
+/// is not clipped, so restitution is exactly e = exp(-pi zeta/sqrt(1-zeta^2)) (docs/spec.md 1).
 struct LinearNormal {
   using History = ContactHistory;  ///< no memory beyond the tangential spring
   double damping_ratio = 0.0;      ///< NDAMP (pairs) or wall DAMP [-]
@@ -79,7 +79,7 @@ struct LinearLaw {
     law.rolling.coefficient = p.rotation_enabled() ? w.fricd : 0.0;
     return law;
   }
-  /// k_i = NORMK K_i R_i (SPEC 1); the particle's compliance is its inverse [m/N].
+  /// k_i = NORMK K_i R_i (docs/spec.md 1); the particle's compliance is its inverse [m/N].
   static ParticleCompliance particle_compliance(const Material& m, double radius, const ContactParameters& p) {
     return {1.0 / (p.normk * m.bulk_modulus * radius), 0.0};
   }
@@ -111,7 +111,7 @@ struct LinearLaw {
   }
 };
 
-/// The plain LS-DYNA law (SPEC 1) and the same law with the effects library.
+/// The plain LS-DYNA law (docs/spec.md 1) and the same law with the effects library.
 using LsDynaLinearLaw = LinearLaw<LinearNormal>;
 using LsDynaEffectsLaw = LinearLaw<EffectsNormal>;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Tangential and rolling parts shared by the contact laws (SPEC 1). Each part is a small value
+// Tangential and rolling parts shared by the contact laws (docs/spec.md 1). Each part is a small value
 // type; a law composes a normal part with these. Header-only so the templated loops inline them.
 #include <cmath>
 
@@ -53,7 +53,7 @@ struct CoulombTangentialSpring {
   }
 };
 
-/// Constant-torque rolling resistance (SPEC 1): M_r = -mu_r |F_n| R* omega_rel/|omega_rel|,
+/// Constant-torque rolling resistance (docs/spec.md 1): M_r = -mu_r |F_n| R* omega_rel/|omega_rel|,
 /// limited so that it cannot reverse omega_rel within one step:
 /// |M_r| dt (1/I_i + 1/I_j) <= |omega_rel|.
 struct ConstantTorqueRolling {

@@ -1,5 +1,5 @@
 #pragma once
-// Freed memory kept in the process (issue 16). Every neighbour-list rebuild frees its old pair
+// Freed memory kept in the process. Every neighbour-list rebuild frees its old pair
 // arrays and the scratch of the particle reordering, and allocates new ones of about the same
 // size. glibc returns large freed blocks to the kernel (a block above its mmap threshold is
 // unmapped; the heap top above its trim threshold is released), so the next rebuild takes fresh
@@ -8,7 +8,7 @@
 // order (own_row_first) a 10,000-step drum run on 1 thread took 15,401 faults with glibc's
 // defaults and 365 with the retention (bench/dem_core/measured/drum_2026-12-04_ab_retention.txt).
 // Peak memory at 10^6 particles with it: 463 (default order) and 757 (own_row_first) bytes per
-// particle, against 466 and 734 the session before (scaling_2026-12-04_eighteenth.txt,
+// particle, against 466 and 734 before the change (scaling_2026-12-04_eighteenth.txt,
 // scaling_2026-12-04_slab_order.txt): the cases' order keeps ~23 bytes per particle more.
 namespace demfit::dem_core {
 

@@ -1,5 +1,5 @@
 #pragma once
-// How idle OpenMP threads wait at the three barriers of every step (issue 16). libgomp reads
+// How idle OpenMP threads wait at the three barriers of every step. libgomp reads
 // OMP_WAIT_POLICY and GOMP_SPINCOUNT once, when it is loaded — before main — so a program that
 // wants a default of its own must set it and re-execute itself; a setenv in main is silently
 // ignored (demfit's CLI did exactly that until this change, and ran on libgomp's default).

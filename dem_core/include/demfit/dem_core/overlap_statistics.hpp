@@ -1,7 +1,7 @@
 #pragma once
 // How far the spheres interpenetrate. A soft normal spring (small NORMK) lets a bed reach a
 // density by overlap instead of by arrangement, and an identification may exploit that (the
-// Table 3 coarse bed, docs/reproduce.md reading 13); these figures let a user judge an answer's
+// Table 3 coarse bed, docs/measurements/2026-12-06-table3-soft-normk-and-transfer.md); these figures let a user judge an answer's
 // physics (a common DEM guideline keeps overlaps near 1 % of the radius).
 #include <cstddef>
 

@@ -105,7 +105,7 @@ struct SettleOptions {
   bool frictionless = false;
   double refriction_time = 0.05;  ///< [s]
   /// Called after every convergence check with the simulated time spent settling and max_time
-  /// [s], so a long settle shows progress (issue #13). May be empty.
+  /// [s], so a long settle shows progress. May be empty.
   std::function<void(double elapsed, double max_time)> progress = {};
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Moving the per-pair contact histories to the new pair order of a neighbour-list rebuild, in
-// place and in parallel (issue 16). In place, because holding the old and the new history array
+// place and in parallel. In place, because holding the old and the new history array
 // at once was the peak of a dense bed's memory. In parallel, because the serial version was the
 // rebuild's largest serial part on the issue-16 drum: with temporary timers, history sources plus
 // carry took 0.49 ms per 2-thread rebuild serially and 0.25 ms in parallel, about 2 % of a

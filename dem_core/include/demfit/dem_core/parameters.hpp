@@ -1,5 +1,5 @@
 #pragma once
-// Physical parameters at the API (SPEC section 1). Derived numbers (springs, damping
+// Physical parameters at the API (docs/spec.md section 1). Derived numbers (springs, damping
 // coefficients, time steps) are computed inside dem_core from these.
 // LS-DYNA names (NORMK, SHEARK, ...) appear here only as field names of the input structs,
 // because they are the quantities the user identifies; the kernel uses physical names.
@@ -13,7 +13,7 @@ namespace demfit::dem_core {
 /// Which contact law the pair/wall loops are instantiated with (chosen once per simulation;
 /// the loops are templates on the law type, so there is no per-contact dispatch).
 enum class ContactLawKind {
-  lsdyna_linear,  ///< LS-DYNA *CONTROL_DISCRETE_ELEMENT linear spring-dashpot (SPEC 1)
+  lsdyna_linear,  ///< LS-DYNA *CONTROL_DISCRETE_ELEMENT linear spring-dashpot (docs/spec.md 1)
   hertz_mindlin,  ///< Hertz normal + Mindlin no-slip tangential, restitution-based damping
 };
 
@@ -26,7 +26,7 @@ enum class CohesionModel {
 
 /// Rolling resistance of the Hertz–Mindlin law (LIGGGHTS `rolling_friction cdt` / `epsd2`).
 enum class RollingModel {
-  constant_torque,  ///< cdt: M_r = -mu_r |F_n| R* omega_rel/|omega_rel| (SPEC 1); both laws
+  constant_torque,  ///< cdt: M_r = -mu_r |F_n| R* omega_rel/|omega_rel| (docs/spec.md 1); both laws
   elastic_plastic,  ///< epsd2: incremental rolling spring k_r = k_t R*^2, capped at mu_r R* F_n
 };
 
@@ -64,7 +64,7 @@ struct ContactParameters {
   double fricr = 0.0;         ///< FRICR [-]: rolling friction, constant-torque model
   double restitution = 1.0;   ///< e [-], Hertz–Mindlin only (the linear law uses NDAMP/TDAMP)
 
-  // ---- Effects library (issue #6; linear law only, pairs AND walls; see contact_effects.hpp).
+  // ---- Effects library (linear law only, pairs AND walls; see contact_effects.hpp).
   // Each is off at its default value; with all three off the simulation takes exactly the code
   // path of the plain LS-DYNA law (bit-identical results, no extra cost).
   /// Walton–Braun (1986) plasticity: unloading stiffness k2 = ratio * k1 [-], ratio >= 1;

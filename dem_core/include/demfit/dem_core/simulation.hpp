@@ -36,13 +36,13 @@ enum class PairLoadOrder {
   /// more). Every shipped case result was made in this order.
   own_row_first,
   /// Gravity, then every pair in ascending first member, summed as the rows are computed
-  /// (src/contact_loops_streamed.hpp): nothing stored per pair (issue 16's memory target).
+  /// (src/contact_loops_streamed.hpp): nothing stored per pair (the kernel's memory target, bench_dem --only scaling).
   ascending_first_member,
 };
 
 struct SimulationSettings {
   ContactLawKind law = ContactLawKind::lsdyna_linear;
-  ContactParameters contact{};    ///< particle–particle parameters (SPEC 1); its effects
+  ContactParameters contact{};    ///< particle–particle parameters (docs/spec.md 1); its effects
                                   ///< (plasticity, cohesion, stiffness exponent) need the linear law
   Vec3 gravity{0.0, 0.0, -9.81};  ///< [m/s^2], global frame
   /// OpenMP threads used by this simulation (>= 1; 1 = no OpenMP region at all). How idle threads
@@ -60,7 +60,7 @@ struct SimulationSettings {
   double skin = 0.0;
   /// Sort the particles into slabs across the bed's longest extent, Morton order inside a slab
   /// (particle_order.hpp), at every neighbour-list rebuild, so
-  /// that neighbours in space are neighbours in memory (issue 16: large mixed beds are otherwise
+  /// that neighbours in space are neighbours in memory (large mixed beds are otherwise
   /// memory-bound). All per-particle arrays and contact histories follow the permutation; results
   /// stay deterministic and identical for any thread count, but particle INDICES then change at
   /// rebuilds: identify particles by ParticleState::id (outputs are written in id order). On by

@@ -1,5 +1,5 @@
 #pragma once
-// Time steps (SPEC 1). Each contact law computes its own automatic step and stability limit
+// Time steps (docs/spec.md 1). Each contact law computes its own automatic step and stability limit
 // (`Law::time_step`, derived where the law is: contact_law_linear.hpp, contact_law_hertz.hpp);
 // estimate_time_step picks the simulation's law (contact_laws.hpp). Also closed-form contact
 // times and restitution of the laws, used by the tests.

@@ -1,6 +1,6 @@
 #pragma once
 // Rigid walls as data: a geometry (std::variant) plus a motion law (std::variant). Walls interact
-// with particles through the particle–wall law (SPEC 1, WallContactParameters) and accumulate the
+// with particles through the particle–wall law (docs/spec.md 1, WallContactParameters) and accumulate the
 // force and the torque that the particles exert on them.
 #include <optional>
 #include <string>

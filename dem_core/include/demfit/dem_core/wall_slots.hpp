@@ -3,7 +3,7 @@
 // may touch before the next neighbour-list rebuild (within R + skin at the build, or every wall
 // whose motion changes distances), in CSR form with walls ascending, and the last loads of each
 // slot (the slots' contact histories, of the law's history type, are kept with the law's state:
-// contact_laws.hpp). Issue 16: a dense (particle x wall) layout cost ~106 bytes per particle per wall
+// contact_laws.hpp). A dense (particle x wall) layout cost ~106 bytes per particle per wall
 // although most particles touch no wall.
 #include <cstddef>
 #include <cstdint>

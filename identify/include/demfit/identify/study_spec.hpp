@@ -1,7 +1,7 @@
 #pragma once
 // The study file, typed. A study says which model to run (case reference + fixed settings),
 // which parameters to vary and within which bounds, which measured curves to match and how,
-// and how the LS-OPT-like loop samples, reduces its region and stops (SPEC section 3).
+// and how the LS-OPT-like loop samples, reduces its region and stops (docs/spec.md section 3).
 // The JSON format is documented in docs/study_format.md; parsing is strict: unknown keys,
 // wrong types and inconsistent values are errors naming the field (one line).
 #include <cstdint>
@@ -31,12 +31,12 @@ struct VariableSpec {
 };
 
 enum class CurveMetric {
-  mse,            // SPEC 3 MSE composite at the target abscissae (needs monotone x)
+  mse,            // docs/spec.md 3 MSE composite at the target abscissae (needs monotone x)
   curve_mapping,  // area-like distance to the best-aligned equal-arc-length segment
   profile_area,   // area between two profiles z(x) over their common x-range (objective.hpp)
 };
 
-// A target read from a drum photo (issue 14): the free-surface profile extracted by
+// A target read from a drum photo: the free-surface profile extracted by
 // demfit::imaging, in the drum frame (origin on the axis, x right, z up), as a curve x_mm, z_mm.
 struct ImageTargetSpec {
   std::filesystem::path file;    // as written in the study (relative to the study file)
@@ -58,13 +58,13 @@ struct TargetSpec {
   std::filesystem::path csv;  // where data came from (empty when inline)
   CurveMetric metric = CurveMetric::mse;
   double weight = 1.0;                        // weight of this target in the composite objective
-  double scale = 0.0;                         // s_p of SPEC 3; 0 = max|G| of the target
+  double scale = 0.0;                         // s_p of docs/spec.md 3; 0 = max|G| of the target
   int mapping_points = 0;                     // curve mapping: stations along the curve; 0 = target size
   std::string experiment = {};                // experiment the target belongs to; "" in the single-model form
   std::optional<ImageTargetSpec> image = {};  // where data came from when read from a photo
 };
 
-// One experiment of a study with several (issue 14 item 3): a model (case reference + its own
+// One experiment of a study with several: a model (case reference + its own
 // fixed settings and parameters) whose targets share the study's variables. A variable is
 // passed to every experiment whose model accepts it; one that no model accepts is an error.
 struct ExperimentSpec {
@@ -75,7 +75,7 @@ struct ExperimentSpec {
 };
 
 enum class SamplingStrategy {
-  srsm,                  // SPEC 3 domain reduction: optimum + maximin points in the subregion
+  srsm,                  // docs/spec.md 3 domain reduction: optimum + maximin points in the subregion
   adaptive_infill,       // full region; optimum + infill points chosen from the objective model
   expected_improvement,  // full region; optimum + batch expected improvement on the composite objective
 };
@@ -105,8 +105,8 @@ inline constexpr int kMaxReplicates = 20;
 // objective the lowest single run is partly the luckiest trajectory, so two alternatives exist:
 // re-run the best runs as round-off replicates and take the lowest mean (final_selection.hpp), or
 // answer with the verification run at the surrogate's final predicted optimum, whose curves pool
-// the noise of the runs around it (Table 1 with expected improvement, 16 seeds: docs/reproduce.md
-// reading 11). One alternative per method, each carrying only its own settings: a count of
+// the noise of the runs around it (Table 1 with expected improvement, 16 seeds:
+// docs/measurements/2026-12-05-table1-expected-improvement-predicted-optimum.md). One alternative per method, each carrying only its own settings: a count of
 // candidates cannot exist beside a method that ignores it. `name` is the method's one spelling in
 // a study file, the resolved study and the stored result.
 struct LowestRunSelection {  // no final_selection, or candidates 0: the best single run is the answer
@@ -139,7 +139,7 @@ struct StudySpec {
   // Sampling.
   int points_per_iteration = 0;  // 0 before defaulting; parse fills ceil(1.5(n+1)+1)
   SamplingStrategy strategy = SamplingStrategy::srsm;
-  // Domain reduction (SPEC 3 / Stander & Craig 2002).
+  // Domain reduction (docs/spec.md 3 / Stander & Craig 2002).
   double gamma_pan = 1.0;
   double gamma_osc = 0.6;
   double eta = 0.6;
@@ -168,7 +168,7 @@ nlohmann::json to_json(const StudySpec& spec);
 // Stable 64-bit hash (FNV-1a of the resolved JSON text) identifying a study in its store.
 std::uint64_t study_hash(const StudySpec& spec);
 
-// Default points per iteration: 1.5(n+1)+1 rounded up (SPEC 3; 16 for n = 9).
+// Default points per iteration: 1.5(n+1)+1 rounded up (docs/spec.md 3; 16 for n = 9).
 int default_points_per_iteration(int variables);
 
 }  // namespace demfit::identify
