@@ -7,6 +7,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "demfit/identify/study_spec.hpp"
@@ -161,4 +162,66 @@ TEST_CASE("a drum turning so fast that the wall jumps over contacts in one step 
   INFO(r.err);
   CHECK(one_error_line(r, "'drum.rpm': the wall moves"));
   CHECK(!fs::exists(s.work / "out"));
+}
+
+TEST_CASE("an edited iteration record is refused by report, naming the record") {
+  Sandbox s("answer_edited_iteration");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  {
+    auto store = id::StudyStore::open_existing(s.work / "study" / "study.db");
+    id::IterationRecord it;
+    it.iteration = 0;
+    it.region_center = {0.5};
+    it.region_range = {1.0};
+    it.predicted_optimum = {0.4};
+    it.predicted_parameters = {{"frics", 0.42}};
+    it.predicted_objective = 0.011;
+    it.best_objective = 0.01;
+    it.runs_done = 3;
+    store.put_iteration(it);
+  }
+  sql(s.work / "study" / "study.db", "UPDATE iterations SET record = replace(record, '0.011', '0.001')");
+  const auto r = s.run({"report", "study/study.db", "--out", "rebuilt", "--no-plots"});
+  CHECK(one_error_line(r, "iteration record 0 was changed after demfit wrote it"));
+  CHECK(!fs::exists(s.work / "rebuilt"));
+}
+
+TEST_CASE("a store of the previous schema is refused with its version by export and report") {
+  Sandbox s("answer_old_schema");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  sql(s.work / "study" / "study.db", "UPDATE meta SET value = '1' WHERE key = 'schema_version'");
+  const auto before = trust::snapshot(s.work);
+  auto r = s.run({"export", "study/study.db", "--lsdyna", "answer.k"});
+  CHECK(one_error_line(r, "has schema version 1, this demfit reads version 2"));
+  r = s.run({"report", "study/study.db", "--out", "rebuilt", "--no-plots"});
+  CHECK(one_error_line(r, "has schema version 1, this demfit reads version 2"));
+  CHECK(trust::snapshot(s.work) == before);
+}
+
+TEST_CASE("a stored answer naming a missing or a failed run is refused") {
+  for (const bool failed : {false, true}) {
+    Sandbox s(failed ? "answer_failed_run" : "answer_missing_run");
+    fs::create_directories(s.work / "study");
+    rejected_lowest_run_store(s.work / "study" / "study.db");
+    {
+      auto store = id::StudyStore::open_existing(s.work / "study" / "study.db");
+      auto result = *store.result();
+      if (failed) {
+        id::EvaluationRecord r = *store.find_evaluation(0, 2);
+        r.ok = false;
+        r.objective = NAN;
+        r.error = "diverged";
+        store.add_evaluation(r);
+        result["best_point"] = 2;
+      } else {
+        result["best_point"] = 7;
+      }
+      store.put_result(result);
+    }
+    const auto r = s.run({"export", "study/study.db", "--lsdyna", "answer.k"});
+    CHECK(one_error_line(r, failed ? "is a failed run" : "is missing"));
+    CHECK(!fs::exists(s.work / "answer.k"));
+  }
 }
