@@ -2,14 +2,16 @@
 """Leave one speed out on the GranuDrum MCC photos: calibrate on one speed, predict the other.
 
 usage: granudrum_speed_transfer.py DEMFIT OUT [--study cases/granudrum_calibration_quick.json]
-                                   [--cohesion UPPER] [--fills 1,2,3] [--jobs 2]
+                                   [--extra NAME:LOWER:UPPER:INITIAL ...] [--fills 1,2,3] [--jobs 2]
 
 For each direction (15 -> 45 rpm, 45 -> 15 rpm) the study is cut to the one experiment it is
 calibrated on, `demfit identify` fits it, and the answer's variables are run at the other speed
 (the study's own overrides for that speed) on each fill seed; the predicted free surface is
 compared with the other photo (`demfit target compare`, RMS gap in mm). The baseline is the
 photo lookup: the calibration speed's own photo profile taken as the prediction of the other.
---cohesion U adds the SJKR cohesion energy density [J/m^3] in [0, U] as a fourth variable.
+--extra adds a variable to the calibration (e.g. cohesion_energy_density:0:100000:0 for SJKR
+cohesion [J/m^3], restitution:0.05:0.95:0.3 for the released restitution), so a candidate effect's
+transfer is measured beside the base model's.
 Prints one table; every file stays in OUT. Runs only demfit (argument vectors, no shell).
 """
 import argparse, copy, json, os, re, statistics, subprocess, sys
@@ -44,7 +46,7 @@ def main():
     p.add_argument('demfit')
     p.add_argument('out')
     p.add_argument('--study', default=os.path.join(ROOT, 'cases', 'granudrum_calibration_quick.json'))
-    p.add_argument('--cohesion', type=float, default=0.0)
+    p.add_argument('--extra', action='append', default=[])
     p.add_argument('--fills', default='1,2,3')
     p.add_argument('--jobs', default='2')
     a = p.parse_args()
@@ -66,14 +68,15 @@ def main():
     rows = []
     for fit_on, predict in (('rpm15', 'rpm45'), ('rpm45', 'rpm15')):
         one = copy.deepcopy(study)
-        one['name'] = study['name'] + '_' + fit_on + ('_cohesion' if a.cohesion > 0 else '')
+        extras = [e.split(':') for e in a.extra]
+        one['name'] = study['name'] + '_' + fit_on + ''.join('_' + e[0] for e in extras)
         one['experiments'] = [copy.deepcopy(experiments[fit_on])]
         for t in one['experiments'][0]['targets']:
             t['image'] = os.path.join(study_dir, t['image'])
         one['experiments'][0]['model']['case'] = os.path.join(study_dir, one['experiments'][0]['model']['case'])
-        if a.cohesion > 0:
-            one['variables'].append({'name': 'cohesion_energy_density', 'lower': 0.0, 'upper': a.cohesion,
-                                     'initial': 0.0})
+        for name, lower, upper, initial in extras:
+            one['variables'].append({'name': name, 'lower': float(lower), 'upper': float(upper),
+                                     'initial': float(initial)})
         study_file = os.path.join(out, one['name'] + '.json')
         json.dump(one, open(study_file, 'w'), indent=2)
         fit_dir = os.path.join(out, 'fit_' + one['name'])
