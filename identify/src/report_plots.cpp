@@ -185,10 +185,13 @@ const char* metric_label(CurveMetric metric) {
 
 // "- model: `case`" or, with several experiments, one line per experiment with its settings.
 std::string model_lines(const StudySpec& spec) {
-  if (spec.experiments.empty()) return "- model: `" + spec.model_reference + "`\n";
+  // Paths and texts from the inputs are echoed through printable(): no control or bidirectional
+  // character of a received study can forge a line of the report.
+  if (spec.experiments.empty()) return "- model: `" + printable(spec.model_reference) + "`\n";
   std::string out = "- experiments (each design point runs all of them; resolved study: `study_resolved.json`):\n";
   for (const auto& e : spec.experiments)
-    out += "  - `" + e.name + "`: case `" + e.model_reference + "`, overrides `" + e.model_overrides.dump() +
+    out += "  - `" + printable(e.name) + "`: case `" + printable(e.model_reference) + "`, overrides `" +
+           printable(e.model_overrides.dump()) +
            "`, fixed parameters `" + nlohmann::json(e.fixed_parameters).dump() + "`\n";
   return out;
 }
@@ -231,7 +234,7 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
     md << "## Failed runs\n\n| iteration/point | error |\n|---|---|\n";
     int listed = 0;
     for (const auto& r : runs)
-      if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << r.error << " |\n";
+      if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << printable(r.error) << " |\n";
     md << "\n";
   }
   md << "## Files\n\n- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"

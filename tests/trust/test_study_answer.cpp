@@ -225,3 +225,27 @@ TEST_CASE("a stored answer naming a missing or a failed run is refused") {
     CHECK(!fs::exists(s.work / "answer.k"));
   }
 }
+
+TEST_CASE("a failed run's error text with control and bidirectional characters cannot forge a line of report.md") {
+  Sandbox s("answer_forged_error");
+  fs::create_directories(s.work / "study");
+  rejected_lowest_run_store(s.work / "study" / "study.db");
+  {
+    auto store = id::StudyStore::open_existing(s.work / "study" / "study.db");
+    id::EvaluationRecord r = *store.find_evaluation(0, 2);
+    r.point = 3;
+    r.ok = false;
+    r.objective = NAN;
+    r.curves.clear();
+    r.error = "diverged |\n\n- status: all good\x1b[2J \xE2\x80\xAE reversed";
+    store.add_evaluation(r);
+  }
+  const auto r = s.run({"report", "study/study.db", "--out", "rebuilt", "--no-plots"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string report = trust::read_text(s.work / "rebuilt" / "report.md");
+  CHECK(report.find("\n- status: all good") == std::string::npos);  // no forged line
+  CHECK(report.find('\x1b') == std::string::npos);
+  CHECK(report.find("\xE2\x80\xAE") == std::string::npos);
+  CHECK(report.find("diverged") != std::string::npos);  // the error is still shown, escaped
+}
