@@ -158,6 +158,22 @@ std::optional<detail::ResponseSurrogate> StudyLoop::fit(const Box& box) const {
   }
 }
 
+bool StudyLoop::budget_reached() {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  char text[200];
+  if (spec_.max_runs > 0 && total_runs_ + spec_.points_per_iteration > spec_.max_runs) {
+    std::snprintf(text, sizeof text, "run budget reached (%d runs; stopping.max_runs %d)", total_runs_,
+                  spec_.max_runs);
+  } else if (spec_.max_wall_seconds > 0.0 && wall >= spec_.max_wall_seconds) {
+    std::snprintf(text, sizeof text, "wall-time budget reached (%.0f s; stopping.max_wall_seconds %.0f)", wall,
+                  spec_.max_wall_seconds);
+  } else {
+    return false;
+  }
+  budget_stop_ = text;
+  return true;
+}
+
 const Run* StudyLoop::best_run() const {
   const Run* best = nullptr;
   for (std::size_t i = 0; i < std::min(decision_runs_, runs_.size()); ++i)
@@ -219,7 +235,9 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.best_curves = store_.find_evaluation(best.iteration, best.point)->curves;
   result.iterations = verification_iteration;
   // The tolerance rule alone does not make a study converged (stop_reason.hpp).
-  const StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
+  StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
+  if (!stopped.converged && !budget_stop_.empty() && stopped.text.rfind("NOT converged", 0) != 0)
+    stopped.text = budget_stop_ + " without converging";
   result.converged = stopped.converged;
   result.stop_reason = stopped.text;
   nlohmann::json uncertainty = nullptr;
@@ -359,6 +377,7 @@ StudyResult StudyLoop::run() {
     converged = iteration > 0 && record.design_change < spec_.design_tolerance &&
                 record.objective_change < spec_.objective_tolerance;
     if (converged || iteration + 1 >= spec_.max_iterations) break;
+    if (budget_reached()) break;
     if (spec_.strategy == SamplingStrategy::srsm) state = rbf_surrogate::srsm_update(state, optimum, srsm, unit_box);
   }
   // Verification run at the final predicted optimum: the answer is always an evaluated point.

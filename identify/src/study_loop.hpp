@@ -71,6 +71,8 @@ class StudyLoop {
   std::optional<detail::ResponseSurrogate> fit(const Box& fit_box) const;
   Box fit_box(const Box& region) const;
   const Run* best_run() const;
+  // True (and budget_stop_ says why) when a user cap (stopping.max_runs, max_wall_seconds) ends the loop.
+  bool budget_reached();
   MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
                   std::vector<std::string>& kinds) const;
   IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
@@ -117,6 +119,7 @@ class StudyLoop {
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
   double evaluated_wall_ = 0.0;
   std::string first_error_;
+  std::string budget_stop_;  // the budget that ended the loop, empty when none did
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

@@ -261,7 +261,13 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
   spec.max_iterations = in.integer_or("max_iterations", spec.max_iterations);
   spec.design_tolerance = in.number_or("design_tolerance", spec.design_tolerance);
   spec.objective_tolerance = in.number_or("objective_tolerance", spec.objective_tolerance);
+  spec.max_runs = in.integer_or("max_runs", spec.max_runs);
+  spec.max_wall_seconds = in.number_or("max_wall_seconds", spec.max_wall_seconds);
   in.finish();
+  if (spec.max_runs < 0 || spec.max_runs > 1000000)
+    in.fail("max_runs", "must be 0 (no cap) to 1000000 runs");
+  if (!(spec.max_wall_seconds >= 0.0) || !std::isfinite(spec.max_wall_seconds))
+    in.fail("max_wall_seconds", "must be 0 (no cap) or a finite number of seconds");
   if (spec.max_iterations < 1) in.fail("max_iterations", "must be >= 1");
   if (spec.max_iterations > kMaxIterations) in.fail("max_iterations", "must be <= " + std::to_string(kMaxIterations));
   if (!(spec.design_tolerance >= 0.0)) in.fail("design_tolerance", "must be >= 0");

@@ -338,3 +338,32 @@ TEST_CASE("A verification run much worse than the best run is not the answer, an
   CHECK(report.find("final selection at the predicted optimum not made: the verification run's objective") !=
         std::string::npos);
 }
+
+TEST_CASE("A run budget stops the study before an iteration would pass it, and the report says which cap",
+          "[identify][loop]") {
+  auto json = test::analytic_study(0.0, 12);
+  json["stopping"]["max_runs"] = 13;
+  const StudySpec spec = parse_study(json, ".");
+  const AnalyticCurveModel model;
+  const auto dir = test::fresh_dir("study_run_budget");
+  const StudyResult result = run_study(spec, model, quiet_options(dir));
+  // Each iteration adds points_per_iteration runs; the loop stops while the next would pass 13.
+  const int per_iteration = spec.points_per_iteration;
+  CHECK(result.iterations * per_iteration <= 13);
+  CHECK((result.iterations + 1) * per_iteration > 13);
+  CHECK_FALSE(result.converged);
+  CHECK(result.stop_reason == "run budget reached (" + std::to_string(result.iterations * per_iteration) +
+                                  " runs; stopping.max_runs 13) without converging");
+  std::ifstream report_file(dir / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
+  CHECK(report.find("run budget reached") != std::string::npos);
+}
+
+TEST_CASE("A negative or non-finite budget is refused naming the field", "[identify][loop]") {
+  auto json = test::analytic_study(0.0, 4);
+  json["stopping"]["max_runs"] = -1;
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("max_runs"));
+  json = test::analytic_study(0.0, 4);
+  json["stopping"]["max_wall_seconds"] = -5.0;
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("max_wall_seconds"));
+}

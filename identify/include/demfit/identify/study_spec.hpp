@@ -151,6 +151,11 @@ struct StudySpec {
   int max_iterations = 20;
   double design_tolerance = 0.01;     // change of the optimum, fraction of each range
   double objective_tolerance = 0.01;  // relative change of the optimum's objective
+  // Budget caps the user sets (0 = none): the loop stops before an iteration that would pass
+  // max_runs runs, or once max_wall_seconds [s] of this process's wall time have passed, and
+  // says so in the stop reason (the verification, selection and interval-check runs come after).
+  int max_runs = 0;
+  double max_wall_seconds = 0.0;
   IntervalCheckSpec interval_check;
   FinalSelectionSpec final_selection;
   std::uint64_t seed = 1;
