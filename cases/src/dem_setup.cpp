@@ -125,8 +125,14 @@ void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simu
   }
 }
 
-void precheck_user_time_step(const CaseSpec& spec, double radius, double density) {
-  if (spec.time_step.value <= 0.0) return;
+namespace {
+
+// A probe simulation with one particle of the smallest radius of the spec's spread around the
+// nominal `radius` [m], density [kg/m^3], and one wall with the spec's wall parameters (the stable
+// step depends on particle size, material and contact parameters, not on positions); returns
+// what `use` makes of it.
+template <class Use>
+auto with_time_step_probe(const CaseSpec& spec, double radius, double density, Use use) {
   dem_core::SimulationSettings settings = simulation_settings(spec);
   settings.time_step_factor = spec.time_step.factor;
   dem_core::Simulation probe(settings);
@@ -139,7 +145,23 @@ void precheck_user_time_step(const CaseSpec& spec, double radius, double density
   probe.add_particle({0, 0, 0}, smallest);
   probe.add_wall(
       {dem_core::PlaneGeometry{{0, 0, -smallest}, {0, 0, 1}}, dem_core::FixedMotion{}, spec.wall, {}, "probe"});
-  check_user_time_step(spec, probe);
+  return use(probe);
+}
+
+}  // namespace
+
+void precheck_user_time_step(const CaseSpec& spec, double radius, double density) {
+  if (spec.time_step.value <= 0.0) return;
+  with_time_step_probe(spec, radius, density, [&](const dem_core::Simulation& probe) {
+    check_user_time_step(spec, probe);
+    return 0;
+  });
+}
+
+double planned_time_step(const CaseSpec& spec, double radius, double density) {
+  if (spec.time_step.value > 0.0) return spec.time_step.value;
+  return with_time_step_probe(spec, radius, density,
+                              [](const dem_core::Simulation& probe) { return probe.time_step(); });
 }
 
 SnapshotSchedule::SnapshotSchedule(std::vector<double> times, std::string directory, std::string stage)

@@ -50,6 +50,10 @@ void check_user_time_step(const CaseSpec& spec, const dem_core::Simulation& simu
 // and contact parameters, not on positions).
 void precheck_user_time_step(const CaseSpec& spec, double radius, double density);
 
+// The time step [s] a run of `spec` would use for particles of radius `radius` [m] and density
+// [kg/m^3]: the user's step, or the automatic one of the same probe.
+double planned_time_step(const CaseSpec& spec, double radius, double density);
+
 // Writes VTK snapshots of `simulation` named <dir>/<stage>_<time>.vtk for every time in
 // `times` that the stage crossed since the last call (times measured from the stage start).
 class SnapshotSchedule {

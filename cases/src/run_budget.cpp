@@ -7,9 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "dem_setup.hpp"
-#include "demfit/dem_core/simulation.hpp"
-
 namespace demfit::cases::detail {
 namespace {
 
@@ -32,20 +29,6 @@ bool long_runs_allowed() {
 }
 
 }  // namespace
-
-double planned_time_step(const CaseSpec& spec, double radius, double density) {
-  dem_core::SimulationSettings settings = simulation_settings(spec);
-  settings.time_step_factor = spec.time_step.factor;
-  dem_core::Simulation probe(settings);
-  dem_core::Material material = to_material(spec.material);
-  material.density = density;
-  probe.add_material(material);
-  const double smallest = radius * (1.0 - spec.material.radius_spread);
-  probe.add_particle({0, 0, 0}, smallest);
-  probe.add_wall(
-      {dem_core::PlaneGeometry{{0, 0, -smallest}, {0, 0, 1}}, dem_core::FixedMotion{}, spec.wall, {}, "probe"});
-  return spec.time_step.value > 0.0 ? spec.time_step.value : probe.time_step();
-}
 
 void check_run_budget(const std::string& stage, double particles, double simulated_seconds, double time_step,
                       const CaseRunOptions& options) {

@@ -18,10 +18,6 @@ inline constexpr double kMaxEstimatedWallSeconds = 86400.0;
 // Environment variable that lifts the limit (any non-empty value other than "0").
 inline constexpr const char* kAllowLongRunsVariable = "DEMFIT_ALLOW_LONG_RUNS";
 
-// The time step [s] a run of `spec` would use for particles of radius `radius` [m] and density
-// [kg/m^3]: the user's step, or the automatic one of a one-particle probe.
-double planned_time_step(const CaseSpec& spec, double radius, double density);
-
 // Throws, naming the estimate and the way to allow it, when `particles` particles over
 // `simulated_seconds` [s] at `time_step` [s] are estimated above kMaxEstimatedWallSeconds;
 // prints the step count and the estimate to stderr when `options.progress` is set.
