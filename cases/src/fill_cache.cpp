@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "demfit/identify/fnv_hash.hpp"
 #include "demfit/identify/safe_output.hpp"
 
 namespace demfit::cases {
@@ -31,11 +32,11 @@ std::mutex& file_mutex(const std::string& path) {
 
 // FNV-1a 64 of the particle lines: a cached fill cut short, edited or damaged no longer matches
 // the count and checksum its last line carries, and is generated again.
-std::uint64_t text_checksum(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const unsigned char c : text) h = (h ^ c) * 1099511628211ULL;
-  return h;
-}
+// The cache's own FNV start value (its first digits only, as the keys of fills already cached were
+// computed): kept so those keys stay valid.
+constexpr std::uint64_t kFillHashStart = 1469598103934665603ULL;
+
+std::uint64_t text_checksum(const std::string& text) { return identify::fnv1a64(text, kFillHashStart); }
 
 // A whole token as a finite number, or nothing (no silent 0 for garbage, no "0.5abc").
 bool parse_number(const std::string& token, double& value) {
@@ -105,14 +106,7 @@ void write_fill(const std::filesystem::path& path, const std::string& key_text, 
 
 }  // namespace
 
-std::uint64_t fill_key_hash(const nlohmann::json& key) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : key.dump()) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
+std::uint64_t fill_key_hash(const nlohmann::json& key) { return text_checksum(key.dump()); }
 
 std::filesystem::path fill_cache_path(const std::filesystem::path& cache_dir, const std::string& prefix,
                                       const nlohmann::json& key) {

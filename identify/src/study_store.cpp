@@ -11,6 +11,7 @@
 #include <sqlite3.h>
 
 #include "demfit/identify/curve_json.hpp"
+#include "demfit/identify/fnv_hash.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/model_fingerprint.hpp"
 
@@ -42,11 +43,9 @@ IterationRecord iteration_from_json(const nlohmann::json& j) {
 // accidental edit, a bad copy, a half-written page). It is no signature: whoever can recompute
 // it can forge a row, and the store says so in docs/study_format.md.
 std::string row_checksum(const std::vector<std::string>& fields) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (const std::string& field : fields) {
-    for (const unsigned char c : field) hash = (hash ^ c) * 1099511628211ull;
-    hash = (hash ^ 0x1fu) * 1099511628211ull;  // unit separator: ("ab","c") differs from ("a","bc")
-  }
+  std::uint64_t hash = kFnvOffsetBasis;
+  for (const std::string& field : fields)
+    hash = fnv1a64("\x1f", fnv1a64(field, hash));  // unit separator: ("ab","c") differs from ("a","bc")
   char text[20];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
   return text;
