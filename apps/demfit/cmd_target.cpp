@@ -104,7 +104,8 @@ void run_target_from_image(const TargetFromImageOptions& o) {
   identify::write_file_atomically(fs::path(o.out) / "overlay.png", png);
   std::printf(
       "demfit target from-image: %s -> %s\n  %zu points, x %.2f .. %.2f mm, threshold %.3f%s\n"
-      "  straight-line fit: angle %.2f deg (negative = bed lifted on the left), residual %.3f mm RMS\n",
+      "  straight-line fit over the whole profile: angle %.2f deg (negative = bed lifted on the left), residual %.3f "
+      "mm RMS\n",
       identify::printable(o.photo).c_str(), identify::printable(o.out).c_str(), profile.x.size(),
       profile.x.front() * 1e3, profile.x.back() * 1e3, profile.threshold_used, o.threshold < 0.0 ? " (Otsu)" : "",
       line.angle_deg, line.residual_rms * 1e3);

@@ -20,6 +20,7 @@
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/coarse_graining.hpp"
 #include "demfit/cases/fill_cache.hpp"
+#include "demfit/cases/bed_angles.hpp"
 #include "demfit/cases/free_surface.hpp"
 #include "demfit/dem_core/overlap_statistics.hpp"
 #include "demfit/dem_core/packing.hpp"
@@ -169,6 +170,26 @@ double image_surface_angle(const imaging::SurfaceProfile& profile, double half_w
   return -imaging::fit_surface_line(central).angle_deg;
 }
 
+// The final bed's angle by the slab and the instrument definitions (bed_angles.hpp), so a user
+// compares like with like: LIGGGHTS dumps read by hand, or the GranuDrum's own number.
+void add_bed_angles(std::vector<std::pair<std::string, std::string>>& summary, const CurveTable& particles_mm,
+                    double drum_diameter, double drum_length) {
+  std::vector<std::array<double, 3>> positions;
+  std::vector<double> radii;
+  for (std::size_t i = 0; i < particles_mm.values[3].size(); ++i) {
+    positions.push_back({particles_mm.values[0][i] * 1e-3, particles_mm.values[1][i] * 1e-3,
+                         particles_mm.values[2][i] * 1e-3});
+    radii.push_back(particles_mm.values[3][i] * 1e-3);
+  }
+  const auto angle_text = [](double degrees) {
+    return std::isfinite(degrees) ? fmt("%.2f", degrees) : std::string("not defined for this bed");
+  };
+  summary.emplace_back("dynamic angle of repose [deg] (" + std::string(kSlabSurfaceAngleName) + ", final bed)",
+                       angle_text(slab_surface_angle_degrees(positions, radii, drum_length)));
+  summary.emplace_back("dynamic angle of repose [deg] (" + std::string(kInstrumentAngleName) + ", final bed)",
+                       angle_text(instrument_angle_degrees(positions, radii, drum_diameter, drum_length)));
+}
+
 }  // namespace
 
 CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, const CaseRunOptions& options) {
@@ -254,8 +275,9 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   sum.emplace_back("total particle mass [g]", fmt("%.3f", total_mass * 1e3));
   sum.emplace_back("fill", generated ? "generated and cached" : "read from cache");
   sum.emplace_back("fill wall time [s]", fmt("%.1f", fill_seconds));
-  sum.emplace_back("dynamic angle of repose [deg] (surface fit over |x| < R/2)",
+  sum.emplace_back("dynamic angle of repose [deg] (" + std::string(kClusterSurfaceAngleName) + ")",
                    fmt("%.2f", repose_angle_degrees(run.surface, -0.5 * rd, 0.5 * rd)));
+  add_bed_angles(sum, run.particles, spec.drum.diameter, spec.drum.length);
   sum.emplace_back("mean drive torque, second half [N m]", fmt("%.5f", counted ? mean_torque / counted : 0.0));
   if (run.image_surface) {
     sum.emplace_back(

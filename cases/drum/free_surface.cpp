@@ -1,8 +1,11 @@
 // Free-surface extraction: largest connected cluster + silhouette envelope (see free_surface.hpp).
 #include "demfit/cases/free_surface.hpp"
 
+#include "demfit/cases/bed_angles.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -35,11 +38,11 @@ long long cell_key(long long ix, long long iy, long long iz) {
 
 }  // namespace
 
-std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
-                                 double contact_tolerance) {
+void for_each_close_pair(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
+                         double contact_tolerance, const std::function<void(int, int)>& visit) {
   const int n = static_cast<int>(positions.size());
   if (radii.size() != positions.size()) throw std::runtime_error("free surface: radii/positions size mismatch");
-  if (n == 0) return {};
+  if (n == 0) return;
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const double cell = 2.0 * r_max * (1.0 + contact_tolerance);
   std::unordered_map<long long, std::vector<int>> grid;
@@ -48,8 +51,6 @@ std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& posit
     for (int d = 0; d < 3; ++d) cell_of[i][d] = static_cast<long long>(std::floor(positions[i][d] / cell));
     grid[cell_key(cell_of[i][0], cell_of[i][1], cell_of[i][2])].push_back(i);
   }
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
   for (int i = 0; i < n; ++i) {
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
@@ -61,10 +62,19 @@ std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& posit
             double d2 = 0.0;
             for (int d = 0; d < 3; ++d) d2 += std::pow(positions[j][d] - positions[i][d], 2);
             const double reach = (1.0 + contact_tolerance) * (radii[i] + radii[j]);
-            if (d2 < reach * reach) unite(parent, i, j);
+            if (d2 < reach * reach) visit(i, j);
           }
         }
   }
+}
+
+std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
+                                 double contact_tolerance) {
+  const int n = static_cast<int>(positions.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for_each_close_pair(positions, radii, contact_tolerance, [&](int i, int j) { unite(parent, i, j); });
+  if (n == 0) return {};
   std::vector<int> size(n, 0);
   for (int i = 0; i < n; ++i) ++size[find_root(parent, i)];
   // Largest cluster; ties go to the lowest root index, so the result is deterministic.
@@ -126,23 +136,13 @@ SurfaceProfile average_profiles(const std::vector<SurfaceProfile>& profiles) {
 }
 
 double repose_angle_degrees(const SurfaceProfile& profile, double x_low, double x_high) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
+  std::vector<double> x, y;
   for (std::size_t k = 0; k < profile.x.size(); ++k) {
-    const double x = profile.x[k];
-    const double y = profile.height[k];
-    if (x < x_low || x > x_high || !std::isfinite(y)) continue;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-    ++n;
+    if (profile.x[k] < x_low || profile.x[k] > x_high || !std::isfinite(profile.height[k])) continue;
+    x.push_back(profile.x[k]);
+    y.push_back(profile.height[k]);
   }
-  if (n < 2) return std::numeric_limits<double>::quiet_NaN();
-  const double denominator = n * sxx - sx * sx;
-  if (denominator <= 0.0) return std::numeric_limits<double>::quiet_NaN();
-  const double slope = (n * sxy - sx * sy) / denominator;
-  return std::atan(std::fabs(slope)) * 180.0 / std::numbers::pi;
+  return line_fit_angle_degrees(x, y);
 }
 
 }  // namespace demfit::cases

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "builtin_cases.hpp"
+#include "demfit/cases/bed_angles.hpp"
 #include "demfit/cases/case_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
@@ -187,7 +188,8 @@ std::string reproduce_figures(const ReproduceOptions& o) {
   std::vector<std::string> runs;
   std::string text = "Figs. 4-5: rotary drum, s = 1, 2, 4, SCG and CVF (" +
                      std::string(o.quick ? "quick: 12.5 mm long drum, 1 s" : "3 s") +
-                     " of rotation at 60 RPM)\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque "
+                     " of rotation at 60 RPM); angle of repose: " + std::string(kClusterSurfaceAngleName) +
+                     "\n\n| run | particles | radius [mm] | angle of repose [deg] | mean torque "
                      "[N m] | cached |\n|---|---|---|---|---|---|\n";
   double duration = 0.0;
   const json study = table3_study_document(o);

@@ -213,7 +213,8 @@ std::string gap_rows(const std::vector<SurfaceError>& errors, const std::string&
 std::string gap_section(const std::vector<SurfaceError>& calibrated, const std::vector<SurfaceError>& anchor) {
   std::string t =
       "\nWhere the gap lies (simulated minus photo over the common x-range; RMS² = level² + tilt² + shape²):\n\n"
-      "| target | run | level offset [mm] | angle difference [deg] | tilt RMS [mm] | shape RMS [mm] |\n"
+      "| target | run | level offset [mm] | angle difference [deg] (least-squares lines over the common range) "
+      "| tilt RMS [mm] | shape RMS [mm] |\n"
       "|---|---|---|---|---|---|\n";
   t += gap_rows(calibrated, "demfit calibrated");
   t += gap_rows(anchor, "source's parameters, s = 1");

@@ -16,6 +16,7 @@
 //     different radii (coarse graining) are sampled on the same abscissae.
 //  3. Several snapshots (a short window before the output time) may be averaged point by point.
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace demfit::cases {
@@ -32,6 +33,11 @@ struct SurfaceProfile {
   std::vector<double> x;
   std::vector<double> height;
 };
+
+// Calls visit(i, j), i < j, for every pair closer than (1 + contact_tolerance)(r_i + r_j), through a
+// cell grid (cost ~ N); pairs in a deterministic order.
+void for_each_close_pair(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
+                         double contact_tolerance, const std::function<void(int, int)>& visit);
 
 // Indices of the particles of the largest connected cluster (sorted ascending).
 std::vector<int> largest_cluster(const std::vector<std::array<double, 3>>& positions, const std::vector<double>& radii,
