@@ -281,6 +281,13 @@ std::string selection_line(const std::optional<nlohmann::json>& result) {
 
 }  // namespace
 
+std::string study_status(const std::optional<nlohmann::json>& result) {
+  if (!result) return "NOT finished (report built from the runs stored so far)";
+  if (result->contains("stop_reason")) return "finished, " + result->value("stop_reason", std::string());
+  return result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
+                                           : "finished, iteration limit reached";
+}
+
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
                             const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
                             const std::optional<nlohmann::json>& result, const std::vector<std::string>& images) {
@@ -288,13 +295,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   int failed = 0;
   for (const auto& r : runs) failed += r.ok ? 0 : 1;
   md << "# demfit identification report: " << spec.name << "\n\n"
-     << model_lines(spec) << "- status: "
-     << (result ? (result->contains("stop_reason") ? "finished, " + result->value("stop_reason", std::string())
-                   : result->value("converged", false)
-                       ? std::string("finished, converged (design and objective change below tolerance)")
-                       : std::string("finished, iteration limit reached"))
-                : std::string("NOT finished (report built from the runs stored so far)"))
-     << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
+     << model_lines(spec) << "- status: " << study_status(result) << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
      << ", points per iteration: " << spec.points_per_iteration << "\n"
      << "- strategy: "
      << (spec.strategy == SamplingStrategy::srsm              ? "SRSM domain reduction"
