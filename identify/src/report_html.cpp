@@ -237,7 +237,10 @@ void HtmlReport::markdown(const std::string& text, bool pictures) {
       body_ += inline_markdown(line.substr(2));
     } else if (const std::string file = picture_line(line, alt); !file.empty()) {
       flush();
-      if (pictures) picture(file, alt);
+      if (pictures)
+        picture(file, alt);
+      else
+        body_ += "<p class=\"note\">" + html_escape(printable(file)) + ": shown above</p>\n";
     } else {
       if (!rows.empty() || list_depth > 0) flush();
       paragraph.push_back(line);

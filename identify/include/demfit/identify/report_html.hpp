@@ -38,8 +38,8 @@ class HtmlReport {
   // Embeds the PNG `file_name` of the report's folder (or of `folder` when given) with a caption. A
   // missing, oversized or non-PNG file leaves a note naming it instead; returns whether it was embedded.
   bool picture(const std::string& file_name, const std::string& caption, const std::filesystem::path& folder = {});
-  // Renders Markdown text (the subset above). Picture lines are embedded when `pictures`, else left out
-  // (when the page shows them elsewhere).
+  // Renders Markdown text (the subset above). Picture lines are embedded when `pictures`, else
+  // named as shown above (the page shows them in sections of their own).
   void markdown(const std::string& text, bool pictures);
 
   // The whole page.
