@@ -237,7 +237,8 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
       if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << printable(r.error) << " |\n";
     md << "\n";
   }
-  md << "## Files\n\n- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"
+  md << "## Files\n\n- `report.html`: this report in one self-contained page, plots embedded\n"
+        "- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"
         "- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
         "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
         "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
