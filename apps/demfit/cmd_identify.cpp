@@ -308,7 +308,8 @@ void register_identify(CLI::App& app) {
   auto* identify = app.add_subcommand(
       "identify",
       "Identify model parameters from measured curves (study JSON, format in docs/study_format.md). "
-      "Writes study.db (SQLite store), best_parameters.json, histories (CSV), plots (PNG) and report.md.");
+      "Writes study.db (SQLite store), best_parameters.json, histories (CSV), plots (PNG), report.md and "
+      "report.html (one self-contained page, plots embedded).");
   identify->add_option("study", options->study_file, "Study file (JSON)")->required()->check(CLI::ExistingFile);
   identify
       ->add_option("--out", options->out,

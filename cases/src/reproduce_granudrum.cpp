@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/report_html.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
@@ -370,6 +371,9 @@ std::string reproduce_granudrum(const GranudrumOptions& options) {
   const AnchorResult anchor = options.anchor ? run_anchor(spec, options) : AnchorResult{};
   const std::string text = granudrum_report(spec, result, calibrated, anchor, pictures);
   identify::write_file_atomically(o.out_dir / "granudrum.md", text);
+  identify::HtmlReport html("demfit reproduce granudrum", o.out_dir);  // the same text, pictures embedded
+  html.markdown(text, true);
+  identify::write_html_report(o.out_dir, "granudrum.html", html);
   return text;
 }
 

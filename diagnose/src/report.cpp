@@ -1,6 +1,7 @@
 // Diagnosis report: markdown, JSON and a gnuplot PNG; see report.hpp.
 #include "demfit/diagnose/report.hpp"
 #include "demfit/diagnose/target_levels.hpp"
+#include "report_html.hpp"
 #include "text_format.hpp"
 #include "demfit/identify/gnuplot.hpp"
 #include "demfit/identify/safe_output.hpp"
@@ -271,16 +272,17 @@ std::string markdown_report(const Diagnosis& d) {
 
 std::string write_diagnosis(const Diagnosis& d, const std::filesystem::path& out, bool plots) {
   // The one atomic writer: links are replaced, not followed; a full disk is an error.
-  identify::write_file_atomically(out / "report.md", markdown_report(d));
+  const std::string markdown = markdown_report(d);
+  identify::write_file_atomically(out / "report.md", markdown);
   identify::write_file_atomically(out / "diagnosis.json", to_json(d).dump(2) + "\n");
-  if (!plots) return {};
-  if (!identify::gnuplot_available()) return "warning: gnuplot not found; plots skipped\n";
-  std::string warnings;
+  const bool draw = plots && identify::gnuplot_available();
+  std::string warnings = plots && !draw ? "warning: gnuplot not found; plots skipped\n" : "";
   Eigen::Index offset = 0;
-  for (std::size_t t = 0; t < d.targets.size(); ++t) {
+  for (std::size_t t = 0; draw && t < d.targets.size(); ++t) {
     warnings += plot_target(d, t, offset, out);
     offset += static_cast<Eigen::Index>(d.targets[t].data.x.size());
   }
+  detail::write_diagnosis_html(d, markdown, out);  // after the plots: it embeds them
   return warnings;
 }
 

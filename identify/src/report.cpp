@@ -13,6 +13,7 @@
 #include "demfit/identify/study_answer.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/rbf_surrogate/bounds.hpp"
+#include "report_html_study.hpp"
 #include "report_plots.hpp"
 #include "study_support.hpp"
 
@@ -146,9 +147,10 @@ ReportSummary write_report(const StudyStore& store, const std::filesystem::path&
       summary.files_written += static_cast<int>(images.size());
     }
   }
-  write_file_atomically(output_dir / "report.md",
-                        detail::report_markdown(spec, runs, iterations, best, result, images));
-  ++summary.files_written;
+  const std::string markdown = detail::report_markdown(spec, runs, iterations, best, result, images);
+  write_file_atomically(output_dir / "report.md", markdown);
+  detail::write_study_html(spec, runs, iterations, result, store.path(), images, markdown, output_dir);
+  summary.files_written += 2;
   return summary;
 }
 

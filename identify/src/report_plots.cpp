@@ -237,7 +237,8 @@ void failures_and_files_section(std::ostringstream& md, const std::vector<Evalua
       if (!r.ok && listed++ < 30) md << "| " << r.iteration << "/" << r.point << " | " << printable(r.error) << " |\n";
     md << "\n";
   }
-  md << "## Files\n\n- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"
+  md << "## Files\n\n- `report.html`: this report in one self-contained page, plots embedded\n"
+        "- `study_resolved.json`: the study as run (targets inline, defaults filled in)\n"
         "- `best_parameters.json`: identified values, all model parameters of the best run, intervals\n"
         "- `evaluations.csv`, `iterations.csv`: histories (variables in model units)\n"
         "- `target_<name>.csv`, `best_<name>.csv`: target and best simulated curves\n"
@@ -281,6 +282,13 @@ std::string selection_line(const std::optional<nlohmann::json>& result) {
 
 }  // namespace
 
+std::string study_status(const std::optional<nlohmann::json>& result) {
+  if (!result) return "NOT finished (report built from the runs stored so far)";
+  if (result->contains("stop_reason")) return "finished, " + result->value("stop_reason", std::string());
+  return result->value("converged", false) ? "finished, converged (design and objective change below tolerance)"
+                                           : "finished, iteration limit reached";
+}
+
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
                             const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
                             const std::optional<nlohmann::json>& result, const std::vector<std::string>& images) {
@@ -288,13 +296,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
   int failed = 0;
   for (const auto& r : runs) failed += r.ok ? 0 : 1;
   md << "# demfit identification report: " << spec.name << "\n\n"
-     << model_lines(spec) << "- status: "
-     << (result ? (result->contains("stop_reason") ? "finished, " + result->value("stop_reason", std::string())
-                   : result->value("converged", false)
-                       ? std::string("finished, converged (design and objective change below tolerance)")
-                       : std::string("finished, iteration limit reached"))
-                : std::string("NOT finished (report built from the runs stored so far)"))
-     << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
+     << model_lines(spec) << "- status: " << study_status(result) << "\n- runs: " << runs.size() << " (" << failed << " failed), iterations: " << iterations.size()
      << ", points per iteration: " << spec.points_per_iteration << "\n"
      << "- strategy: "
      << (spec.strategy == SamplingStrategy::srsm              ? "SRSM domain reduction"

@@ -24,6 +24,8 @@ std::pair<std::vector<std::string>, std::string> write_plots(const StudySpec& sp
                                                              const std::vector<IterationRecord>& iterations,
                                                              const EvaluationRecord* best,
                                                              const std::filesystem::path& output_dir);
+// The status line of a study: finished (and why it stopped) or not finished.
+std::string study_status(const std::optional<nlohmann::json>& result);
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
                             const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
                             const std::optional<nlohmann::json>& result, const std::vector<std::string>& images);

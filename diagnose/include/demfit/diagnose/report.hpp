@@ -2,7 +2,8 @@
 // Writes the diagnosis: report.md (criterion values of every candidate, gap before/after overall
 // and per region, residual tests before/after), diagnosis.json (the same numbers) and
 // diagnosis.png (target, base fit, augmented fit, residuals; via a gnuplot process, skipped with
-// a warning if gnuplot is missing).
+// a warning if gnuplot is missing), and report.html: the same in one self-contained page with the
+// plots embedded (identify/report_html.hpp).
 #include <filesystem>
 #include <string>
 

@@ -9,6 +9,7 @@
 //   best_<target>.csv      target and best simulated curve resampled at the target's x
 //   target_<target>.png, objective_history.png, variable_<name>.png  (gnuplot, if installed)
 //   report.md              ties them together
+//   report.html            the same in one self-contained page, plots embedded (report_html.hpp)
 // Every file is written through a temporary name and renamed.
 #include <filesystem>
 
