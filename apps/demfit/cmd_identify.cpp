@@ -1,5 +1,5 @@
 // demfit identify / report / export: the identification loop on a study file, reports rebuilt
-// from a study store, and LS-DYNA keyword export of the identified parameters.
+// from a study store, and LS-DYNA / LIGGGHTS export of the identified parameters.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +24,7 @@
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
+#include "demfit/cases/liggghts_export.hpp"
 #include "demfit/cases/model_factory.hpp"
 #include "demfit/cases/parameter_table.hpp"
 #if defined(DEMFIT_HAVE_SCALEOUT)
@@ -254,24 +255,64 @@ std::vector<std::string> export_comments(const identify::StudyStore& store, cons
   return lines;
 }
 
-void run_export(const std::string& db, const std::string& keyword_file, bool force) {
-  identify::check_user_text("--lsdyna", keyword_file);
-  if (keyword_file.empty())
-    throw std::runtime_error("--lsdyna: empty file name; give a new .k file, or - for standard output");
+// The export formats: the option that names the file, what the file is, and its usual name.
+struct ExportFormat {
+  const char* option;  // "--lsdyna"
+  const char* what;    // "keyword file"
+  const char* example;  // "out.k"
+};
+constexpr ExportFormat kLsdynaFormat{"--lsdyna", "LS-DYNA keyword file", "a new .k file"};
+constexpr ExportFormat kLiggghtsFormat{"--liggghts", "LIGGGHTS input file", "a new .in file"};
+
+// The study's variables with the answer's values and intervals, as report.md shows them
+// (reported_interval.hpp); no interval when the study has not finished.
+cases::IdentifiedVariables identified_variables(const identify::StudyStore& store, const nlohmann::json& study,
+                                                const identify::ParameterSet& answer) {
+  cases::IdentifiedVariables out;
+  const auto result = store.result();
+  const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
+  for (const auto& v : study.value("variables", nlohmann::json::array())) {
+    const std::string name = v.value("name", std::string());
+    const auto value = answer.find(name);
+    if (name.empty() || value == answer.end()) continue;
+    identify::ReportedInterval interval;
+    if (result && uncertainty.is_object()) interval = identify::reported_interval(uncertainty, name, value->second);
+    interval.value = value->second;
+    out[name] = interval;
+  }
+  return out;
+}
+
+// The case the study simulated: the resolved case its store recorded, else the study's case
+// reference resolved beside the store.
+cases::CaseSpec study_case(const identify::StudyStore& store, const nlohmann::json& study,
+                           const std::filesystem::path& db) {
+  if (const auto resolved = store.resolved_model(); resolved && resolved->is_object() && !resolved->contains("analytic"))
+    return cases::parse_case(*resolved, std::filesystem::absolute(db).parent_path());
+  const auto& model = study.at("model");
+  return cases::resolve_case(model.at("case").get<std::string>(), model.value("overrides", nlohmann::json::object()),
+                             std::filesystem::absolute(db).parent_path());
+}
+
+void run_export(const std::string& db, const std::string& out_file, const ExportFormat& format, bool force) {
+  identify::check_user_text(format.option, out_file);
+  if (out_file.empty())
+    throw std::runtime_error(std::string(format.option) + ": empty file name; give " + format.example +
+                             ", or - for standard output");
   // Refused before the store is read: an existing file without --force, a device, a link, a folder.
   std::error_code error;
-  if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
+  if (std::filesystem::weakly_canonical(std::filesystem::absolute(out_file), error) ==
       std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
-    throw std::runtime_error("--lsdyna: " + identify::quote_path(keyword_file) +
-                             " is the study store itself; give a new .k file name");
-  if (keyword_file != "-") identify::check_user_file(keyword_file, force, "--lsdyna");
+    throw std::runtime_error(std::string(format.option) + ": " + identify::quote_path(out_file) +
+                             " is the study store itself; give " + format.example + " name");
+  if (out_file != "-") identify::check_user_file(out_file, force, format.option);
   const auto store = identify::StudyStore::open_existing(db);
   const nlohmann::json study = store.study_json();
   const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
   if (model == "analytic")
     throw std::runtime_error("export: study store '" + db +
                              "' identifies the \"analytic\" test model, not a DEM case; "
-                             "LS-DYNA DEM cards need a pellet_compression or rotary_drum study");
+                             "DEM contact export needs a pellet_compression or rotary_drum study");
   // Runs of a study with experiments store only the variables (each experiment has its own case
   // values): there is no single full parameter set to write.
   if (study.contains("experiments"))
@@ -283,22 +324,27 @@ void run_export(const std::string& db, const std::string& keyword_file, bool for
   const identify::StudyAnswer answer = identify::study_answer(runs, store.result(), db);
   const identify::EvaluationRecord* best = answer.run;
   if (!best) throw std::runtime_error("study store '" + db + "' has no successful run to export");
-  if (!answer.finished) std::fprintf(stderr, "demfit: warning: export: %s\n", answer.why.c_str());
   char objective[32];
   std::snprintf(objective, sizeof objective, "%.6g", best->objective);
   const std::string title = "study '" + study.value("name", std::string("study")) + "', run " +
                             std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
                             objective;
   // The effects without an LS-DYNA field, with their off values: the parameter table.
-  const std::string cards = identify::lsdyna_keywords(best->parameters, cases::parameter_descriptors(), title,
-                                                      export_comments(store, study, db));
-  if (keyword_file == "-") {  // standard output
-    std::fwrite(cards.data(), 1, cards.size(), stdout);
-    if (std::fflush(stdout) != 0) throw std::runtime_error("--lsdyna -: writing to standard output failed");
+  const std::string text =
+      &format == &kLsdynaFormat
+          ? identify::lsdyna_keywords(best->parameters, cases::parameter_descriptors(), title,
+                                      export_comments(store, study, db))
+          : cases::liggghts_snippet(study_case(store, study, db), best->parameters,
+                                    identified_variables(store, study, best->parameters), title);
+  if (!answer.finished) std::fprintf(stderr, "demfit: warning: export: %s\n", answer.why.c_str());
+  if (out_file == "-") {  // standard output
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    if (std::fflush(stdout) != 0)
+      throw std::runtime_error(std::string(format.option) + " -: writing to standard output failed");
     return;
   }
-  identify::write_user_file(keyword_file, cards, force, "--lsdyna");
-  std::printf("wrote %s\n", identify::printable(keyword_file).c_str());
+  identify::write_user_file(out_file, text, force, format.option);
+  std::printf("wrote %s\n", identify::printable(out_file).c_str());
 }
 
 }  // namespace
@@ -360,18 +406,31 @@ void register_identify(CLI::App& app) {
 
   auto export_db = std::make_shared<std::string>();
   auto export_k = std::make_shared<std::string>();
+  auto export_liggghts = std::make_shared<std::string>();
   auto export_force = std::make_shared<bool>(false);
   auto* exporter = app.add_subcommand(
       "export",
-      "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
-      "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
+      "Write the answer's DEM parameters for another DEM code: LS-DYNA cards (--lsdyna: *CONTROL_DISCRETE_ELEMENT, "
+      "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields) or LIGGGHTS 3.8 input lines (--liggghts: "
+      "fix property/global material fixes and the pair_style gran / wall/gran models of a hertz_mindlin case); "
+      "identified values with their 95 % intervals as comments, others at the case values, SI units");
   exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
-  exporter
-      ->add_option("--lsdyna", *export_k,
-                   "Keyword file to write (e.g. out.k), a new regular file; - writes to standard output")
-      ->required();
-  exporter->add_flag("--force", *export_force, "Replace an existing keyword file (only a regular file is replaced)");
-  exporter->callback([export_db, export_k, export_force] { run_export(*export_db, *export_k, *export_force); });
+  auto* lsdyna = exporter->add_option(
+      "--lsdyna", *export_k, "Keyword file to write (e.g. out.k), a new regular file; - writes to standard output");
+  auto* liggghts = exporter->add_option(
+      "--liggghts", *export_liggghts,
+      "LIGGGHTS input file to write (e.g. material.in, for the `include` command), a new regular file; - writes to "
+      "standard output. Needs a hertz_mindlin case: the lsdyna_linear springs have no LIGGGHTS equivalent");
+  lsdyna->excludes(liggghts);
+  exporter->add_flag("--force", *export_force, "Replace an existing output file (only a regular file is replaced)");
+  exporter->callback([export_db, export_k, export_liggghts, export_force, lsdyna, liggghts] {
+    if (lsdyna->count() == 0 && liggghts->count() == 0)
+      throw std::runtime_error("export: give --lsdyna FILE (LS-DYNA cards) or --liggghts FILE (LIGGGHTS input)");
+    if (lsdyna->count() > 0)
+      run_export(*export_db, *export_k, kLsdynaFormat, *export_force);
+    else
+      run_export(*export_db, *export_liggghts, kLiggghtsFormat, *export_force);
+  });
 }
 
 }  // namespace demfit::apps
