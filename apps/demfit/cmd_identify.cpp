@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -294,6 +295,27 @@ cases::CaseSpec study_case(const identify::StudyStore& store, const nlohmann::js
                              std::filesystem::absolute(db).parent_path());
 }
 
+// The cases of a study's experiments, by experiment name in the study's order: the resolved
+// cases its store recorded, else each experiment's case reference resolved beside the store.
+std::vector<std::pair<std::string, cases::CaseSpec>> experiment_cases(const identify::StudyStore& store,
+                                                                      const nlohmann::json& study,
+                                                                      const std::filesystem::path& db) {
+  const auto resolved = store.resolved_model();
+  const std::filesystem::path folder = std::filesystem::absolute(db).parent_path();
+  std::vector<std::pair<std::string, cases::CaseSpec>> out;
+  for (const auto& e : study.at("experiments")) {
+    const std::string name = e.at("name").get<std::string>();
+    if (resolved && resolved->is_object() && resolved->contains(name) && !resolved->at(name).contains("analytic")) {
+      out.emplace_back(name, cases::parse_case(resolved->at(name), folder));
+      continue;
+    }
+    const auto& model = e.at("model");
+    out.emplace_back(name, cases::resolve_case(model.at("case").get<std::string>(),
+                                               model.value("overrides", nlohmann::json::object()), folder));
+  }
+  return out;
+}
+
 void run_export(const std::string& db, const std::string& out_file, const ExportFormat& format, bool force) {
   identify::check_user_text(format.option, out_file);
   if (out_file.empty())
@@ -314,8 +336,9 @@ void run_export(const std::string& db, const std::string& out_file, const Export
                              "' identifies the \"analytic\" test model, not a DEM case; "
                              "DEM contact export needs a pellet_compression or rotary_drum study");
   // Runs of a study with experiments store only the variables (each experiment has its own case
-  // values): there is no single full parameter set to write.
-  if (study.contains("experiments"))
+  // values): there is no single full parameter set to write as LS-DYNA cards. The LIGGGHTS
+  // snippet is written when every experiment's case gives the same material (liggghts_export.hpp).
+  if (study.contains("experiments") && &format == &kLsdynaFormat)
     throw std::runtime_error("export: study store '" + db +
                              "' is a study with several experiments; export needs a "
                              "single-model study (one case, one full parameter set)");
@@ -334,8 +357,11 @@ void run_export(const std::string& db, const std::string& out_file, const Export
       &format == &kLsdynaFormat
           ? identify::lsdyna_keywords(best->parameters, cases::parameter_descriptors(), title,
                                       export_comments(store, study, db))
-          : cases::liggghts_snippet(study_case(store, study, db), best->parameters,
-                                    identified_variables(store, study, best->parameters), title);
+          : study.contains("experiments")
+              ? cases::liggghts_snippet(experiment_cases(store, study, db), best->parameters,
+                                        identified_variables(store, study, best->parameters), title)
+              : cases::liggghts_snippet(study_case(store, study, db), best->parameters,
+                                        identified_variables(store, study, best->parameters), title);
   if (!answer.finished) std::fprintf(stderr, "demfit: warning: export: %s\n", answer.why.c_str());
   if (out_file == "-") {  // standard output
     std::fwrite(text.data(), 1, text.size(), stdout);

@@ -4,6 +4,7 @@
 // gran_cohesion_sjkr(2).html, gran_rolling_friction_cdt.html / _epsd2.html, fix_wall_gran.html.
 #include "demfit/cases/liggghts_export.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -150,6 +151,15 @@ void write_uncarried(std::ostringstream& out, const identify::ParameterSet& answ
   }
 }
 
+// The LIGGGHTS command lines of a snippet (no comments): what two experiments must share.
+std::vector<std::string> commands_of(const std::string& snippet) {
+  std::vector<std::string> commands;
+  std::istringstream in(snippet);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') commands.push_back(line);
+  return commands;
+}
+
 }  // namespace
 
 std::string liggghts_snippet(const CaseSpec& base, const identify::ParameterSet& answer,
@@ -177,6 +187,33 @@ std::string liggghts_snippet(const CaseSpec& base, const identify::ParameterSet&
       << comment("the same contact models for fix wall/gran: ${demfit_wall_model}")
       << "variable demfit_wall_model string \"" << models << "\"\n";
   return out.str();
+}
+
+std::string liggghts_snippet(const std::vector<std::pair<std::string, CaseSpec>>& experiments,
+                             const identify::ParameterSet& answer, const IdentifiedVariables& identified,
+                             const std::string& title) {
+  if (experiments.empty()) throw std::runtime_error("--liggghts: the study has no experiments");
+  const std::string first = liggghts_snippet(experiments.front().second, answer, identified, title);
+  const std::vector<std::string> first_commands = commands_of(first);
+  std::string names = experiments.front().first;
+  for (std::size_t i = 1; i < experiments.size(); ++i) {
+    const auto& [name, spec] = experiments[i];
+    const std::vector<std::string> commands = commands_of(liggghts_snippet(spec, answer, identified, title));
+    for (std::size_t k = 0; k < std::max(commands.size(), first_commands.size()); ++k) {
+      const std::string a = k < first_commands.size() ? first_commands[k] : "(none)";
+      const std::string b = k < commands.size() ? commands[k] : "(none)";
+      if (a != b)
+        throw std::runtime_error("--liggghts: experiments '" + experiments.front().first + "' and '" + name +
+                                 "' simulate different contact values ('" + a + "' against '" + b +
+                                 "'); one LIGGGHTS material needs the same contact in every experiment");
+    }
+    names += ", " + name;
+  }
+  // After the title line: the experiments the one material stands for.
+  const std::size_t title_end = first.find('\n') + 1;
+  return first.substr(0, title_end) +
+         comment("one material for the study's experiments " + names + " (their LIGGGHTS commands are the same)") +
+         first.substr(title_end);
 }
 
 }  // namespace demfit::cases

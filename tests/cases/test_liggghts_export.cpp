@@ -144,6 +144,31 @@ TEST_CASE("The LIGGGHTS export refuses an lsdyna_linear case in one line saying 
   }
 }
 
+TEST_CASE("The LIGGGHTS export of several experiments writes their one material, and refuses two materials") {
+  json fast = hertz_drum_case();
+  fast["drum"]["rpm"] = 45.0;  // another speed: the same material
+  const std::vector<std::pair<std::string, cases::CaseSpec>> same = {
+      {"rpm15", cases::parse_case(hertz_drum_case())}, {"rpm45", cases::parse_case(fast)}};
+  const std::string text = cases::liggghts_snippet(same, {{"frics", 0.523}}, {}, "t");
+  INFO(text);
+  CHECK(fix_values(text, "coefficientFriction") == std::vector<double>{0.523, 0.35, 0.35, 0.35});
+  CHECK(text.find("experiments rpm15, rpm45") != std::string::npos);
+
+  json other = hertz_drum_case();
+  other["contact"]["restitution"] = 0.6;
+  const std::vector<std::pair<std::string, cases::CaseSpec>> differ = {
+      {"rpm15", cases::parse_case(hertz_drum_case())}, {"wet", cases::parse_case(other)}};
+  try {
+    (void)cases::liggghts_snippet(differ, {{"frics", 0.523}}, {}, "t");
+    FAIL("two materials were exported as one");
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.find("'rpm15' and 'wet'") != std::string::npos);
+    CHECK(message.find("coefficientRestitution") != std::string::npos);
+  }
+}
+
 namespace {
 
 // A finished one-run study store of `case_json` (nullptr: the built-in pellet case, whose law is
@@ -174,6 +199,41 @@ void one_run_store(const fs::path& db, const json& case_json) {
                     {"runs", 1}, {"failed_runs", 0}, {"iterations", 1}, {"converged", true},
                     {"stop_reason", "converged"}, {"final_selection", nullptr}, {"wall_seconds", 1.0},
                     {"uncertainty", {{"posterior", posterior}}}});
+}
+
+// A finished one-run store of a study with two experiments (drum speeds 15 and 45 rpm) whose
+// resolved cases are recorded; `restitution_45` sets the second experiment's material.
+void two_experiment_store(const fs::path& db, double restitution_45) {
+  const json target = {{"curve", "free_surface"}, {"x_column", "x_mm"}, {"y_column", "height_mm"},
+                       {"x", {1.0, 2.0}}, {"y", {1.0, 2.0}}};
+  json study = {{"demfit_study_version", 1},
+                {"name", "speeds"},
+                {"experiments",
+                 {{{"name", "rpm15"}, {"model", {{"case", "drum.json"}}}, {"targets", {target}}},
+                  {{"name", "rpm45"}, {"model", {{"case", "drum.json"}}}, {"targets", {target}}}}},
+                {"variables", {{{"name", "frics"}, {"lower", 0.1}, {"upper", 0.9}, {"initial", 0.3}}}},
+                {"seed", 1}};
+  const id::StudySpec spec = id::parse_study(study, db.parent_path());
+  json fast = hertz_drum_case();
+  fast["drum"]["rpm"] = 45.0;
+  fast["contact"]["restitution"] = restitution_45;
+  const json resolved = {{"rpm15", cases::to_json(cases::parse_case(hertz_drum_case()))},
+                         {"rpm45", cases::to_json(cases::parse_case(fast))}};
+  auto store = id::StudyStore::open_for_run(db, spec, false, resolved);
+  id::EvaluationRecord r;
+  r.kind = "initial";
+  r.unit_x = {0.5};
+  r.parameters = {{"frics", 0.523}};
+  r.curves["rpm15/free_surface"] = id::Curve{"x_mm", "height_mm", {1.0, 2.0}, {1.0, 2.0}};
+  r.curves["rpm45/free_surface"] = id::Curve{"x_mm", "height_mm", {1.0, 2.0}, {1.0, 2.0}};
+  r.objective = 0.01;
+  r.ok = true;
+  store.add_evaluation(r);
+  store.put_result({{"best_iteration", 0}, {"best_point", 0}, {"best_objective", 0.01},
+                    {"best_parameters", {{"frics", 0.523}}}, {"best_variables", {{"frics", 0.523}}},
+                    {"runs", 1}, {"failed_runs", 0}, {"iterations", 1}, {"converged", true},
+                    {"stop_reason", "converged"}, {"final_selection", nullptr}, {"wall_seconds", 1.0},
+                    {"uncertainty", nullptr}});
 }
 
 }  // namespace
@@ -280,4 +340,26 @@ TEST_CASE("LIGGGHTS 3.8 runs the exported snippet unchanged and echoes its value
     CHECK(fix_values(log, "coefficientFriction").at(0) == Approx(0.523).epsilon(1e-12));
     CHECK(log.find(line_starting(snippet, "pair_style")) != std::string::npos);
   }
+}
+
+TEST_CASE("export --liggghts of a study with experiments writes their shared material, or refuses two materials") {
+  trust::Sandbox s("liggghts_export_experiments");
+  fs::create_directories(s.work / "same");
+  two_experiment_store(s.work / "same" / "study.db", 0.45);
+  auto r = s.run({"export", "same/study.db", "--liggghts", "material.in"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string written = trust::read_text(s.work / "material.in");
+  CHECK(fix_values(written, "coefficientFriction") == std::vector<double>{0.523, 0.35, 0.35, 0.35});
+  CHECK(written.find("experiments rpm15, rpm45") != std::string::npos);
+  r = s.run({"export", "same/study.db", "--lsdyna", "cards.k"});  // no full parameter set for LS-DYNA
+  CHECK(r.status == 1);
+  CHECK(!fs::exists(s.work / "cards.k"));
+
+  fs::create_directories(s.work / "differ");
+  two_experiment_store(s.work / "differ" / "study.db", 0.6);
+  r = s.run({"export", "differ/study.db", "--liggghts", "other.in"});
+  CHECK(r.status == 1);
+  CHECK(r.err.find("'rpm15' and 'rpm45' simulate different contact values") != std::string::npos);
+  CHECK(!fs::exists(s.work / "other.in"));
 }

@@ -17,6 +17,8 @@
 // and its hertz model is nonlinear, so no LIGGGHTS input reproduces the identified contact.
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/identify/model.hpp"
@@ -33,5 +35,13 @@ using IdentifiedVariables = std::map<std::string, identify::ReportedInterval>;
 // std::runtime_error with one line when the case's law is lsdyna_linear (see above).
 std::string liggghts_snippet(const CaseSpec& base, const identify::ParameterSet& answer,
                              const IdentifiedVariables& identified, const std::string& title);
+
+// The snippet of a study with several experiments (each its own case, e.g. one drum speed each),
+// all given the same identified `answer`: the first experiment's snippet, when every experiment's
+// LIGGGHTS commands are the same (one material). Throws std::runtime_error with one line naming
+// two experiments and the first differing command otherwise.
+std::string liggghts_snippet(const std::vector<std::pair<std::string, CaseSpec>>& experiments,
+                             const identify::ParameterSet& answer, const IdentifiedVariables& identified,
+                             const std::string& title);
 
 }  // namespace demfit::cases
