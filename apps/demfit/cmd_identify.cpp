@@ -1,5 +1,5 @@
-// demfit identify / report / export: the identification loop on a study file, reports rebuilt
-// from a study store, and LS-DYNA keyword export of the identified parameters.
+// demfit identify / report: the identification loop on a study file and reports rebuilt from a
+// study store (`demfit export`: cmd_export.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +14,6 @@
 #include "commands.hpp"
 #include "cli_safety.hpp"
 #include "demfit/identify/json_document.hpp"
-#include "demfit/identify/lsdyna_export.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/store_lock.hpp"
 #include "demfit/identify/study_answer.hpp"
@@ -212,95 +211,6 @@ void run_identify(const IdentifyOptions& o) {
   print_warnings(options.output_dir / "study.db");
 }
 
-// The comment lines of an export: the 95 % intervals and identifiability of the identified
-// values, and the material context that NORMK and SHEARK are relative to.
-std::vector<std::string> export_comments(const identify::StudyStore& store, const nlohmann::json& study,
-                                         const std::filesystem::path& db) {
-  std::vector<std::string> lines;
-  const auto result = store.result();
-  const nlohmann::json uncertainty = result ? result->value("uncertainty", nlohmann::json()) : nlohmann::json();
-  for (const auto& v : study.value("variables", nlohmann::json::array())) {
-    const std::string name = v.value("name", std::string("?"));
-    std::string line = "variable " + name + ": bounds [" + identify::json_excerpt(v.value("lower", nlohmann::json())) +
-                       ", " + identify::json_excerpt(v.value("upper", nlohmann::json())) + "]";
-    const nlohmann::json value =
-        result ? result->value("best_parameters", nlohmann::json::object()).value(name, nlohmann::json())
-               : nlohmann::json();
-    if (uncertainty.is_object() && value.is_number()) {
-      // The same interval as report.md and best_parameters.json (reported_interval.hpp).
-      const identify::ReportedInterval interval = identify::reported_interval(uncertainty, name, value.get<double>());
-      line += ", 95 % interval " + identify::interval_text(interval);
-      line += interval.identifiable ? ", identifiable" : ", NOT identifiable from these targets";
-    } else {
-      line += ", no interval (study not finished)";
-    }
-    lines.push_back(line);
-  }
-  try {
-    const auto& model = study.at("model");
-    const cases::CaseSpec c =
-        cases::resolve_case(model.at("case").get<std::string>(), model.value("overrides", nlohmann::json::object()),
-                            std::filesystem::absolute(db).parent_path());
-    char text[240];
-    std::snprintf(text, sizeof text,
-                  "material context: E = %.6g Pa, nu = %.4g, K = E/(3(1-2nu)) = %.6g Pa, radius = %.6g m, "
-                  "density = %.6g kg/m3 (NORMK is relative to K R)",
-                  c.material.youngs_modulus, c.material.poisson_ratio, c.material.bulk_modulus(), c.material.radius,
-                  c.material.density);
-    lines.push_back(text);
-  } catch (const std::exception& e) {
-    lines.push_back(std::string("material context: case not available here (") + e.what() + ")");
-  }
-  return lines;
-}
-
-void run_export(const std::string& db, const std::string& keyword_file, bool force) {
-  identify::check_user_text("--lsdyna", keyword_file);
-  if (keyword_file.empty())
-    throw std::runtime_error("--lsdyna: empty file name; give a new .k file, or - for standard output");
-  // Refused before the store is read: an existing file without --force, a device, a link, a folder.
-  std::error_code error;
-  if (std::filesystem::weakly_canonical(std::filesystem::absolute(keyword_file), error) ==
-      std::filesystem::weakly_canonical(std::filesystem::absolute(db), error))
-    throw std::runtime_error("--lsdyna: " + identify::quote_path(keyword_file) +
-                             " is the study store itself; give a new .k file name");
-  if (keyword_file != "-") identify::check_user_file(keyword_file, force, "--lsdyna");
-  const auto store = identify::StudyStore::open_existing(db);
-  const nlohmann::json study = store.study_json();
-  const std::string model = study.value("model", nlohmann::json::object()).value("case", std::string());
-  if (model == "analytic")
-    throw std::runtime_error("export: study store '" + db +
-                             "' identifies the \"analytic\" test model, not a DEM case; "
-                             "LS-DYNA DEM cards need a pellet_compression or rotary_drum study");
-  // Runs of a study with experiments store only the variables (each experiment has its own case
-  // values): there is no single full parameter set to write.
-  if (study.contains("experiments"))
-    throw std::runtime_error("export: study store '" + db +
-                             "' is a study with several experiments; export needs a "
-                             "single-model study (one case, one full parameter set)");
-  const auto runs = store.evaluations();
-  // The study's answer, the same run as report.md and best_parameters.json (study_answer.hpp).
-  const identify::StudyAnswer answer = identify::study_answer(runs, store.result(), db);
-  const identify::EvaluationRecord* best = answer.run;
-  if (!best) throw std::runtime_error("study store '" + db + "' has no successful run to export");
-  if (!answer.finished) std::fprintf(stderr, "demfit: warning: export: %s\n", answer.why.c_str());
-  char objective[32];
-  std::snprintf(objective, sizeof objective, "%.6g", best->objective);
-  const std::string title = "study '" + study.value("name", std::string("study")) + "', run " +
-                            std::to_string(best->iteration) + "/" + std::to_string(best->point) + ", objective " +
-                            objective;
-  // The effects without an LS-DYNA field, with their off values: the parameter table.
-  const std::string cards = identify::lsdyna_keywords(best->parameters, cases::parameter_descriptors(), title,
-                                                      export_comments(store, study, db));
-  if (keyword_file == "-") {  // standard output
-    std::fwrite(cards.data(), 1, cards.size(), stdout);
-    if (std::fflush(stdout) != 0) throw std::runtime_error("--lsdyna -: writing to standard output failed");
-    return;
-  }
-  identify::write_user_file(keyword_file, cards, force, "--lsdyna");
-  std::printf("wrote %s\n", identify::printable(keyword_file).c_str());
-}
-
 }  // namespace
 
 void register_identify(CLI::App& app) {
@@ -358,21 +268,7 @@ void register_identify(CLI::App& app) {
       std::fprintf(stderr, "demfit: warning: %s\n", identify::printable(w).c_str());
     std::printf("%d files written to %s\n", summary.files_written, identify::printable(out.string()).c_str());
   });
-
-  auto export_db = std::make_shared<std::string>();
-  auto export_k = std::make_shared<std::string>();
-  auto export_force = std::make_shared<bool>(false);
-  auto* exporter = app.add_subcommand(
-      "export",
-      "Write the best run's DEM parameters as LS-DYNA cards (*CONTROL_DISCRETE_ELEMENT, "
-      "*DEFINE_DE_TO_SURFACE_COUPLING; fixed 10-character fields; identified values, others at the case values)");
-  exporter->add_option("store", *export_db, "Study store (study.db)")->required()->check(CLI::ExistingFile);
-  exporter
-      ->add_option("--lsdyna", *export_k,
-                   "Keyword file to write (e.g. out.k), a new regular file; - writes to standard output")
-      ->required();
-  exporter->add_flag("--force", *export_force, "Replace an existing keyword file (only a regular file is replaced)");
-  exporter->callback([export_db, export_k, export_force] { run_export(*export_db, *export_k, *export_force); });
+  register_export(app);  // after report, as `demfit --help` lists them (cmd_export.cpp)
 }
 
 }  // namespace demfit::apps

@@ -6,7 +6,8 @@
 
 namespace demfit::apps {
 void register_simulate(CLI::App& app);    // demfit simulate
-void register_identify(CLI::App& app);    // demfit identify / report / export
+void register_identify(CLI::App& app);    // demfit identify / report (and export, through register_export)
+void register_export(CLI::App& app);      // demfit export --lsdyna | --liggghts
 void register_reproduce(CLI::App& app);   // demfit reproduce table1|table2|table3|figures|all
 void register_diagnose(CLI::App& app);    // demfit diagnose
 void register_target(CLI::App& app);      // demfit target from-image, target compare

@@ -312,6 +312,12 @@ void StudyStore::load() {
   }
 }
 
+std::optional<nlohmann::json> StudyStore::resolved_model() const {
+  const auto text = meta("resolved_model");
+  if (!text) return std::nullopt;
+  return parse_json_document(*text, "study store '" + path_.string() + "' (resolved model)");
+}
+
 nlohmann::json StudyStore::study_json() const {
   // A received study.db is input like any other: limits and duplicate keys checked.
   return parse_json_document(meta("study_json").value_or("{}"), "study store '" + path_.string() + "' (study)");

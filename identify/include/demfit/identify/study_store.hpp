@@ -71,6 +71,9 @@ class StudyStore {
   ~StudyStore();
 
   nlohmann::json study_json() const;
+  // What the study simulated, as recorded when it started (for a DEM case the case with every
+  // default filled in); nullopt when the store holds none.
+  std::optional<nlohmann::json> resolved_model() const;
   // Commits one evaluation (replacing a row with the same iteration and point).
   void add_evaluation(const EvaluationRecord& record);
   const EvaluationRecord* find_evaluation(int iteration, int point) const;
