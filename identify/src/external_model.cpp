@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/fnv_hash.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/template_text.hpp"
 #include "timed_process.hpp"
@@ -19,10 +20,11 @@
 namespace demfit::identify {
 namespace fs = std::filesystem;
 
-ExternalModel::ExternalModel(ExternalModelSpec spec, std::string template_text, std::string program,
-                             fs::path output_dir, ParameterSet fixed)
+ExternalModel::ExternalModel(ExternalModelSpec spec, std::string template_text, std::vector<std::string> file_contents,
+                             std::string program, fs::path output_dir, ParameterSet fixed)
     : spec_(std::move(spec)),
       template_text_(std::move(template_text)),
+      file_contents_(std::move(file_contents)),
       program_(std::move(program)),
       output_dir_(std::move(output_dir)),
       fixed_(std::move(fixed)) {}
@@ -54,6 +56,13 @@ nlohmann::json ExternalModel::fingerprint() const {
   nlohmann::json json = to_json(spec_);
   json.erase("time_limit_s");  // how long a run may take does not change what it computes
   json["template_lines"] = lines;
+  nlohmann::json hashes = nlohmann::json::object();
+  for (std::size_t i = 0; i < spec_.files.size() && i < file_contents_.size(); ++i) {
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(file_contents_[i])));
+    hashes[spec_.files[i]] = hex;
+  }
+  if (!spec_.files.empty()) json["files_fnv1a64"] = hashes;
   return {{"external", json}};
 }
 
@@ -117,6 +126,8 @@ CurveSet ExternalModel::evaluate(const ParameterSet& parameters, const Evaluatio
   try {
     write_file_atomically(folder / spec_.input_file,
                           substitute_template(template_text_, values, "template " + quote_path(spec_.template_file)));
+    for (std::size_t i = 0; i < spec_.files.size(); ++i)
+      write_file_atomically(path_inside(folder, fs::path(spec_.files[i]).filename().string()), file_contents_[i]);
     nlohmann::json record = {{"parameters", values}, {"command", spec_.command}};
     write_file_atomically(folder / "demfit_run.json", record.dump(2) + "\n");
     const auto result = detail::run_timed_process(program_, spec_.command, folder, spec_.time_limit_s,

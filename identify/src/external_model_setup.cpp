@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t kMaxTemplateBytes = std::size_t{4} << 20;
+constexpr std::size_t kMaxCopiedFileBytes = std::size_t{64} << 20;
 const std::string kField = "study: model.external";
 
 bool executable_file(const fs::path& path) {
@@ -77,21 +78,31 @@ void check_parameters(const ExternalModelSpec& external, const std::string& text
                                "model.external.parameters and use {{" + name + "}} in the template");
 }
 
-std::string read_template(const ExternalModelSpec& external, const fs::path& base_dir) {
-  const fs::path path =
-      fs::path(external.template_file).is_absolute() ? fs::path(external.template_file) : base_dir / external.template_file;
+std::string read_study_file(const std::string& file, const fs::path& base_dir, const std::string& key,
+                            std::size_t max_bytes) {
+  const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : base_dir / file;
   try {
-    return read_input_file(path, kMaxTemplateBytes, "template " + quote_path(path));
+    return read_input_file(path, max_bytes, key + " " + quote_path(path));
   } catch (const std::exception& e) {
-    throw std::runtime_error(kField + ".template: " + e.what());
+    throw std::runtime_error(kField + "." + key + ": " + e.what());
   }
+}
+
+std::string read_template(const ExternalModelSpec& external, const fs::path& base_dir) {
+  return read_study_file(external.template_file, base_dir, "template", kMaxTemplateBytes);
+}
+
+std::vector<std::string> read_files(const ExternalModelSpec& external, const fs::path& base_dir) {
+  std::vector<std::string> out;
+  for (const auto& f : external.files) out.push_back(read_study_file(f, base_dir, "files", kMaxCopiedFileBytes));
+  return out;
 }
 
 }  // namespace
 
 nlohmann::json resolved_external_model(const nlohmann::json& external, const fs::path& base_dir) {
   const ExternalModelSpec spec = parse_external_spec(external, kField);
-  return ExternalModel(spec, read_template(spec, base_dir), {}, {}, {}).fingerprint();
+  return ExternalModel(spec, read_template(spec, base_dir), read_files(spec, base_dir), {}, {}, {}).fingerprint();
 }
 
 std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const fs::path& output_dir) {
@@ -102,8 +113,8 @@ std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const 
   std::string text = read_template(external, spec.base_dir);
   check_parameters(external, text, spec);
   std::string program = resolve_program(external.command[0], spec.base_dir);
-  return std::make_unique<ExternalModel>(external, std::move(text), std::move(program), output_dir,
-                                         spec.fixed_parameters);
+  return std::make_unique<ExternalModel>(external, std::move(text), read_files(external, spec.base_dir),
+                                         std::move(program), output_dir, spec.fixed_parameters);
 }
 
 }  // namespace demfit::identify

@@ -2,6 +2,7 @@
 // docs/external-model.md): every problem is one line naming the field and the fix.
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 #include "demfit/identify/external_model.hpp"
@@ -100,6 +101,28 @@ std::string default_input_name(const std::string& template_file) {
   return {};
 }
 
+// "files": paths relative to the study file; each is copied into the run folder under its file
+// name, so two entries may not share one, nor take the input's or an output's name.
+std::vector<std::string> parse_files(JsonReader& in) {
+  std::vector<std::string> out;
+  if (!in.has("files")) return out;
+  const auto& value = in.raw("files");
+  if (!value.is_array() || value.size() > kMaxCommandWords)
+    in.fail("files", "expected an array of file paths relative to the study file, e.g. [\"drum.stl\"]");
+  std::set<std::string> names;
+  for (const auto& item : value) {
+    if (!item.is_string()) in.fail("files", "expected only strings, got " + json_excerpt(item));
+    out.push_back(item.get<std::string>());
+    check_user_text(in.field("files"), out.back());
+    const std::string name = std::filesystem::path(out.back()).filename().string();
+    if (name.empty() || name == "." || name == "..")
+      in.fail("files", "'" + out.back() + "' does not name a file");
+    if (!names.insert(name).second)
+      in.fail("files", "two files are named '" + name + "' in the run folder; rename one");
+  }
+  return out;
+}
+
 }  // namespace
 
 ExternalModelSpec parse_external_spec(const nlohmann::json& json, const std::string& field) {
@@ -120,9 +143,17 @@ ExternalModelSpec parse_external_spec(const nlohmann::json& json, const std::str
   if (!(spec.time_limit_s > 0.0 && spec.time_limit_s <= kMaxTimeLimit))
     in.fail("time_limit_s", "must be > 0 and at most 1e7 seconds (the wall time after which a run is killed)");
   spec.outputs = parse_outputs(in);
+  spec.files = parse_files(in);
   in.finish();
+  for (const auto& f : spec.files) {
+    const std::string name = std::filesystem::path(f).filename().string();
+    if (name == spec.input_file || name == "stdout.txt" || name == "stderr.txt" || name == "demfit_run.json")
+      in.fail("files", "'" + f + "' would take the name of a file demfit writes (" + name + "); rename it");
+    for (const auto& o : spec.outputs)
+      if (o.file == name) in.fail("files", "'" + f + "' has the name of output '" + o.curve + "'; rename it");
+  }
   for (const auto& o : spec.outputs)
-    if (o.file == spec.input_file || o.file == "stdout.txt" || o.file == "stderr.txt")
+    if (o.file == spec.input_file || o.file == "stdout.txt" || o.file == "stderr.txt" || o.file == "demfit_run.json")
       in.fail("outputs." + o.curve + ".file", "'" + o.file + "' is a file demfit writes; name the program's own CSV");
   return spec;
 }
@@ -130,8 +161,10 @@ ExternalModelSpec parse_external_spec(const nlohmann::json& json, const std::str
 nlohmann::json to_json(const ExternalModelSpec& spec) {
   nlohmann::json outputs = nlohmann::json::object();
   for (const auto& o : spec.outputs) outputs[o.curve] = {{"file", o.file}, {"x", o.x_column}, {"y", o.y_column}};
-  return {{"command", spec.command},         {"template", spec.template_file}, {"input", spec.input_file},
-          {"parameters", spec.units},        {"time_limit_s", spec.time_limit_s}, {"outputs", outputs}};
+  nlohmann::json json = {{"command", spec.command},  {"template", spec.template_file},   {"input", spec.input_file},
+                         {"parameters", spec.units}, {"time_limit_s", spec.time_limit_s}, {"outputs", outputs}};
+  if (!spec.files.empty()) json["files"] = spec.files;  // written only when given
+  return json;
 }
 
 }  // namespace demfit::identify

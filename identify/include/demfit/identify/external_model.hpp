@@ -42,6 +42,9 @@ struct ExternalModelSpec {
   std::map<std::string, std::string> units;  // declared parameters: name -> unit ("-" = dimensionless)
   double time_limit_s = 0.0;                 // [s] wall time of one run
   std::vector<ExternalOutput> outputs;
+  // Files copied into each run folder under their own names (meshes, data files), relative to
+  // the study file.
+  std::vector<std::string> files;
 };
 
 // Reads and checks the "external" object; errors name `field` ("study: model.external") and the fix.
@@ -54,13 +57,15 @@ class ExternalModel final : public Model {
   // `runs_dir` the folder under which run folders are made; `output_dir` the study's output
   // folder (runs_dir is inside it; created with its marker if the first run comes before the
   // study's own files).
-  ExternalModel(ExternalModelSpec spec, std::string template_text, std::string program,
-                std::filesystem::path output_dir, ParameterSet fixed);
+  // `file_contents` holds the content of each spec.files entry, in its order.
+  ExternalModel(ExternalModelSpec spec, std::string template_text, std::vector<std::string> file_contents,
+                std::string program, std::filesystem::path output_dir, ParameterSet fixed);
   std::vector<ParameterDescriptor> parameters() const override;
   std::vector<CurveDescriptor> curves() const override;
   ParameterSet default_parameters() const override { return fixed_; }
   CurveSet evaluate(const ParameterSet& parameters, const EvaluationContext& context) const override;
-  // What --resume compares: command, template lines, input name, parameters, outputs.
+  // What --resume compares: command, template lines, input name, parameters, outputs and the
+  // copied files' content (as a hash).
   nlohmann::json fingerprint() const;
 
  private:
@@ -69,6 +74,7 @@ class ExternalModel final : public Model {
 
   ExternalModelSpec spec_;
   std::string template_text_;
+  std::vector<std::string> file_contents_;
   std::string program_;
   std::filesystem::path output_dir_;
   ParameterSet fixed_;
