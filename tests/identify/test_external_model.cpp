@@ -163,3 +163,20 @@ TEST_CASE("An output that is a symbolic link leaving the run folder is refused",
   const fs::path out = test::fresh_dir("external_link");
   CHECK_THAT(one_run_error("link_out", out), Catch::Contains("leads outside the run folder"));
 }
+
+TEST_CASE("An external study reads back from its resolved JSON, and its time limit is not part of its hash",
+          "[identify][external]") {
+  auto external = test::fake_external();
+  external["files"] = {"in.txt.template"};
+  const StudySpec spec = fake_spec(external);
+  const StudySpec again = parse_study(to_json(spec), test::external_data_dir());
+  CHECK(to_json(again) == to_json(spec));
+  CHECK(study_hash(again) == study_hash(spec));
+  external["time_limit_s"] = 5.0;
+  CHECK(study_hash(fake_spec(external)) == study_hash(spec));
+  external["command"] = {"./fake_solver.sh", "nan"};
+  CHECK(study_hash(fake_spec(external)) != study_hash(spec));
+  nlohmann::json study = test::fake_solver_study(test::fake_external());
+  study["model"]["case"] = "external";
+  CHECK_THROWS_WITH(parse_study(study, test::external_data_dir()), Catch::Contains("either \"case\""));
+}
