@@ -122,7 +122,7 @@ CurveSet ExternalModel::evaluate(const ParameterSet& parameters, const Evaluatio
     values[name] = value;
   }
   const fs::path folder = fresh_run_folder();
-  const std::string shown = quote_path(fs::path(kExternalRunsFolder) / folder.filename());
+  const std::string shown = quote_path(folder);
   try {
     write_file_atomically(folder / spec_.input_file,
                           substitute_template(template_text_, values, "template " + quote_path(spec_.template_file)));
