@@ -85,22 +85,25 @@ TimedProcessResult run_timed_process(const std::string& program, const std::vect
   ::setpgid(child, child);  // also here: the group exists whichever process runs first
   ::close(report[1]);
   const auto limit = std::chrono::duration<double>(time_limit_s);
-  int status = 0;
+  // The program's end is observed without reaping it (WNOWAIT): until it is reaped its pid, and so
+  // its process group id, cannot be given to another process, so the group kill below can only
+  // reach what the program started.
   bool timed_out = false;
   for (auto pause = std::chrono::milliseconds(1);;) {
-    const pid_t done = ::waitpid(child, &status, WNOHANG);
-    if (done == child || (done < 0 && errno != EINTR)) break;
+    siginfo_t info{};
+    const int waited = ::waitid(P_PID, static_cast<id_t>(child), &info, WEXITED | WNOHANG | WNOWAIT);
+    if ((waited == 0 && info.si_pid == child) || (waited < 0 && errno != EINTR)) break;
     if (std::chrono::steady_clock::now() - start >= limit) {
-      ::kill(-child, SIGKILL);
-      while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-      }
       timed_out = true;
       break;
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(50));
   }
-  ::kill(-child, SIGKILL);  // anything the program left running in its group
+  ::kill(-child, SIGKILL);  // on timeout the program and its group; else what it left running
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   int exec_error = 0;
   if (::read(report[0], &exec_error, sizeof exec_error) == static_cast<ssize_t>(sizeof exec_error) && exec_error) {
