@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "cli_safety.hpp"
+#include "demfit/identify/external_model.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/store_lock.hpp"
@@ -45,10 +46,18 @@ struct IdentifyOptions {
   double run_timeout = 0.0;
 };
 
-// Built-in cases, case files and the "analytic" test model all come from the one case factory.
+// Built-in cases, case files and the "analytic" test model all come from the one case factory; an
+// external program (external_model.hpp) runs in folders under the study's output folder `out`.
 // Targets on a relative axis ("pressure_volume@strain", relative_axis.hpp) get their derived curves.
-std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec) {
-  auto model = cases::make_study_model(spec);
+std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec, const std::filesystem::path& out) {
+  for (const auto& e : spec.experiments)
+    if (e.model_reference == identify::kExternalModelReference)
+      throw std::runtime_error("study: experiments: '" + e.name +
+                               "' has an external model; an external program is for a single-model study "
+                               "(\"model\" + \"targets\")");
+  std::unique_ptr<identify::Model> model = spec.model_reference == identify::kExternalModelReference
+                                               ? identify::make_external_model(spec, out)
+                                               : cases::make_study_model(spec);
   std::set<std::string> relative;
   for (const auto& t : spec.targets)
     if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
@@ -82,6 +91,7 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
 nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
                                   const std::filesystem::path& base_dir) {
   if (reference == "analytic") return {{"analytic", overrides}};
+  if (reference == identify::kExternalModelReference) return identify::resolved_external_model(overrides, base_dir);
   return cases::to_json(cases::resolve_case(reference, overrides, base_dir));
 }
 
@@ -143,7 +153,7 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
   try {
     // Every rank reads the same study: a bad study fails on every rank alike, before any message.
     const identify::StudySpec parsed = identify::load_study_file(o.study_file);
-    const auto model = make_model(parsed);
+    const auto model = make_model(parsed, options.output_dir);
     if (session.rank() != 0)
       scaleout::run_worker(*model, o.threads_per_job, parsed.seed);
     else
@@ -195,7 +205,7 @@ void run_identify(const IdentifyOptions& o) {
   identify::OutputRequest request{identify::OutputKind::identify, study_inputs(parsed, o.study_file)};
   std::optional<identify::StoreLock> lock;
   claim_study_folder(options, request, lock);
-  const auto model = make_model(parsed);
+  const auto model = make_model(parsed, options.output_dir);
   options.resolved_model = resolved_model(parsed);
   // One pool for the initial-point check and the loop (as the MPI path shares its evaluator): the
   // check's experiments run side by side over --jobs, and the run it hands over is the loop's own.

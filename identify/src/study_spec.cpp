@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "demfit/identify/curve_io.hpp"
+#include "demfit/identify/external_model.hpp"
 #include "image_target.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/safe_output.hpp"
@@ -144,8 +145,20 @@ TargetSpec parse_target(const nlohmann::json& json, const std::string& path, std
 }
 
 // The "model" object: case reference, fixed case settings, fixed model parameters.
+// Or, instead of "case" and "overrides", "external": an external program (external_model.hpp), kept
+// as reference "external" with the checked "external" object as its overrides.
 void parse_model(JsonReader in, std::string& reference, nlohmann::json& overrides, ParameterSet& fixed_parameters) {
-  reference = in.text("case");
+  if (in.has("external")) {
+    if (in.has("case") || in.has("overrides"))
+      in.fail("external", "give either \"case\" (a demfit case) or \"external\" (a program), not both");
+    reference = kExternalModelReference;
+    overrides = to_json(parse_external_spec(in.raw("external"), in.field("external")));
+  } else {
+    reference = in.text("case");
+    if (reference == kExternalModelReference)
+      in.fail("case", "'external' is not a case; describe an external program as \"external\": {...} "
+                      "(docs/external-model.md)");
+  }
   if (in.has("overrides")) {
     const auto& given = in.raw("overrides");
     if (!given.is_object()) in.fail("overrides", "expected a JSON object of case settings");

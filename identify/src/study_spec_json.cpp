@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "demfit/identify/external_model.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::identify {
@@ -22,7 +23,11 @@ std::string metric_name(CurveMetric metric) {
 }
 
 nlohmann::json model_json(const std::string& reference, const nlohmann::json& overrides, const ParameterSet& fixed) {
-  nlohmann::json json = {{"case", reference}, {"overrides", overrides}, {"fixed_parameters", nlohmann::json::object()}};
+  nlohmann::json json = reference == kExternalModelReference
+                            ? nlohmann::json{{"external", overrides}, {"fixed_parameters", nlohmann::json::object()}}
+                            : nlohmann::json{{"case", reference},
+                                             {"overrides", overrides},
+                                             {"fixed_parameters", nlohmann::json::object()}};
   for (const auto& [name, value] : fixed) json["fixed_parameters"][name] = value;
   return json;
 }
@@ -117,6 +122,8 @@ std::uint64_t study_hash(const StudySpec& spec) {
   nlohmann::json json = to_json(spec);
   json.erase("stopping");
   json.erase("interval_check");
+  // An external run's time limit bounds how long it may take, not what it computes.
+  if (json.contains("model") && json["model"].contains("external")) json["model"]["external"].erase("time_limit_s");
   if (json.contains("targets"))
     for (auto& target : json["targets"]) target.erase("source");
   if (json.contains("experiments"))

@@ -1,0 +1,38 @@
+# The LIGGGHTS drum example end to end: the sliding friction of a 250-sphere drum identified
+# against a drive-torque curve made by demfit's own kernel (target_torque.csv), once with LIGGGHTS
+# as an external program and once with demfit's kernel, both capped at 9 runs.
+#   cmake -DDEMFIT=<demfit> -DEXAMPLE=<examples/liggghts_drum> -DOUT=<folder> -P run_example.cmake
+file(REMOVE_RECURSE ${OUT})
+foreach(study liggghts demfit)
+  string(TIMESTAMP start "%s")
+  execute_process(COMMAND ${DEMFIT} identify ${EXAMPLE}/study_${study}.json --out ${OUT}/${study} --jobs 2 --no-plots
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(TIMESTAMP end "%s")
+  math(EXPR seconds "${end} - ${start}")
+  message(STATUS "${study}: ${seconds} s\n${out}")
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "demfit identify study_${study}.json: exit ${code}\n${out}\n${err}")
+  endif()
+  if(NOT out MATCHES "after ([0-9]+) runs \\(0 failed\\)")
+    message(FATAL_ERROR "study_${study}.json: failed runs or no summary:\n${out}\n${err}")
+  endif()
+  file(READ ${OUT}/${study}/best_parameters.json best)
+  string(JSON variable MEMBER "${best}" variables 0)
+  string(JSON value GET "${best}" variables ${variable} value)
+  if(value LESS 0.1 OR value GREATER 1.0)
+    message(FATAL_ERROR "study_${study}.json: sliding friction ${value} outside its bounds [0.1, 1]")
+  endif()
+endforeach()
+# Every LIGGGHTS run left its input, its copied mesh and its curve in a folder of its own.
+file(GLOB runs ${OUT}/liggghts/external_runs/run-*)
+list(LENGTH runs count)
+if(count LESS 9)
+  message(FATAL_ERROR "expected at least 9 LIGGGHTS run folders, found ${count}")
+endif()
+foreach(run ${runs})
+  foreach(f in.drum drum.stl torque.csv demfit_run.json)
+    if(NOT EXISTS ${run}/${f})
+      message(FATAL_ERROR "${run} has no ${f}")
+    endif()
+  endforeach()
+endforeach()
