@@ -120,6 +120,9 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
   const std::string stopped = result ? result->value("stop_reason", std::string()) : std::string();
   if (stopped.rfind("NOT converged", 0) == 0)
     d.warnings.push_back("the study " + stopped);
+  else if (result && !result->value("converged", false) && stopped.find("budget reached") != std::string::npos)
+    d.warnings.push_back("stopped by the " + stopped +
+                         "; resume with a larger stopping.max_runs or stopping.max_wall_seconds");
   else if (result && !result->value("converged", false))
     d.warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
                          ") without converging; resume with a larger stopping.max_iterations");

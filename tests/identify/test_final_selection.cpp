@@ -357,6 +357,9 @@ TEST_CASE("A run budget stops the study before an iteration would pass it, and t
   std::ifstream report_file(dir / "report.md");
   const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
   CHECK(report.find("run budget reached") != std::string::npos);
+  // The warnings name the cap that stopped the study, not the iteration limit it did not reach.
+  CHECK(report.find("resume with a larger stopping.max_runs or stopping.max_wall_seconds") != std::string::npos);
+  CHECK(report.find("stopped at the iteration limit") == std::string::npos);
 }
 
 TEST_CASE("A negative or non-finite budget is refused naming the field", "[identify][loop]") {
