@@ -63,7 +63,7 @@ py::object answer(const Study& s) {
   out["converged"] = s.result ? s.result->value("converged", false) : false;
   out["why"] = a.why;
   out["curves"] = to_python(run->curves);
-  return std::move(out);
+  return out;
 }
 
 // As best_parameters.json: reported_interval of the stored uncertainty at the answer's value.
