@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>  // std::optional, std::vector and std::pair arguments and results
 
 #include "demfit/identify/model.hpp"
 

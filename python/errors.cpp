@@ -24,7 +24,7 @@ void register_errors(py::module_& m) {
   py::tuple bases = py::make_tuple(py::handle(error_type), py::handle(PyExc_ValueError));
   input_error_type = PyErr_NewExceptionWithDoc("demfit.InputError",
                                                "Bad input (a field, a value, an option), named in the message.",
-                                               nullptr, bases.ptr());
+                                               bases.ptr(), nullptr);
   if (!input_error_type) throw py::error_already_set();
   m.attr("Error") = py::handle(error_type);
   m.attr("InputError") = py::handle(input_error_type);
