@@ -83,3 +83,22 @@ def test_a_missing_case_file_raises_the_command_lines_message(demfit_exe, tmp_pa
     with pytest.raises(demfit.Error) as raised:
         demfit.simulate(str(missing))
     assert str(raised.value) == cli_error(err)
+
+
+def test_other_python_threads_run_while_a_case_runs(small_pellet, source_dir):
+    # The GIL is released during the run: the main thread keeps counting meanwhile. Were it held,
+    # the main thread could not run until the case had finished (a count of at most one or two).
+    import threading
+    import time
+
+    results = []
+    worker = threading.Thread(target=lambda: results.append(
+        demfit.simulate(str(source_dir / "cases" / "pellet_compression.json"), SMALL_PELLET)))
+    worker.start()
+    ticks = 0
+    while worker.is_alive():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    assert ticks >= 20
+    assert np.array_equal(results[0].curves["pressure_volume"].y, small_pellet.curves["pressure_volume"].y)
