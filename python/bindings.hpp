@@ -6,6 +6,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>  // std::optional, std::vector and std::pair arguments and results
+#include <pybind11/stl/filesystem.h>  // file arguments: str or os.PathLike
 
 #include "demfit/identify/model.hpp"
 

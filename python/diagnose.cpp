@@ -5,6 +5,7 @@
 //
 // DEM studies are refused here: their candidates come from the cases effect catalogue through
 // the command line's own selection rules, which the library does not offer yet.
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -47,8 +48,9 @@ py::dict fit_summary(const diagnose::CandidateFit& fit) {
   return out;
 }
 
-py::dict run(const std::string& study_file, const std::optional<std::string>& effects, double noise, double alpha,
-             double bic_threshold, int refit_best, int jobs, const std::optional<std::string>& out, bool plots) {
+py::dict run(const std::filesystem::path& study_file, const std::optional<std::string>& effects, double noise,
+             double alpha, double bic_threshold, int refit_best, int jobs,
+             const std::optional<std::filesystem::path>& out, bool plots) {
   if (jobs < 1) input_error("jobs: must be >= 1");
   if (!(noise >= 0.0)) input_error("noise: must be > 0 (y units of the targets), or 0 to estimate it");
   if (!(alpha > 0.0 && alpha < 1.0)) input_error("alpha: must be in (0, 1), e.g. 0.01");

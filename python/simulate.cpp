@@ -56,11 +56,11 @@ void apply_overrides(const py::dict& overrides, nlohmann::json& document, identi
   }
 }
 
-SimulationResult simulate(const std::string& reference, const std::optional<py::dict>& overrides, int threads,
-                          const std::optional<std::string>& cache_dir) {
+SimulationResult simulate(const std::filesystem::path& case_reference, const std::optional<py::dict>& overrides,
+                          int threads, const std::optional<std::filesystem::path>& cache_dir) {
   if (threads < 1) input_error("threads: must be >= 1 (OpenMP threads of the simulation)");
   std::filesystem::path base_dir;
-  nlohmann::json document = case_document(reference, base_dir);
+  nlohmann::json document = case_document(case_reference.string(), base_dir);
   identify::ParameterSet parameters;
   if (overrides) apply_overrides(*overrides, document, parameters);
   const cases::CaseSpec spec = cases::parse_case(document, base_dir);

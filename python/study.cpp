@@ -43,9 +43,9 @@ struct Study {
 };
 
 // A study.db file, or a folder holding one.
-Study open_study(const std::string& location) {
+Study open_study(const fs::path& location) {
   std::error_code error;
-  const fs::path db = fs::is_directory(location, error) ? fs::path(location) / "study.db" : fs::path(location);
+  const fs::path db = fs::is_directory(location, error) ? location / "study.db" : location;
   const identify::StudyStore store = identify::StudyStore::open_existing(db);
   return Study{db, store.study_json(), store.evaluations(), store.result(),
                identify::study_diagnostics(store).warnings};
@@ -123,7 +123,7 @@ void claim_study_folder(const identify::RunOptions& options, const identify::Out
                              " already exists; pass resume=True to continue it, or choose another out folder");
 }
 
-Study run_identify(const std::string& study_file, const std::optional<std::string>& out, int jobs,
+Study run_identify(const fs::path& study_file, const std::optional<fs::path>& out, int jobs,
                    int threads_per_job, bool resume, bool plots, bool progress) {
   if (jobs < 1) input_error("jobs: must be >= 1");
   if (threads_per_job < 1) input_error("threads_per_job: must be >= 1");
@@ -133,7 +133,7 @@ Study run_identify(const std::string& study_file, const std::optional<std::strin
   options.resume = resume;
   options.plots = plots;
   options.progress = progress;
-  options.output_dir = out ? fs::path(*out) : fs::path(fs::path(study_file).stem().string() + "_results");
+  options.output_dir = out ? *out : fs::path(study_file.stem().string() + "_results");
   {
     py::gil_scoped_release release;
     // Every configuration error before anything is created: the study, the output folder rules,
@@ -154,7 +154,7 @@ Study run_identify(const std::string& study_file, const std::optional<std::strin
     options.evaluator = &pool;
     identify::run_study(spec, *model, options);
   }
-  return open_study((options.output_dir / "study.db").string());
+  return open_study(options.output_dir / "study.db");
 }
 
 }  // namespace
@@ -205,7 +205,7 @@ void register_study(py::module_& m) {
         py::arg("progress") = false, identify_doc);
   m.def(
       "resume",
-      [](const std::string& study_file, const std::optional<std::string>& out, int jobs, int threads_per_job,
+      [](const fs::path& study_file, const std::optional<fs::path>& out, int jobs, int threads_per_job,
          bool plots, bool progress) {
         return run_identify(study_file, out, jobs, threads_per_job, true, plots, progress);
       },

@@ -37,3 +37,9 @@ def test_an_unknown_effect_raises_the_command_lines_one_line_message(study_file,
     with pytest.raises(demfit.Error) as raised:
         demfit.diagnose(str(study_file), effects="cohesion")
     assert str(raised.value) == cli_error(err)
+
+
+def test_a_dem_study_is_refused_with_a_pointer_to_the_command_line(source_dir):
+    with pytest.raises(demfit.InputError, match=r'^study: model: demfit\.diagnose runs studies of the "analytic" '
+                                                r'model; diagnose a DEM study with `demfit diagnose`$'):
+        demfit.diagnose(source_dir / "cases" / "table1_study_quick.json")

@@ -81,10 +81,10 @@ def test_resume_of_a_finished_study_repeats_no_run_and_keeps_the_answer(python_s
 
 
 def test_a_store_the_command_line_made_resumes_and_reads_the_same_in_python(cli_study, study_file, python_study):
-    resumed = demfit.identify(str(study_file), out=str(cli_study), resume=True)
+    resumed = demfit.identify(study_file, out=cli_study, resume=True)  # os.PathLike arguments too
     assert resumed.answer["parameters"] == python_study.answer["parameters"]
     assert len(resumed.runs) == len(python_study.runs)
-    opened = demfit.open_study(str(cli_study))
+    opened = demfit.open_study(cli_study)
     assert opened.finished and opened.answer["objective"] == resumed.answer["objective"]
     assert opened.name == "analytic_cli"
 
