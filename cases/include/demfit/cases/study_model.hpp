@@ -1,0 +1,30 @@
+#pragma once
+// What a study simulates, as every front end that runs a study needs it (the Python module;
+// the command line's identify spells the same rules): the model with the derived curves of
+// relative-axis targets, the resolved model recorded in the store (a resumed study must
+// simulate the same thing), and the input files no output may replace.
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demfit/identify/model.hpp"
+#include "demfit/identify/study_spec.hpp"
+
+namespace demfit::cases {
+
+// make_study_model, wrapped in identify::RelativeAxisModel when a target's curve is on a relative
+// axis ("pressure_volume@strain", identify/relative_axis.hpp). Throws std::runtime_error.
+std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec);
+
+// The resolved model of a study (identify::RunOptions::resolved_model): {"analytic": overrides}
+// for the analytic model, the case with every default filled in for a DEM case, and for an
+// experiments study one such object per experiment, keyed by the experiment's name.
+nlohmann::json resolved_study_model(const identify::StudySpec& spec);
+
+// The study file, its target CSV files and its case file (when the model names a file).
+std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& spec,
+                                                     const std::filesystem::path& study_file);
+
+}  // namespace demfit::cases

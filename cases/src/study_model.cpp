@@ -1,0 +1,51 @@
+// What a study simulates: its model, the resolved form recorded in its store, its input files.
+#include "demfit/cases/study_model.hpp"
+
+#include <set>
+#include <string>
+#include <system_error>
+
+#include "demfit/cases/case_spec.hpp"
+#include "demfit/cases/model_factory.hpp"
+#include "demfit/identify/relative_axis.hpp"
+
+namespace demfit::cases {
+
+std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec) {
+  auto model = make_study_model(spec);
+  std::set<std::string> relative;
+  for (const auto& t : spec.targets)
+    if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
+  if (relative.empty()) return model;
+  return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
+}
+
+namespace {
+// The content of a case, not its path, so that a resumed study refuses any change to what is simulated.
+nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
+                                  const std::filesystem::path& base_dir) {
+  if (reference == "analytic") return {{"analytic", overrides}};
+  return to_json(resolve_case(reference, overrides, base_dir));
+}
+}  // namespace
+
+nlohmann::json resolved_study_model(const identify::StudySpec& spec) {
+  if (spec.experiments.empty()) return resolved_one_model(spec.model_reference, spec.model_overrides, spec.base_dir);
+  nlohmann::json experiments = nlohmann::json::object();
+  for (const auto& e : spec.experiments)
+    experiments[e.name] = resolved_one_model(e.model_reference, e.model_overrides, spec.base_dir);
+  return experiments;
+}
+
+std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& spec,
+                                                     const std::filesystem::path& study_file) {
+  std::vector<std::filesystem::path> inputs{study_file};
+  for (const auto& t : spec.targets)
+    if (!t.csv.empty()) inputs.push_back(t.csv.is_absolute() ? t.csv : spec.base_dir / t.csv);
+  std::error_code error;
+  const std::filesystem::path case_file = spec.base_dir / spec.model_reference;
+  if (std::filesystem::is_regular_file(case_file, error)) inputs.push_back(case_file);
+  return inputs;
+}
+
+}  // namespace demfit::cases
