@@ -109,20 +109,6 @@ py::list runs(const Study& s) {
   return out;
 }
 
-// The output folder rules before any work, then the study's lock when the folder exists; an
-// existing store without resume is refused before the initial-point run (as the command line).
-void claim_study_folder(const identify::RunOptions& options, const identify::OutputRequest& request,
-                        std::optional<identify::StoreLock>& lock) {
-  identify::check_output_folder(options.output_dir, request);
-  if (!fs::is_directory(options.output_dir)) return;
-  lock.emplace(options.output_dir);
-  const fs::path db = options.output_dir / "study.db";
-  std::error_code error;
-  if (!options.resume && fs::exists(fs::symlink_status(db, error)))
-    throw std::runtime_error("study store " + identify::quote_path(db) +
-                             " already exists; pass resume=True to continue it, or choose another out folder");
-}
-
 Study run_identify(const fs::path& study_file, const std::optional<fs::path>& out, int jobs,
                    int threads_per_job, bool resume, bool plots, bool progress) {
   if (jobs < 1) input_error("jobs: must be >= 1");
@@ -142,8 +128,8 @@ Study run_identify(const fs::path& study_file, const std::optional<fs::path>& ou
     identify::OutputRequest request{identify::OutputKind::identify, cases::study_input_files(parsed, study_file)};
     request.option = "out";
     std::optional<identify::StoreLock> lock;
-    claim_study_folder(options, request, lock);
-    const auto model = cases::make_identify_model(parsed);
+    identify::claim_study_folder(options, request, lock, "resume=True");
+    const auto model = cases::make_identify_model(parsed, options.output_dir);
     options.resolved_model = cases::resolved_study_model(parsed);
     identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
                                        static_cast<unsigned long>(parsed.seed));

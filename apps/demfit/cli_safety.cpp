@@ -74,17 +74,6 @@ CLI::Validator non_empty_path() {
       "PATH");
 }
 
-std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
-                                                const std::filesystem::path& study_file) {
-  std::vector<std::filesystem::path> inputs{study_file};
-  for (const auto& t : spec.targets)
-    if (!t.csv.empty()) inputs.push_back(t.csv.is_absolute() ? t.csv : spec.base_dir / t.csv);
-  std::error_code error;
-  const std::filesystem::path case_file = spec.base_dir / spec.model_reference;
-  if (std::filesystem::is_regular_file(case_file, error)) inputs.push_back(case_file);
-  return inputs;
-}
-
 CreatedParents::CreatedParents(const std::filesystem::path& target) {
   std::error_code error;
   for (std::filesystem::path p = target.parent_path(); !p.empty() && p != p.root_path(); p = p.parent_path()) {

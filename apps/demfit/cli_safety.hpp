@@ -25,9 +25,6 @@ unsigned long long parse_count(const std::string& text, const std::string& field
 void require_at_most(long long value, long long max, const std::string& option, const std::string& why);
 // CLI11 check of a path option: the empty string is an error, not "the default".
 CLI::Validator non_empty_path();
-// The study file, its target CSV files and its case file (when it is a file).
-std::vector<std::filesystem::path> study_inputs(const identify::StudySpec& spec,
-                                                const std::filesystem::path& study_file);
 // The folders above `target` that do not exist yet. Unless keep() is called, the destructor removes
 // those that are still empty, so a failed run leaves no empty "results/" behind.
 class CreatedParents {

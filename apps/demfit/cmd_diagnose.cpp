@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_preflight.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/parameter_table.hpp"
@@ -189,7 +190,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
                     : std::filesystem::path(o.out);
   // Output folder rules before any work; created, marked, when the diagnosis is written.
-  const identify::OutputRequest request{identify::OutputKind::diagnose, study_inputs(spec, o.study_file)};
+  const identify::OutputRequest request{identify::OutputKind::diagnose, cases::study_input_files(spec, o.study_file)};
   identify::check_output_folder(out, request);
   std::vector<diagnose::EffectCandidate> candidates;
   const auto model = model_and_candidates(spec, candidates);

@@ -145,6 +145,10 @@ void run_export(const std::string& db, const std::string& out_file, const Export
     throw std::runtime_error("export: study store '" + db +
                              "' identifies the \"analytic\" test model, not a DEM case; "
                              "DEM contact export needs a pellet_compression or rotary_drum study");
+  if (study.value("model", nlohmann::json::object()).contains("external"))
+    throw std::runtime_error("export: study store '" + db +
+                             "' identifies an external program's model; its answer is in best_parameters.json "
+                             "for that program's own input (export writes demfit's DEM cases only)");
   // Runs of a study with experiments store only the variables (each experiment has its own case
   // values): there is no single full parameter set to write as LS-DYNA cards. The LIGGGHTS
   // snippet is written when every experiment's case gives the same material (liggghts_export.hpp).

@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "cli_safety.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/identify/external_model.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/safe_output.hpp"
@@ -46,25 +47,6 @@ struct IdentifyOptions {
   double run_timeout = 0.0;
 };
 
-// Built-in cases, case files and the "analytic" test model all come from the one case factory; an
-// external program (external_model.hpp) runs in folders under the study's output folder `out`.
-// Targets on a relative axis ("pressure_volume@strain", relative_axis.hpp) get their derived curves.
-std::unique_ptr<identify::Model> make_model(const identify::StudySpec& spec, const std::filesystem::path& out) {
-  for (const auto& e : spec.experiments)
-    if (e.model_reference == identify::kExternalModelReference)
-      throw std::runtime_error("study: experiments: '" + e.name +
-                               "' has an external model; an external program is for a single-model study "
-                               "(\"model\" + \"targets\")");
-  std::unique_ptr<identify::Model> model = spec.model_reference == identify::kExternalModelReference
-                                               ? identify::make_external_model(spec, out)
-                                               : cases::make_study_model(spec);
-  std::set<std::string> relative;
-  for (const auto& t : spec.targets)
-    if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
-  if (relative.empty()) return model;
-  return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
-}
-
 void print_summary(const identify::StudySpec& spec, const identify::StudyResult& result,
                    const std::filesystem::path& out) {
   // "the answer's": with a final selection the answer need not be the lowest run (final_selection.hpp).
@@ -85,39 +67,6 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
   std::printf("results: %s\n", identify::printable((out / "report.md").string()).c_str());
 }
 
-// What the study simulates, resolved: for a DEM case the case with every default filled in (its
-// content, not its path), so that --resume refuses any change to what is simulated.
-// An experiments study: one resolved model per experiment, keyed by the experiment's name.
-nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
-                                  const std::filesystem::path& base_dir) {
-  if (reference == "analytic") return {{"analytic", overrides}};
-  if (reference == identify::kExternalModelReference) return identify::resolved_external_model(overrides, base_dir);
-  return cases::to_json(cases::resolve_case(reference, overrides, base_dir));
-}
-
-nlohmann::json resolved_model(const identify::StudySpec& spec) {
-  if (spec.experiments.empty()) return resolved_one_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-  nlohmann::json experiments = nlohmann::json::object();
-  for (const auto& e : spec.experiments)
-    experiments[e.name] = resolved_one_model(e.model_reference, e.model_overrides, spec.base_dir);
-  return experiments;
-}
-
-// The output folder rules before any work, then the study's lock when the folder exists (a second
-// demfit on the same study fails at once). An existing store without --resume is refused here too,
-// before the initial-point run, with the store's own words.
-void claim_study_folder(const identify::RunOptions& options, const identify::OutputRequest& request,
-                        std::optional<identify::StoreLock>& lock) {
-  identify::check_output_folder(options.output_dir, request);
-  if (!std::filesystem::is_directory(options.output_dir)) return;
-  lock.emplace(options.output_dir);
-  const std::filesystem::path db = options.output_dir / "study.db";
-  std::error_code error;
-  if (!options.resume && std::filesystem::exists(std::filesystem::symlink_status(db, error)))
-    throw std::runtime_error("study store " + identify::quote_path(db) +
-                             " already exists; pass --resume to continue it, or choose another --out folder");
-}
-
 #if defined(DEMFIT_HAVE_SCALEOUT)
 // `mpirun -np K demfit identify STUDY.json --mpi`: every rank reads the study and builds the model
 // (a shared file system is assumed); rank 0 runs the loop and owns the store, the others evaluate.
@@ -130,10 +79,10 @@ void run_identify_rank0(const IdentifyOptions& o, identify::RunOptions options, 
   scaleout::MpiEvaluator evaluator(session, mpi_options);
   // As without MPI: every configuration error before anything is created, the
   // initial point evaluated on a worker rank (curve names, units, overlap).
-  identify::OutputRequest request{identify::OutputKind::identify, study_inputs(parsed, o.study_file)};
+  identify::OutputRequest request{identify::OutputKind::identify, cases::study_input_files(parsed, o.study_file)};
   std::optional<identify::StoreLock> lock;
-  claim_study_folder(options, request, lock);
-  options.resolved_model = resolved_model(parsed);
+  identify::claim_study_folder(options, request, lock, "--resume");
+  options.resolved_model = cases::resolved_study_model(parsed);
   const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator, &options.initial_run);
   request.lock_held = lock.has_value();
   identify::prepare_output_folder(options.output_dir, request);
@@ -153,7 +102,7 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
   try {
     // Every rank reads the same study: a bad study fails on every rank alike, before any message.
     const identify::StudySpec parsed = identify::load_study_file(o.study_file);
-    const auto model = make_model(parsed, options.output_dir);
+    const auto model = cases::make_identify_model(parsed, options.output_dir);
     if (session.rank() != 0)
       scaleout::run_worker(*model, o.threads_per_job, parsed.seed);
     else
@@ -202,11 +151,11 @@ void run_identify(const IdentifyOptions& o) {
   // Every configuration error before anything is created: the study, the output
   // folder rules, the model, then one evaluation at the initial point (curve names, units, overlap).
   const identify::StudySpec parsed = identify::load_study_file(o.study_file);
-  identify::OutputRequest request{identify::OutputKind::identify, study_inputs(parsed, o.study_file)};
+  identify::OutputRequest request{identify::OutputKind::identify, cases::study_input_files(parsed, o.study_file)};
   std::optional<identify::StoreLock> lock;
-  claim_study_folder(options, request, lock);
-  const auto model = make_model(parsed, options.output_dir);
-  options.resolved_model = resolved_model(parsed);
+  identify::claim_study_folder(options, request, lock, "--resume");
+  const auto model = cases::make_identify_model(parsed, options.output_dir);
+  options.resolved_model = cases::resolved_study_model(parsed);
   // One pool for the initial-point check and the loop (as the MPI path shares its evaluator): the
   // check's experiments run side by side over --jobs, and the run it hands over is the loop's own.
   identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,

@@ -2,17 +2,27 @@
 #include "demfit/cases/study_model.hpp"
 
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/identify/external_model.hpp"
 #include "demfit/identify/relative_axis.hpp"
 
 namespace demfit::cases {
 
-std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec) {
-  auto model = make_study_model(spec);
+std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec,
+                                                     const std::filesystem::path& output_dir) {
+  for (const auto& e : spec.experiments)
+    if (e.model_reference == identify::kExternalModelReference)
+      throw std::runtime_error("study: experiments: '" + e.name +
+                               "' has an external model; an external program is for a single-model study "
+                               "(\"model\" + \"targets\")");
+  std::unique_ptr<identify::Model> model = spec.model_reference == identify::kExternalModelReference
+                                               ? identify::make_external_model(spec, output_dir)
+                                               : make_study_model(spec);
   std::set<std::string> relative;
   for (const auto& t : spec.targets)
     if (t.curve.find('@') != std::string::npos) relative.insert(t.curve);
@@ -25,6 +35,7 @@ namespace {
 nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
                                   const std::filesystem::path& base_dir) {
   if (reference == "analytic") return {{"analytic", overrides}};
+  if (reference == identify::kExternalModelReference) return identify::resolved_external_model(overrides, base_dir);
   return to_json(resolve_case(reference, overrides, base_dir));
 }
 }  // namespace

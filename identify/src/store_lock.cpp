@@ -33,4 +33,16 @@ StoreLock::~StoreLock() {
   if (fd_ >= 0) ::close(fd_);  // closing releases the flock
 }
 
+void claim_study_folder(const RunOptions& options, const OutputRequest& request, std::optional<StoreLock>& lock,
+                        std::string_view resume_hint) {
+  check_output_folder(options.output_dir, request);
+  if (!std::filesystem::is_directory(options.output_dir)) return;
+  lock.emplace(options.output_dir);
+  const std::filesystem::path db = options.output_dir / "study.db";
+  std::error_code error;
+  if (!options.resume && std::filesystem::exists(std::filesystem::symlink_status(db, error)))
+    throw std::runtime_error("study store " + quote_path(db) + " already exists; pass " + std::string(resume_hint) +
+                             " to continue it, or choose another output folder");
+}
+
 }  // namespace demfit::identify

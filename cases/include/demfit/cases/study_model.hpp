@@ -14,12 +14,16 @@
 
 namespace demfit::cases {
 
-// make_study_model, wrapped in identify::RelativeAxisModel when a target's curve is on a relative
-// axis ("pressure_volume@strain", identify/relative_axis.hpp). Throws std::runtime_error.
-std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec);
+// make_study_model (built-in cases, case files, the "analytic" test model) or, for
+// "model": {"external": ...}, the external program (identify/external_model.hpp), whose runs go in
+// folders under `output_dir`; wrapped in identify::RelativeAxisModel when a target's curve is on a
+// relative axis ("pressure_volume@strain", identify/relative_axis.hpp). Throws std::runtime_error.
+std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec,
+                                                     const std::filesystem::path& output_dir);
 
 // The resolved model of a study (identify::RunOptions::resolved_model): {"analytic": overrides}
-// for the analytic model, the case with every default filled in for a DEM case, and for an
+// for the analytic model, the case with every default filled in for a DEM case, the external
+// program's fingerprint (template, command, outputs, files) for an external model, and for an
 // experiments study one such object per experiment, keyed by the experiment's name.
 nlohmann::json resolved_study_model(const identify::StudySpec& spec);
 
