@@ -1,0 +1,200 @@
+// Mesh walls against analytic walls and analytic contact geometry: a flat mesh face gives the
+// analytic plane's forces, an edge or corner of a convex mesh pushes along the line from the
+// edge/corner to the centre with the law's force for that overlap (one contact, not one per
+// triangle), an inside corner gives the three planes' contacts, a sphere rolling across the shared
+// edge of a flat floor sees no bump.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "demfit/dem_core/simulation.hpp"
+#include "mesh_shapes.hpp"
+
+using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
+
+namespace {
+
+constexpr double g = 9.81, r = 2.0e-3, half = 0.05;
+const Material material{1.0e9, 2500.0, 0.3};
+
+SimulationSettings settings_with_friction() {
+  SimulationSettings s;
+  s.gravity = {0, 0, -g};
+  s.contact.frics = 0.5;  // rotation on
+  s.reorder_particles = false;
+  s.time_step = 2.0e-5;  // the same step in both runs
+  return s;
+}
+
+const WallContactParameters rough_damped{0.4, 0.0, 0.3, 1.0};  // FRICS, FRICD (rolling), DAMP, SFP
+
+/// Wall spring k_w = SFP NORMK K R of the linear law [N/m].
+double wall_stiffness(const Simulation& sim) { return 1.0 * sim.settings().contact.normk * material.bulk_modulus * r; }
+
+double mass() { return material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+
+}  // namespace
+
+TEST_CASE("A sphere dropped on a flat face of a meshed box moves exactly as on the analytic plane",
+          "[dem_core][mesh]") {
+  Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+  meshed.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), rough_damped));
+  WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+  plane.contact = rough_damped;
+  analytic.add_wall(plane);
+  for (Simulation* s : {&meshed, &analytic})  // oblique, spinning: normal, friction and rolling loads
+    s->add_particle({0.013, -0.007, 1.5 * r}, r, 0, {0.3, -0.1, -0.5}, {20.0, 5.0, -3.0});
+  std::size_t contact_steps = 0;
+  double largest_rise = 0.0;
+  for (int step = 0; step < 5000; ++step) {
+    meshed.step();
+    analytic.step();
+    contact_steps += analytic.wall_contact_count();
+    largest_rise = std::max(largest_rise, analytic.velocities()[0].z);
+    REQUIRE(meshed.positions()[0] == analytic.positions()[0]);
+    REQUIRE(meshed.velocities()[0] == analytic.velocities()[0]);
+    REQUIRE(meshed.angular_velocities()[0] == analytic.angular_velocities()[0]);
+    REQUIRE(meshed.wall_force(0) == analytic.wall_force(0));
+  }
+  CHECK(contact_steps > 50);    // it hit the face
+  CHECK(largest_rise > 0.1);     // and rebounded
+}
+
+TEST_CASE("A sphere striking a convex edge of a meshed box is pushed along the line from the edge to its centre",
+          "[dem_core][mesh]") {
+  // Frictionless, undamped: the force on the sphere is k_w (r - d) (c - q)/d with q the closest
+  // point of the box edge {x = half, z = 0}. One contact: the two triangles
+  // holding the edge (top and side face) must not both push (that would double the force).
+  SimulationSettings s = settings_with_friction();
+  s.contact.frics = 0.0;
+  s.time_step = 2.0e-6;  // ~100 steps per impact
+  Simulation sim(s);
+  sim.add_material(material);
+  sim.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), {}));
+  const double v0 = 0.4;
+  sim.add_particle({half + 0.4 * r, 0.01, 1.2 * r}, r, 0, {0, 0, -v0});
+  const double k = wall_stiffness(sim);
+  int contact_steps = 0;
+  for (int step = 0; step < 2000; ++step) {
+    sim.step();
+    const Vec3 c = sim.positions()[0];
+    const Vec3 q{half, c.y, 0.0};
+    const double d = norm(c - q);
+    if (d >= r || c.z <= 0.0 || c.x <= half) {  // away from the edge's region: no contact expected
+      if (c.z > 0.0 && c.x > half) CHECK(sim.wall_contact_count() == 0);
+      continue;
+    }
+    ++contact_steps;
+    REQUIRE(sim.wall_contact_count() == 1);
+    const Vec3 expected_on_wall = -(k * (r - d) / d) * (c - q);
+    const Vec3 got = sim.wall_force(0);
+    INFO("step " << step << " force " << got.x << " " << got.y << " " << got.z);
+    CHECK(norm(got - expected_on_wall) <= 1e-9 * norm(expected_on_wall));
+  }
+  CHECK(contact_steps > 20);
+  // Elastic and frictionless: kinetic plus potential energy per unit mass is kept, to the
+  // integrator's error.
+  const Vec3 v = sim.velocities()[0];
+  const double energy = 0.5 * norm2(v) + g * sim.positions()[0].z;
+  CHECK(energy == Approx(0.5 * v0 * v0 + g * 1.2 * r).epsilon(1e-3));
+  CHECK(v.x > 0.0);  // deflected off the edge, outwards
+}
+
+TEST_CASE("A sphere striking a corner of a meshed box is pushed along the line from the corner to its centre",
+          "[dem_core][mesh]") {
+  // The corner (half, half, 0) is held by five of the box's triangles: one contact.
+  SimulationSettings s = settings_with_friction();
+  s.contact.frics = 0.0;
+  s.time_step = 2.0e-6;  // ~100 steps per impact
+  Simulation sim(s);
+  sim.add_material(material);
+  sim.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), {}));
+  sim.add_particle({half + 0.3 * r, half + 0.2 * r, 1.2 * r}, r, 0, {0, 0, -0.4});
+  const double k = wall_stiffness(sim);
+  const Vec3 corner{half, half, 0};
+  int contact_steps = 0;
+  for (int step = 0; step < 2000; ++step) {
+    sim.step();
+    const Vec3 c = sim.positions()[0];
+    const double d = norm(c - corner);
+    if (d >= r) {
+      CHECK(sim.wall_contact_count() == 0);
+      continue;
+    }
+    ++contact_steps;
+    REQUIRE(sim.wall_contact_count() == 1);
+    const Vec3 expected_on_wall = -(k * (r - d) / d) * (c - corner);
+    CHECK(norm(sim.wall_force(0) - expected_on_wall) <= 1e-9 * norm(expected_on_wall));
+  }
+  CHECK(contact_steps > 20);
+}
+
+TEST_CASE("A sphere thrown into an inside corner of a meshed box moves as against the three analytic planes",
+          "[dem_core][mesh]") {
+  // Inside the box (contact is two-sided): floor and two side walls, three contacts at once. The
+  // analytic walls add their loads in wall order, the mesh deepest first: round-off apart.
+  SimulationSettings settings = settings_with_friction();
+  settings.gravity = {-4.0, -3.0, -g};  // pulls into the corner: three contacts at rest
+  Simulation meshed(settings), analytic(settings);
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+  meshed.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, half}), rough_damped));
+  for (const Vec3& n : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}) {
+    WallSpec plane{PlaneGeometry{-half * n, n}};
+    plane.contact = rough_damped;
+    analytic.add_wall(plane);
+  }
+  for (Simulation* s : {&meshed, &analytic})
+    s->add_particle({-half + 1.3 * r, -half + 1.2 * r, -half + 1.1 * r}, r, 0, {-0.05, -0.02, 0.03}, {3, -2, 1});
+  std::size_t most_contacts = 0;
+  for (int step = 0; step < 5000; ++step) {
+    meshed.step();
+    analytic.step();
+    most_contacts = std::max(most_contacts, analytic.wall_contact_count());
+    REQUIRE(meshed.wall_contact_count() == analytic.wall_contact_count());
+    const Vec3 dx = meshed.positions()[0] - analytic.positions()[0];
+    REQUIRE(norm(dx) <= 1e-12 * half);
+    REQUIRE(norm(meshed.velocities()[0] - analytic.velocities()[0]) <= 1e-9 * (norm(analytic.velocities()[0]) + 1e-6));
+  }
+  CHECK(most_contacts == 3);
+}
+
+TEST_CASE("A sphere rolling across the shared edge of a flat two-triangle floor keeps its speed and its loads",
+          "[dem_core][mesh]") {
+  // Rolling without slip on a flat floor keeps the speed (no rolling friction); at equilibrium
+  // overlap m g / k_w nothing moves vertically. The path y = 0.003 crosses the diagonal edge at
+  // x = 0.003. The loads (normal and the tangential spring's) must match the analytic plane's
+  // at every step: a reset tangential history or a double contact at the edge would show.
+  for (const double spin_fraction : {1.0, 0.5}) {  // rolling, and sliding into rolling
+    Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
+    for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+    meshed.add_wall(mesh_wall(two_triangle_floor(half), rough_damped));
+    WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+    plane.contact = rough_damped;
+    analytic.add_wall(plane);
+    const double v = 0.1, overlap = mass() * g / wall_stiffness(meshed);
+    for (Simulation* s : {&meshed, &analytic})
+      // No slip at the contact point, r - overlap below the centre.
+      s->add_particle({-0.01, 0.003, r - overlap}, r, 0, {v, 0, 0}, {0, spin_fraction * v / (r - overlap), 0});
+    double largest_difference = 0.0, normal_min = 1e9, normal_max = 0.0;
+    while (meshed.positions()[0].x < 0.015) {
+      meshed.step();
+      analytic.step();
+      REQUIRE(meshed.wall_contact_count() == 1);
+      const Vec3 f = meshed.wall_force(0);
+      largest_difference = std::max(largest_difference, norm(f - analytic.wall_force(0)) / norm(analytic.wall_force(0)));
+      normal_min = std::min(normal_min, -f.z);
+      normal_max = std::max(normal_max, -f.z);
+    }
+    INFO("spin fraction " << spin_fraction << " largest relative load difference " << largest_difference);
+    CHECK(largest_difference <= 1e-9);
+    const double speed = norm(meshed.velocities()[0]), analytic_speed = norm(analytic.velocities()[0]);
+    CHECK(std::abs(speed - analytic_speed) <= 1e-9 * analytic_speed);
+    if (spin_fraction == 1.0) {
+      CHECK(std::abs(speed - v) <= 1e-6 * v);                                  // no bump, no loss
+      CHECK((normal_max - normal_min) <= 1e-6 * mass() * g);                   // normal force continuous
+    }
+  }
+}
