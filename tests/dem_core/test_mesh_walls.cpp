@@ -198,3 +198,64 @@ TEST_CASE("A sphere rolling across the shared edge of a flat two-triangle floor 
     }
   }
 }
+
+TEST_CASE("A sphere on a finely triangulated flat floor feels the analytic plane's loads across every edge and vertex",
+          "[dem_core][mesh]") {
+  // 8 x 8 squares, each split along alternating diagonals: the sphere (radius 2 mm, squares
+  // 5 mm) crosses edges and passes near vertices where six or eight triangles meet.
+  std::vector<Triangle> floor;
+  const int n = 8;
+  const double w = 0.005, x0 = -0.5 * n * w;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Vec3 a{x0 + i * w, x0 + j * w, 0}, b{x0 + (i + 1) * w, x0 + j * w, 0};
+      const Vec3 c{x0 + (i + 1) * w, x0 + (j + 1) * w, 0}, d{x0 + i * w, x0 + (j + 1) * w, 0};
+      if ((i + j) % 2 == 0) floor.insert(floor.end(), {{a, b, c}, {a, c, d}});
+      else floor.insert(floor.end(), {{a, b, d}, {b, c, d}});
+    }
+  Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+  meshed.add_wall(mesh_wall(floor, rough_damped));
+  WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+  plane.contact = rough_damped;
+  analytic.add_wall(plane);
+  for (Simulation* s : {&meshed, &analytic})  // sliding diagonally through the vertex (0, 0)
+    s->add_particle({-0.012, -0.0121, 0.99 * r}, r, 0, {0.1, 0.1, 0}, {0, 0, 0});
+  double largest_difference = 0.0;
+  while (meshed.positions()[0].x < 0.012) {
+    meshed.step();
+    analytic.step();
+    REQUIRE(meshed.wall_contact_count() == analytic.wall_contact_count());
+    const double f = norm(analytic.wall_force(0));
+    if (f > 0.0) largest_difference = std::max(largest_difference, norm(meshed.wall_force(0) - analytic.wall_force(0)) / f);
+  }
+  INFO("largest relative load difference " << largest_difference);
+  CHECK(largest_difference <= 1e-9);
+  CHECK(norm(meshed.positions()[0] - analytic.positions()[0]) <= 1e-12);
+}
+
+TEST_CASE("A mesh wall turns and translates with its prescribed motion like the analytic plane", "[dem_core][mesh]") {
+  // A turntable (rotation about +z through (0.01, 0, 0)) then a lift (translation +z): the
+  // sphere is carried by friction; the mesh frame turns with the wall and keeps the plane's loads.
+  Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+  WallSpec mesh = mesh_wall(two_triangle_floor(half), rough_damped);
+  WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
+  plane.contact = rough_damped;
+  const RotatingMotion turn{{0.01, 0, 0}, {0, 0, 1}, 4.0};
+  mesh.motion = plane.motion = turn;
+  meshed.add_wall(mesh);
+  analytic.add_wall(plane);
+  const double overlap = mass() * g / wall_stiffness(meshed);
+  for (Simulation* s : {&meshed, &analytic}) s->add_particle({0.03, 0.0, r - overlap}, r);
+  for (Simulation* s : {&meshed, &analytic}) s->run_until(0.3);
+  // Carried around the turntable axis: the angle swept is a good part of 4 rad/s x 0.3 s.
+  const Vec3 x = meshed.positions()[0];
+  CHECK(std::atan2(x.y, x.x - 0.01) > 0.3);
+  for (Simulation* s : {&meshed, &analytic}) s->set_wall_motion(0, TranslatingMotion{{0, 0, 0.05}});
+  for (Simulation* s : {&meshed, &analytic}) s->run_until(0.4);
+  CHECK(meshed.positions()[0].z > 0.004);  // lifted about 5 mm
+  CHECK(norm(meshed.positions()[0] - analytic.positions()[0]) <= 1e-9 * half);
+  CHECK(norm(meshed.velocities()[0] - analytic.velocities()[0]) <= 1e-7 * norm(analytic.velocities()[0]));
+  CHECK(meshed.wall_force(0).z == Approx(analytic.wall_force(0).z).epsilon(1e-7));
+}
