@@ -19,11 +19,15 @@ void Simulation::ensure_neighbors(double moved) {
   const std::size_t walls = walls_.size();
   wall_always_checked_.resize(walls);
   double wall_shift = 0.0;
-  const bool wall_layout_ok = wall_displacement_at_build_.size() == walls;
+  const bool wall_layout_ok = wall_displacement_at_build_.size() == walls && wall_angle_at_build_.size() == walls;
   for (std::size_t w = 0; w < walls; ++w) {
-    wall_always_checked_[w] = wall_distances_rigid(walls_[w]) ? 0 : 1;
+    // A rotating mesh moves its surface by at most |angle turned| x its reach from the axis: that
+    // sweep counts like a translation, so only particles near the mesh hold its slots.
+    const double reach = wall_sweep_radius(walls_[w]);
+    wall_always_checked_[w] = wall_distances_rigid(walls_[w]) || reach > 0.0 ? 0 : 1;
     if (wall_layout_ok)
-      wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
+      wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]) +
+                                            std::abs(walls_[w].rotation_angle - wall_angle_at_build_[w]) * reach);
   }
   const bool stale = rebuild_requested_ || !wall_layout_ok || neighbors_.skin() != skin_now ||
                      neighbors_.particle_count() != particles_.size() || !wall_slots_.built_for(particles_.size());
@@ -33,7 +37,11 @@ void Simulation::ensure_neighbors(double moved) {
   if (!stale && moved + wall_shift <= 0.5 * skin_now) return;
   rebuild_requested_ = false;
   wall_displacement_at_build_.resize(walls);
-  for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
+  wall_angle_at_build_.resize(walls);
+  for (std::size_t w = 0; w < walls; ++w) {
+    wall_displacement_at_build_[w] = walls_[w].displacement;
+    wall_angle_at_build_[w] = walls_[w].rotation_angle;
+  }
   const std::vector<std::uint32_t> order =
       settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates(order);

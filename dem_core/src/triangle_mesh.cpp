@@ -116,16 +116,25 @@ void TriangleMesh::triangles_near(const Vec3& c, double reach, std::vector<std::
     lo[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((cc[d] - reach - l[d]) / cell_)), 0, dims_[d] - 1);
     hi[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((cc[d] + reach - l[d]) / cell_)), 0, dims_[d] - 1);
   }
+  // Each triangle once, in the order first met (cells ascending): a per-thread stamp per triangle.
+  thread_local std::vector<std::uint32_t> stamp;
+  thread_local std::uint32_t query = 0;
+  if (stamp.size() < corner_.size()) stamp.assign(corner_.size(), 0), query = 0;
+  if (++query == 0) std::fill(stamp.begin(), stamp.end(), 0), query = 1;  // wrapped around
+  const double reach2 = reach * reach;
   for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
       for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
         const auto cell = static_cast<std::size_t>((x * dims_[1] + y) * dims_[2] + z);
-        found.insert(found.end(), cell_triangle_.begin() + cell_start_[cell],
-                     cell_triangle_.begin() + cell_start_[cell + 1]);
+        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+          const std::uint32_t t = cell_triangle_[k];
+          if (stamp[t] == query) continue;
+          stamp[t] = query;
+          // The plane's distance bounds the triangle's from below: most far triangles stop here.
+          const double d = dot(c - vertex_[corner_[t][0]], normal_[t]);
+          if (d * d < reach2) found.push_back(t);
+        }
       }
-  if (lo == hi) return;  // one cell: already unique and ascending
-  std::sort(found.begin(), found.end());
-  found.erase(std::unique(found.begin(), found.end()), found.end());
 }
 
 namespace {
@@ -212,9 +221,12 @@ int TriangleMesh::contacts(const Vec3& center, double radius, MeshContact* out, 
     return x.distance != y.distance ? x.distance < y.distance : x.triangle < y.triangle;
   });
   int count = 0;
-  for (std::size_t i = 0; i < kept.size() && count < capacity; ++i) {  // rule 3: coincident points once
+  // Rule 3: coincident points, and points whose normals differ by less than 10 degrees, once.
+  constexpr double same_direction = 0.98480775301220802;  // cos(10 deg)
+  for (std::size_t i = 0; i < kept.size() && count < capacity; ++i) {
     bool repeated = false;
-    for (std::size_t j = 0; j < i && !repeated; ++j) repeated = norm2(kept[j].point - kept[i].point) <= same2;
+    for (std::size_t j = 0; j < i && !repeated; ++j)
+      repeated = norm2(kept[j].point - kept[i].point) <= same2 || dot(kept[j].normal, kept[i].normal) > same_direction;
     if (repeated) continue;
     out[count++] = {kept[i].normal, radius - kept[i].distance, kept[i].triangle};
   }

@@ -46,6 +46,20 @@ int mesh_wall_contacts(const MeshGeometry& g, const Vec3& center, double radius,
   return n;
 }
 
+double wall_sweep_radius(const Wall& wall) {
+  const auto* g = std::get_if<MeshGeometry>(&wall.geometry);
+  const auto* m = std::get_if<RotatingMotion>(&wall.motion);
+  if (g == nullptr || m == nullptr || m->angular_velocity == 0.0) return 0.0;
+  const Vec3 lo = g->mesh->lower(), hi = g->mesh->upper();
+  double reach = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 body{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+    const Vec3 world = g->origin + world_direction(*g, body);
+    reach = std::max(reach, norm(cross(world - m->axis_point, m->axis_direction)));
+  }
+  return reach;
+}
+
 int wall_contact_slots(const WallGeometry& geometry) {
   const auto* g = std::get_if<MeshGeometry>(&geometry);
   return g == nullptr ? 1 : g->max_contacts;

@@ -259,3 +259,36 @@ TEST_CASE("A mesh wall turns and translates with its prescribed motion like the 
   CHECK(norm(meshed.velocities()[0] - analytic.velocities()[0]) <= 1e-7 * norm(analytic.velocities()[0]));
   CHECK(meshed.wall_force(0).z == Approx(analytic.wall_force(0).z).epsilon(1e-7));
 }
+
+TEST_CASE("A sphere in a shallow concave crease feels one contact with the deeper face's force", "[dem_core][mesh]") {
+  // Two faces meeting along the y axis in a valley of 2 x 3 degrees (a polygonal drum shell's
+  // crease): near the crease the sphere overlaps both planes by almost the same depth; one
+  // contact, the deeper, is the rule (triangle_mesh.hpp, rule 3), so the force is k_w times the
+  // larger overlap (equal overlaps at the crease: the force passes continuously to the other face).
+  const double a = 3.0 * std::numbers::pi / 180.0, t = half * std::tan(a);
+  const std::vector<Triangle> valley{{Vec3{-half, -half, t}, Vec3{0, -half, 0}, Vec3{0, half, 0}},
+                                     {Vec3{-half, -half, t}, Vec3{0, half, 0}, Vec3{-half, half, t}},
+                                     {Vec3{0, -half, 0}, Vec3{half, -half, t}, Vec3{half, half, t}},
+                                     {Vec3{0, -half, 0}, Vec3{half, half, t}, Vec3{0, half, 0}}};
+  const Vec3 left{std::sin(a), 0, std::cos(a)}, right{-std::sin(a), 0, std::cos(a)};  // planes through 0
+  SimulationSettings s = settings_with_friction();
+  s.gravity = {0, 0, 0};
+  s.contact.frics = 0.0;
+  int both_faces_overlapped = 0;  // offsets where counting both faces would have doubled the force
+  for (int k = -10; k <= 10; ++k) {
+    Simulation sim(s);
+    sim.add_material(material);
+    sim.add_wall(mesh_wall(valley, {}));
+    sim.add_particle({0.02 * r * k, 0.0, 0.99 * r}, r);
+    sim.step();
+    const Vec3 c = sim.positions()[0];
+    const double deeper = std::max(r - dot(c, left), r - dot(c, right));
+    const double expected = wall_stiffness(sim) * deeper;
+    INFO("offset " << 0.02 * k << " r");
+    REQUIRE(sim.wall_contact_count() == 1);
+    CHECK(norm(sim.wall_force(0)) == Approx(expected).epsilon(1e-9));
+    const double shallower = std::min(r - dot(c, left), r - dot(c, right));
+    if (shallower > 0.5 * deeper) ++both_faces_overlapped;
+  }
+  CHECK(both_faces_overlapped >= 3);
+}

@@ -194,6 +194,7 @@ class Simulation {
   // mutable: the loads on the walls are reduced lazily from the per-contact arrays when asked for.
   mutable std::vector<Wall> walls_{};
   std::vector<Vec3> wall_displacement_at_build_{};   // wall translation when the list was built
+  std::vector<double> wall_angle_at_build_{};        // wall rotation angle when the list was built
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices (their histories: contact_state_).

@@ -22,7 +22,13 @@
 //     every triangle around its feature: a convex edge or corner, or a border edge.
 //  3. Points closer together than 1e-6 r are one contact (the shared edge reported by both its
 //     triangles, a corner by all of its triangles, a face/edge pair within round-off of the
-//     edge); the deepest is kept (ties: lower triangle index).
+//     edge), and so are points whose normals differ by less than 10 degrees: inside a shallow
+//     concave crease (a drum shell polygon of 360 sides creases by 1 degree) a sphere near the
+//     crease overlaps both faces' planes by almost the same depth, and counting both would
+//     double the force in a band along every crease of a surface meant to be smooth. The
+//     deepest is kept (ties: lower triangle index), so the contact passes from one face to the
+//     next when their depths are equal: the overlap stays continuous. Creases sharper than 10
+//     degrees (a box's inside corner: 90) give one contact per face.
 // A triangle holding the feature point q_i is at most |c - q_i| < r from c, so it is among the
 // tested triangles: the rule needs no adjacency table. Distinct contacts (a sphere in an inside
 // corner touches two or three faces) all count, deepest first.
@@ -62,8 +68,8 @@ class TriangleMesh {
   [[nodiscard]] bool any_within(const Vec3& center, double distance) const;
 
  private:
-  /// Triangles registered in the cells covered by the box [c - reach, c + reach], each once,
-  /// ascending, into `found` (cleared first).
+  /// Triangles registered in the cells covered by the box [c - reach, c + reach] whose plane
+  /// lies closer than `reach` to c, each once, in a fixed order, into `found` (cleared first).
   void triangles_near(const Vec3& c, double reach, std::vector<std::uint32_t>& found) const;
 
   std::vector<Vec3> vertex_;
