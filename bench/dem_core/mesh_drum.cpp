@@ -20,6 +20,7 @@ struct RunFigures {
   double torque = 0.0;       ///< mean over the steps of the walls' summed torque about +z [N m]
   double tilt_degrees = 0.0;  ///< mean bed tilt: angle of the centre of mass from straight below the axis
   double seconds = 0.0;      ///< wall-clock time of the steps
+  std::size_t list_builds = 0;
 };
 
 /// The same particles (positions, velocities, spins; contact histories start afresh) in a new
@@ -47,6 +48,7 @@ Simulation restart(const Simulation& from, const HertzDrumSpec& spec, const std:
 RunFigures measure(Simulation& sim, std::uint64_t steps) {
   RunFigures f;
   sim.run_steps(10);  // histories rebuilt, first list built: not timed
+  const std::size_t builds = sim.neighbor_list().build_count();
   const std::uint64_t chunk = 50;
   for (std::uint64_t done = 0; done < steps; done += chunk) {
     f.seconds += wall_seconds_for_steps(sim, chunk);
@@ -56,6 +58,7 @@ RunFigures measure(Simulation& sim, std::uint64_t steps) {
     f.torque += torque;
     f.tilt_degrees += std::atan2(c.x, -c.y) * 180.0 / std::numbers::pi;
   }
+  f.list_builds = sim.neighbor_list().build_count() - builds;
   const double samples = static_cast<double>((steps + chunk - 1) / chunk);
   f.torque /= samples;
   f.tilt_degrees /= samples;
@@ -77,12 +80,14 @@ void compare_meshed_drum(const MeshDrumOptions& o) {
               load_average().c_str());
   Simulation analytic = restart(settled, spec, nullptr, o.threads);
   const RunFigures a = measure(analytic, o.steps);
-  std::printf("  analytic walls: torque %.5f N m, bed tilt %.2f deg, %.2f s for %llu steps; %s\n", a.torque,
-              a.tilt_degrees, a.seconds, static_cast<unsigned long long>(o.steps), load_average().c_str());
+  std::printf("  analytic walls: torque %.5f N m, bed tilt %.2f deg, %.2f s for %llu steps (%zu list builds); %s\n",
+              a.torque, a.tilt_degrees, a.seconds, static_cast<unsigned long long>(o.steps), a.list_builds,
+              load_average().c_str());
   Simulation meshed = restart(settled, spec, mesh, o.threads);
   const RunFigures m = measure(meshed, o.steps);
-  std::printf("  mesh wall:      torque %.5f N m, bed tilt %.2f deg, %.2f s for %llu steps; %s\n", m.torque,
-              m.tilt_degrees, m.seconds, static_cast<unsigned long long>(o.steps), load_average().c_str());
+  std::printf("  mesh wall:      torque %.5f N m, bed tilt %.2f deg, %.2f s for %llu steps (%zu list builds); %s\n",
+              m.torque, m.tilt_degrees, m.seconds, static_cast<unsigned long long>(o.steps), m.list_builds,
+              load_average().c_str());
   std::printf("  meshed/analytic: torque %+.2f %% [target +-2 %%], tilt %+.2f deg [target +-1 deg], cost x%.2f "
               "[target <= 1.5]\n",
               100.0 * (m.torque / a.torque - 1.0), m.tilt_degrees - a.tilt_degrees, m.seconds / a.seconds);

@@ -50,14 +50,14 @@ double wall_sweep_radius(const Wall& wall) {
   const auto* g = std::get_if<MeshGeometry>(&wall.geometry);
   const auto* m = std::get_if<RotatingMotion>(&wall.motion);
   if (g == nullptr || m == nullptr || m->angular_velocity == 0.0) return 0.0;
-  const Vec3 lo = g->mesh->lower(), hi = g->mesh->upper();
-  double reach = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 body{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-    const Vec3 world = g->origin + world_direction(*g, body);
-    reach = std::max(reach, norm(cross(world - m->axis_point, m->axis_direction)));
-  }
-  return reach;
+  // The axis in the mesh frame; the farthest vertex bounds every surface point (distance from a
+  // line is convex). O(vertices) per step: ~10 us for 10^4 vertices.
+  const Vec3 point = mesh_frame_point(*g, m->axis_point);
+  const Vec3 direction{dot(m->axis_direction, g->axis_x), dot(m->axis_direction, g->axis_y),
+                       dot(m->axis_direction, g->axis_z)};
+  double reach2 = 0.0;
+  for (const Vec3& v : g->mesh->vertices()) reach2 = std::max(reach2, norm2(cross(v - point, direction)));
+  return std::sqrt(reach2);
 }
 
 int wall_contact_slots(const WallGeometry& geometry) {

@@ -58,6 +58,7 @@ class TriangleMesh {
   [[nodiscard]] std::size_t triangle_count() const { return corner_.size(); }
   [[nodiscard]] std::size_t vertex_count() const { return vertex_.size(); }
   [[nodiscard]] std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+  [[nodiscard]] const std::vector<Vec3>& vertices() const { return vertex_; }
   [[nodiscard]] Vec3 lower() const { return lower_; }
   [[nodiscard]] Vec3 upper() const { return upper_; }
 

@@ -125,7 +125,7 @@ bool wall_distances_rigid(const Wall& wall);
 /// Contacts of a sphere with a mesh wall (world frame), deepest first, at most `capacity`.
 int mesh_wall_contacts(const MeshGeometry& geometry, const Vec3& center, double radius, WallProximity* out,
                        int capacity);
-/// For a rotating mesh wall: the largest distance [m] of its bounding box from the rotation axis
+/// For a rotating mesh wall: the largest distance [m] of its vertices from the rotation axis
 /// (its surface moves by at most that times the angle turned); 0 for every other wall.
 double wall_sweep_radius(const Wall& wall);
 /// Contact slots a particle gets for this wall (1; MeshGeometry::max_contacts for a mesh).
