@@ -131,8 +131,17 @@ void TriangleMesh::triangles_near(const Vec3& c, double reach, std::vector<std::
           if (stamp[t] == query) continue;
           stamp[t] = query;
           // The plane's distance bounds the triangle's from below: most far triangles stop here.
-          const double d = dot(c - vertex_[corner_[t][0]], normal_[t]);
-          if (d * d < reach2) found.push_back(t);
+          const Vec3& a = vertex_[corner_[t][0]];
+          const double d = dot(c - a, normal_[t]);
+          if (d * d >= reach2) continue;
+          // And by its bounding box grown by reach (cells are coarser than a sphere).
+          const Vec3& b = vertex_[corner_[t][1]];
+          const Vec3& e = vertex_[corner_[t][2]];
+          auto outside = [&](double p, double q0, double q1, double q2) {
+            return p + reach < std::min({q0, q1, q2}) || p - reach > std::max({q0, q1, q2});
+          };
+          if (outside(c.x, a.x, b.x, e.x) || outside(c.y, a.y, b.y, e.y) || outside(c.z, a.z, b.z, e.z)) continue;
+          found.push_back(t);
         }
       }
 }
