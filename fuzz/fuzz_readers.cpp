@@ -1,5 +1,6 @@
 // Seeded mutation fuzzer of demfit's input readers: JSON documents (study and case files through
-// their strict parsers), curve CSV files, and drum images (BMP with both header kinds, PNG, JPEG
+// their strict parsers), curve CSV files, STL meshes (binary and ASCII through
+// dem_core::parse_stl, then a TriangleMesh and sphere contacts on it), and drum images (BMP with both header kinds, PNG, JPEG
 // through imaging::decode_grey_image, the path read_grey_image takes, then extract_surface).
 // Compiled with the project (and with the sanitizers under scripts/sanitize); scripts/fuzz runs it
 // for a bounded time. The image seeds are made here, at start-up, from a drawn 40 x 40 px drum.
@@ -13,7 +14,8 @@
 // cannot slow the run down; the limit checks themselves are the same code as for photos.
 // A reader may throw std::runtime_error (a clean one-line error) and nothing else: any other
 // exception is a finding, saved to OUT_DIR; so is an image read with an inconsistent size or a
-// grey level outside [0, 1], or a surface with a non-finite point. A crash (signal or sanitizer
+// grey level outside [0, 1], or a surface with a non-finite point, or a mesh contact with a
+// non-unit normal or an overlap outside (0, r]. A crash (signal or sanitizer
 // report) ends the process; OUT_DIR/current.input then holds the input. Prints
 // "executions N crashes 0 findings F" at the end, with how many images were read and how many of
 // them gave a surface.
@@ -33,6 +35,8 @@
 #include <vector>
 
 #include "demfit/cases/case_spec.hpp"
+#include "demfit/dem_core/stl_mesh.hpp"
+#include "demfit/dem_core/triangle_mesh.hpp"
 #include "demfit/identify/curve_io.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/study_spec.hpp"
@@ -43,6 +47,24 @@ namespace {
 
 using namespace std::string_literals;
 
+// A binary STL of two triangles (a corner of a box), zero stored normals.
+std::string binary_stl_seed() {
+  std::string out(80, 's');
+  out.replace(0, 5, "solid");  // a binary header may start like text
+  const float t[2][9] = {{0, 0, 0, 2, 0, 0, 0, 2, 0}, {0, 0, 0, 0, 0, 2, 2, 0, 0}};
+  auto put = [&](const void* p, std::size_t n) { out.append(static_cast<const char*>(p), n); };
+  const std::uint32_t count = 2;  // little-endian on the machines this runs on
+  put(&count, 4);
+  for (const auto& tri : t) {
+    const float zero[3] = {0, 0, 0};
+    put(zero, 12);
+    put(tri, 36);
+    out += std::string(2, '\0');
+  }
+  return out;
+}
+
+// Seeds that are not images (the image seeds are made at start-up).
 const std::vector<std::string> kTextSeeds = {
     R"({"demfit_study_version": 1, "name": "fuzz", "model": {"case": "analytic", "overrides": {"points": 11},
         "fixed_parameters": {"slope": 0.5}},
@@ -59,6 +81,10 @@ const std::vector<std::string> kTextSeeds = {
     R"({"case": "rotary_drum", "drum": {"coarse_graining": "scg", "scale_factor": 2, "duration": 0.5}})",
     "# comment\nx_1,y_1\n0,0\n0.25,0.5\n0.5,0.8\n1.0,1.5\n",
     "\xEF\xBB\xBFvolume_cm3,pressure_MPa,extra\n\"20.0\",0.0,a\n19.5,+1e-3,b\n19.0,2.5e+00,c\n",
+    "solid floor\n facet normal 0 0 1\n  outer loop\n   vertex -1 -1 0\n   vertex 1 -1 0\n   vertex 1 1 0\n"
+    "  endloop\n endfacet\n facet normal 0 0 0\n  outer loop\n   vertex -1 -1 0\n   vertex 1 1 0\n"
+    "   vertex -1 1 0\n  endloop\n endfacet\nendsolid floor\n",
+    binary_stl_seed(),
 };
 
 const std::vector<std::string> kTokens = {"[",
@@ -78,6 +104,10 @@ const std::vector<std::string> kTokens = {"[",
                                           "true",
                                           "\"name\":",
                                           "\"x\":[",
+                                          "facet normal 0 0 1 outer loop",
+                                          "vertex 1e30 0 0",
+                                          "endfacet",
+                                          "endsolid",
                                           "\xEF\xBB\xBF",
                                           "#",
                                           "\r",
@@ -239,6 +269,28 @@ std::string execute_image(const std::string& bytes) {
   return {};
 }
 
+// Executions in which the STL reader returned a mesh.
+long meshes_built = 0;
+
+// The STL reader, then a mesh and a few sphere contacts on what it read.
+std::string execute_stl(const std::string& bytes) {
+  using namespace demfit::dem_core;
+  try {
+    const TriangleMesh mesh(parse_stl(bytes, {1e-3, 1000}, "fuzz.stl"));
+    ++meshes_built;
+    const Vec3 lo = mesh.lower(), hi = mesh.upper(), mid = 0.5 * (lo + hi);
+    const double radius = 0.25 * norm(hi - lo) + 1e-6;
+    for (const Vec3& c : {lo, hi, mid, Vec3{lo.x, mid.y, hi.z}}) {
+      MeshContact found[4];
+      const int n = mesh.contacts(c, radius, found, 4);
+      for (int k = 0; k < n; ++k)
+        if (!(std::abs(norm(found[k].normal) - 1.0) < 1e-9) || !(found[k].overlap > 0.0 && found[k].overlap <= radius))
+          return "mesh contact with a non-unit normal or an overlap outside (0, r]";
+    }
+  } catch (const std::runtime_error&) {}
+  return {};
+}
+
 // One execution: every reader on the text. Returns "" or the name of an unexpected exception.
 std::string execute(const std::string& text) {
   try {
@@ -255,6 +307,7 @@ std::string execute(const std::string& text) {
       std::istringstream in(text);
       demfit::identify::parse_curve_csv(in, "fuzz.csv", "x_1", "y_1");
     } catch (const std::runtime_error&) {}
+    if (const std::string problem = execute_stl(text); !problem.empty()) return problem;
     if (const std::string problem = execute_image(text); !problem.empty()) return problem;
   } catch (const std::exception& e) { return std::string("unexpected exception: ") + e.what(); }
   return {};
@@ -300,7 +353,9 @@ int main(int argc, char** argv) {
   }
   if (current >= 0) ::close(current);
   std::filesystem::remove(out / "current.input");
-  std::printf("executions %ld crashes 0 findings %ld (seed %llu, %.0f s; images read %ld, surfaces found %ld)\n",
-              executions, findings, static_cast<unsigned long long>(seed), seconds, images_read, surfaces_found);
+  std::printf(
+      "executions %ld crashes 0 findings %ld (seed %llu, %.0f s; images read %ld, surfaces found %ld, STL meshes "
+      "built %ld)\n",
+      executions, findings, static_cast<unsigned long long>(seed), seconds, images_read, surfaces_found, meshes_built);
   return findings == 0 ? 0 : 1;
 }

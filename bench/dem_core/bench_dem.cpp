@@ -16,6 +16,7 @@
 #include "demfit/dem_core/memory_retention.hpp"
 #include "demfit/dem_core/openmp_waiting.hpp"
 #include "drum_comparison.hpp"
+#include "mesh_drum.hpp"
 #include "roundoff.hpp"
 #include "scaling.hpp"
 
@@ -71,7 +72,7 @@ void cases(const dem_core::Simulation& bed) {
 
 int usage() {
   std::printf(
-      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases] [--steps N (drum, 10000)]\n"
+      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases|mesh] [--steps N (drum, 10000)]\n"
       "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
       "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
@@ -96,6 +97,7 @@ int main(int argc, char** argv) {
   drum.memory_retention =
       retained ? "kept in the process (retain_freed_memory, as the CLI)" : "returned to the kernel (glibc defaults)";
   bench::ScalingOptions scaling;
+  bench::MeshDrumOptions mesh_drum;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     const bool has_value = a + 1 < argc;
@@ -104,11 +106,11 @@ int main(int argc, char** argv) {
     else if (arg == "--only" && has_value)
       only = argv[++a];
     else if (arg == "--steps" && has_value)
-      drum.steps = std::stol(argv[++a]);
+      drum.steps = mesh_drum.steps = std::stoul(argv[++a]);
     else if (arg == "--repeats" && has_value)
       drum.repeats = scaling.repeats = std::stoi(argv[++a]);
     else if (arg == "--spin-up" && has_value)
-      drum.spin_up_time = std::stod(argv[++a]);
+      drum.spin_up_time = mesh_drum.spin_up_time = std::stod(argv[++a]);
     else if (arg == "--dir" && has_value)
       drum.dir = argv[++a];
     else if (arg == "--scaling-work" && has_value)
@@ -134,6 +136,7 @@ int main(int argc, char** argv) {
   auto wanted = [&](const char* section) { return only.empty() || only == section; };
   std::printf("bench_dem (dem_core)%s, %s\n", quick ? " --quick" : "", dem_core::openmp_waiting_description().c_str());
   if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
+  if (wanted("mesh")) bench::compare_meshed_drum(mesh_drum);
   if (wanted("scaling")) bench::print_scaling_table(scaling);
   if (wanted("roundoff")) bench::print_reordering_roundoff(quick);
   if (wanted("throughput")) {

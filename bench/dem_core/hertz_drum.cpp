@@ -28,16 +28,21 @@ void add_hertz_material(Simulation& sim, const HertzDrumSpec& spec) {
   sim.add_material({spec.youngs_modulus / (3.0 * (1.0 - 2.0 * spec.poisson_ratio)), spec.density, spec.poisson_ratio});
 }
 
-Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time, int threads) {
-  SimulationSettings settings = hertz_settings(spec, threads);
-  settings.gravity = {0.0, -spec.gravity, 0.0};
-  Simulation sim(settings);
-  add_hertz_material(sim, spec);
+WallContactParameters hertz_wall_contact(const HertzDrumSpec& spec) {
   WallContactParameters wall;
   wall.frics = spec.sliding_friction;
   wall.fricd = spec.rolling_friction;  // FRICD on a wall = rolling friction
   wall.youngs_modulus = spec.youngs_modulus;
   wall.poisson_ratio = spec.poisson_ratio;
+  return wall;
+}
+
+Simulation make_hertz_drum(const HertzDrumSpec& spec, double settle_time, double spin_up_time, int threads) {
+  SimulationSettings settings = hertz_settings(spec, threads);
+  settings.gravity = {0.0, -spec.gravity, 0.0};
+  Simulation sim(settings);
+  add_hertz_material(sim, spec);
+  const WallContactParameters wall = hertz_wall_contact(spec);
   const RotatingMotion still{{0, 0, 0}, {0, 0, 1}, 0.0};
   sim.add_wall({CylinderGeometry{{0, 0, 0}, {0, 0, 1}, spec.drum_radius, spec.depth}, still, wall, {}, "shell"});
   sim.add_wall({DiskGeometry{{0, 0, 0}, {0, 0, 1}, spec.drum_radius}, still, wall, {}, "front"});

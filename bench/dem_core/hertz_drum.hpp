@@ -31,6 +31,8 @@ struct HertzDrumSpec {
 /// spec's material added to a simulation: shared by the drum and the scaling box.
 dem_core::SimulationSettings hertz_settings(const HertzDrumSpec& spec, int threads);
 void add_hertz_material(dem_core::Simulation& sim, const HertzDrumSpec& spec);
+/// The walls' contact parameters: the particles' friction, rolling friction and elastic constants.
+dem_core::WallContactParameters hertz_wall_contact(const HertzDrumSpec& spec);
 
 /// The drum filled (seeded lattice packing in the lower part), settled for `settle_time` [s] with
 /// the drum at rest, then turned at the spec's speed for `spin_up_time` [s] so that the flow is

@@ -21,7 +21,8 @@ std::vector<To> keep_tangential_springs(const std::vector<From>& from) {
 
 /// Replaces `history` (aligned with the slots of `old`) by one aligned with `slots` (rows and
 /// walls built, touching all 0): the contact state of the walls that stay candidates of a
-/// particle is carried over (walls ascending in both; particle i was order[i] in `old`).
+/// particle is carried over (walls ascending in both, a mesh wall's slots in the same order;
+/// particle i was order[i] in `old`).
 template <class History>
 void carry_wall_histories(const WallSlots& old, WallSlots& slots, const std::vector<std::uint32_t>& order,
                           std::vector<History>& history, int threads) {
@@ -42,6 +43,8 @@ void carry_wall_histories(const WallSlots& old, WallSlots& slots, const std::vec
       if (k == old.rows[o + 1] || old.wall[k] != slots.wall[j]) continue;
       history[j] = old_history[k];
       slots.touching[j] = old.touching[k];
+      slots.contact_point[j] = old.contact_point[k];  // a mesh contact finds its slot by it
+      ++k;  // a mesh wall has several consecutive slots: the next one carries the next
     }
   }
 }

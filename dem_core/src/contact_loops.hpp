@@ -172,42 +172,93 @@ void pair_rows(const PairSide<Law>& pairs, ParticleState& p, const StepInputs& s
   }
 }
 
+/// Loads of one wall contact (`prox`, or none) in slot `slot` of particle i, added to the
+/// particle's force/torque; a slot out of contact has its history cleared.
+template <class Law>
+void wall_slot_contact(std::size_t i, std::uint32_t slot, const Wall& wall, const WallProximity& prox,
+                       const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
+  if (!prox.touching) {
+    walls.history[slot] = {};
+    walls.touching[slot] = 0;
+    return;
+  }
+  ContactGeometry g;
+  g.normal = prox.normal;
+  g.overlap = prox.overlap;
+  const double branch = p.radius[i] - prox.overlap;  // contact point on the wall surface
+  const Vec3 contact_point = p.position[i] + branch * prox.normal;
+  g.contact_velocity = p.velocity[i] - wall_velocity_at(wall, contact_point);
+  if (step.rotation) {
+    g.contact_velocity += cross(p.angular_velocity[i], branch * prox.normal);
+    g.relative_angular_velocity = p.angular_velocity[i] - wall_angular_velocity(wall);
+  }
+  g.effective_mass = p.mass[i];
+  g.effective_radius = p.radius[i];
+  g.normal_compliance = p.normal_compliance[i] / wall.contact.sfp;  // k_n,w = SFP k_i
+  g.shear_compliance = p.shear_compliance[i];
+  g.inverse_inertia_sum = p.inverse_inertia[i];
+  g.first_radius = p.radius[i];  // second_radius 0: the wall is a plane at the contact
+  const ContactForce f = walls.laws[walls.wall[slot]].force(g, walls.history[slot], step.dt);
+  p.force[i] += f.force;
+  if (step.rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
+  walls.force[slot] = f.force;
+  walls.contact_point[slot] = contact_point;
+  walls.rolling_torque[slot] = step.rotation ? f.rolling_torque : Vec3{};
+  walls.energy[slot] = f.elastic_energy;
+  walls.touching[slot] = 1;
+}
+
+/// A mesh wall's slots [first, end) of particle i: its contacts (deepest first) are matched to
+/// the slots that were touching with the closest previous normal (direction to the previous
+/// contact point, within 60 degrees), so a contact keeps its tangential history while its normal
+/// turns continuously, whichever triangle carries it; new contacts take free slots, in slot
+/// order; contacts beyond the slots are dropped (the shallowest). Returns `end`.
+template <class Law>
+std::uint32_t mesh_slot_contacts(std::size_t i, std::uint32_t first, std::uint32_t end, const Wall& wall,
+                                 const MeshGeometry& mesh, const WallSide<Law>& walls, ParticleState& p,
+                                 const StepInputs& step) {
+  WallProximity found[8];
+  const int slots = static_cast<int>(end - first);
+  const int n = mesh_wall_contacts(mesh, p.position[i], p.radius[i], found, slots);
+  int contact_of[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  // per slot
+  for (int k = 0; k < n; ++k) {
+    int best = -1;
+    double best_cos = 0.5;
+    for (int s = 0; s < slots; ++s) {
+      const std::uint32_t slot = first + static_cast<std::uint32_t>(s);
+      if (contact_of[s] >= 0 || !walls.touching[slot]) continue;
+      const double c = dot(normalized(walls.contact_point[slot] - p.position[i]), found[k].normal);
+      if (c > best_cos) best = s, best_cos = c;
+    }
+    for (int s = 0; s < slots && best < 0; ++s)
+      if (contact_of[s] < 0 && !walls.touching[first + static_cast<std::uint32_t>(s)]) best = s;
+    for (int s = 0; s < slots && best < 0; ++s)  // a touching slot whose contact has ended
+      if (contact_of[s] < 0) best = s;
+    if (best >= 0) contact_of[best] = k;
+  }
+  for (int s = 0; s < slots; ++s)
+    wall_slot_contact(i, first + static_cast<std::uint32_t>(s), wall,
+                      contact_of[s] >= 0 ? found[contact_of[s]] : WallProximity{}, walls, p, step);
+  return end;
+}
+
 /// Loads of the candidate walls on particle i (the others cannot touch it before the next
-/// rebuild), accumulated into the particle's force/torque in wall order.
+/// rebuild), accumulated into the particle's force/torque in wall order (a mesh wall's slots are
+/// consecutive). The geometry is dispatched on the variant index, no virtual call.
 template <class Law>
 void wall_contacts_of(std::size_t i, const WallSide<Law>& walls, ParticleState& p, const StepInputs& step) {
-  for (std::uint32_t slot = walls.rows[i]; slot < walls.rows[i + 1]; ++slot) {
-    const Wall& wall = walls.walls[walls.wall[slot]];
-    const WallProximity prox = wall_proximity(wall.geometry, p.position[i], p.radius[i]);
-    if (!prox.touching) {
-      walls.history[slot] = {};
-      walls.touching[slot] = 0;
+  const std::uint32_t row_end = walls.rows[i + 1];
+  for (std::uint32_t slot = walls.rows[i]; slot < row_end;) {
+    const std::uint32_t w = walls.wall[slot];
+    const Wall& wall = walls.walls[w];
+    if (const auto* mesh = std::get_if<MeshGeometry>(&wall.geometry)) {
+      std::uint32_t end = slot + 1;
+      while (end < row_end && walls.wall[end] == w) ++end;
+      slot = mesh_slot_contacts(i, slot, end, wall, *mesh, walls, p, step);
       continue;
     }
-    ContactGeometry g;
-    g.normal = prox.normal;
-    g.overlap = prox.overlap;
-    const double branch = p.radius[i] - prox.overlap;  // contact point on the wall surface
-    const Vec3 contact_point = p.position[i] + branch * prox.normal;
-    g.contact_velocity = p.velocity[i] - wall_velocity_at(wall, contact_point);
-    if (step.rotation) {
-      g.contact_velocity += cross(p.angular_velocity[i], branch * prox.normal);
-      g.relative_angular_velocity = p.angular_velocity[i] - wall_angular_velocity(wall);
-    }
-    g.effective_mass = p.mass[i];
-    g.effective_radius = p.radius[i];
-    g.normal_compliance = p.normal_compliance[i] / wall.contact.sfp;  // k_n,w = SFP k_i
-    g.shear_compliance = p.shear_compliance[i];
-    g.inverse_inertia_sum = p.inverse_inertia[i];
-    g.first_radius = p.radius[i];  // second_radius 0: the wall is a plane at the contact
-    const ContactForce f = walls.laws[walls.wall[slot]].force(g, walls.history[slot], step.dt);
-    p.force[i] += f.force;
-    if (step.rotation) p.torque[i] += cross(branch * prox.normal, f.tangential_force) + f.rolling_torque;
-    walls.force[slot] = f.force;
-    walls.contact_point[slot] = contact_point;
-    walls.rolling_torque[slot] = step.rotation ? f.rolling_torque : Vec3{};
-    walls.energy[slot] = f.elastic_energy;
-    walls.touching[slot] = 1;
+    wall_slot_contact(i, slot, wall, wall_proximity(wall.geometry, p.position[i], p.radius[i]), walls, p, step);
+    ++slot;
   }
 }
 

@@ -18,22 +18,41 @@ void Simulation::ensure_neighbors(double moved) {
   const double skin_now = skin();
   const std::size_t walls = walls_.size();
   wall_always_checked_.resize(walls);
-  double wall_shift = 0.0;
-  const bool wall_layout_ok = wall_displacement_at_build_.size() == walls;
+  double wall_shift = 0.0, mesh_sweep = 0.0;
+  const bool wall_layout_ok = wall_displacement_at_build_.size() == walls && wall_angle_at_build_.size() == walls;
   for (std::size_t w = 0; w < walls; ++w) {
-    wall_always_checked_[w] = wall_distances_rigid(walls_[w]) ? 0 : 1;
-    if (wall_layout_ok)
-      wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
+    // A rotating mesh moves its surface by at most |angle turned| x its reach from the axis, so
+    // only particles near the mesh hold its slots; the sweep is measured since the slots' build.
+    const double reach = wall_sweep_radius(walls_[w]);
+    wall_always_checked_[w] = wall_distances_rigid(walls_[w]) || reach > 0.0 ? 0 : 1;
+    if (!wall_layout_ok) continue;
+    wall_shift = std::max(wall_shift, norm(walls_[w].displacement - wall_displacement_at_build_[w]));
+    mesh_sweep = std::max(mesh_sweep, std::abs(walls_[w].rotation_angle - wall_angle_at_build_[w]) * reach);
   }
   const bool stale = rebuild_requested_ || !wall_layout_ok || neighbors_.skin() != skin_now ||
                      neighbors_.particle_count() != particles_.size() || !wall_slots_.built_for(particles_.size());
   // Particle pairs and particle-wall candidates stay valid while the relative motion of any two
   // bodies is below half the skin.
   if (!stale && moved < 0.0) moved = neighbors_.max_displacement(particles_.position, settings_.threads);
-  if (!stale && moved + wall_shift <= 0.5 * skin_now) return;
+  if (!stale && moved + wall_shift <= 0.5 * skin_now) {
+    // The pairs are valid. The wall slots (margin: the skin) stay valid while particle motion
+    // since their build (at most moved + what had moved when they were rebuilt alone), wall
+    // translation and mesh sweep stay below the skin; else they alone are rebuilt (no
+    // reordering, no pair list: a turning mesh does not rebuild the whole list).
+    if (moved + slot_build_motion_ + wall_shift + mesh_sweep <= skin_now) return;
+    for (std::size_t w = 0; w < walls; ++w) wall_angle_at_build_[w] = walls_[w].rotation_angle;
+    slot_build_motion_ = moved + wall_shift;
+    find_wall_candidates({});
+    return;
+  }
   rebuild_requested_ = false;
+  slot_build_motion_ = 0.0;
   wall_displacement_at_build_.resize(walls);
-  for (std::size_t w = 0; w < walls; ++w) wall_displacement_at_build_[w] = walls_[w].displacement;
+  wall_angle_at_build_.resize(walls);
+  for (std::size_t w = 0; w < walls; ++w) {
+    wall_displacement_at_build_[w] = walls_[w].displacement;
+    wall_angle_at_build_[w] = walls_[w].rotation_angle;
+  }
   const std::vector<std::uint32_t> order =
       settings_.reorder_particles ? apply_spatial_order() : std::vector<std::uint32_t>{};
   find_wall_candidates(order);

@@ -47,6 +47,8 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
   const double margin = skin();
   // Candidate flags per (particle, wall), in parallel; then the CSR rows in a fixed order.
   std::vector<std::uint8_t> flag(n * walls);
+  std::vector<std::uint32_t> slots_of(walls);  // a mesh wall has several contact slots per particle
+  for (std::size_t w = 0; w < walls; ++w) slots_of[w] = static_cast<std::uint32_t>(wall_contact_slots(walls_[w].geometry));
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::int64_t ii = 0; ii < count; ++ii) {
@@ -61,7 +63,7 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
   s.rows.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t c = 0;
-    for (std::size_t w = 0; w < walls; ++w) c += flag[i * walls + w];
+    for (std::size_t w = 0; w < walls; ++w) c += flag[i * walls + w] ? slots_of[w] : 0;
     s.rows[i + 1] = s.rows[i] + c;
   }
   const std::size_t slots = s.rows[n];
@@ -76,7 +78,7 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
     const auto i = static_cast<std::size_t>(ii);
     std::uint32_t slot = s.rows[i];
     for (std::size_t w = 0; w < walls; ++w)
-      if (flag[i * walls + w]) s.wall[slot++] = static_cast<std::uint32_t>(w);
+      for (std::uint32_t k = 0; flag[i * walls + w] && k < slots_of[w]; ++k) s.wall[slot++] = static_cast<std::uint32_t>(w);
   }
   // Contact state of walls that stay candidates is carried over (contact_history.hpp).
   std::visit([&](auto& state) { carry_wall_histories(old, s, order, state.wall_history, settings_.threads); },

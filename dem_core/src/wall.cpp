@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "validation.hpp"
+#include "wall_mesh.hpp"
 
 namespace demfit::dem_core {
 namespace {
@@ -58,8 +59,13 @@ WallProximity wall_proximity(const WallGeometry& geometry, const Vec3& center, d
           return plane_proximity(g.point, g.normal, center, radius);
         else if constexpr (std::is_same_v<G, DiskGeometry>)
           return disk_proximity(g, center, radius);
-        else
+        else if constexpr (std::is_same_v<G, CylinderGeometry>)
           return cylinder_proximity(g, center, radius);
+        else {
+          WallProximity deepest;
+          mesh_wall_contacts(g, center, radius, &deepest, 1);
+          return deepest;
+        }
       },
       geometry);
 }
@@ -73,12 +79,16 @@ bool wall_may_touch(const WallGeometry& geometry, const Vec3& center, double rad
     const double inner = g->radius - radius - margin;
     return inner <= 0.0 || norm2(rel - s * g->axis) > inner * inner;
   }
+  if (const auto* m = std::get_if<MeshGeometry>(&geometry))
+    return m->mesh->any_within(mesh_frame_point(*m, center), radius + margin);
   return wall_proximity(geometry, center, radius + margin).touching;
 }
 
 bool wall_distances_rigid(const Wall& wall) {
   const auto* m = std::get_if<RotatingMotion>(&wall.motion);
   if (m == nullptr || m->angular_velocity == 0.0) return true;
+  // A polygonal surface has no exact symmetry axis: a rotating mesh changes distances.
+  if (std::holds_alternative<MeshGeometry>(wall.geometry)) return false;
   const Vec3& u = m->axis_direction;
   constexpr double tolerance = 1e-9;
   auto parallel = [&](const Vec3& d) { return norm(cross(d, u)) < tolerance; };
@@ -92,8 +102,10 @@ bool wall_distances_rigid(const Wall& wall) {
           return parallel(g.normal);
         else if constexpr (std::is_same_v<G, DiskGeometry>)
           return parallel(g.normal) && on_axis(g.center);
-        else
+        else if constexpr (std::is_same_v<G, CylinderGeometry>)
           return parallel(g.axis) && on_axis(g.base_center);
+        else
+          return false;
       },
       wall.geometry);
 }
@@ -120,8 +132,10 @@ void advance_wall(Wall& wall, double dt) {
             g.point += shift;
           else if constexpr (std::is_same_v<G, DiskGeometry>)
             g.center += shift;
-          else
+          else if constexpr (std::is_same_v<G, CylinderGeometry>)
             g.base_center += shift;
+          else
+            g.origin += shift;
         },
         wall.geometry);
     wall.torque_axis.point += shift;
@@ -143,9 +157,14 @@ void advance_wall(Wall& wall, double dt) {
           } else if constexpr (std::is_same_v<G, DiskGeometry>) {
             move_point(g.center);
             move_direction(g.normal);
-          } else {
+          } else if constexpr (std::is_same_v<G, CylinderGeometry>) {
             move_point(g.base_center);
             move_direction(g.axis);
+          } else {
+            move_point(g.origin);
+            g.axis_x = rotate(g.axis_x, k, c, s);
+            g.axis_y = rotate(g.axis_y, k, c, s);
+            orthonormalize(g);  // no drift of the frame over many steps
           }
         },
         wall.geometry);
@@ -175,12 +194,15 @@ Wall make_wall(const WallSpec& spec) {
           g.normal = require_direction("disk.normal", g.normal);
           require_positive("disk.radius [m]", g.radius);
           own_axis = {g.center, g.normal};
-        } else {
+        } else if constexpr (std::is_same_v<G, CylinderGeometry>) {
           require_finite("cylinder.base_center [m]", g.base_center);
           g.axis = require_direction("cylinder.axis", g.axis);
           require_positive("cylinder.radius [m]", g.radius);
           require_positive("cylinder.length [m]", g.length);
           own_axis = {g.base_center, g.axis};
+        } else {
+          validate_mesh_geometry(g);
+          own_axis = {g.origin, g.axis_z};
         }
       },
       wall.geometry);

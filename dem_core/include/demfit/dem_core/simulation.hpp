@@ -194,6 +194,8 @@ class Simulation {
   // mutable: the loads on the walls are reduced lazily from the per-contact arrays when asked for.
   mutable std::vector<Wall> walls_{};
   std::vector<Vec3> wall_displacement_at_build_{};   // wall translation when the list was built
+  std::vector<double> wall_angle_at_build_{};        // wall rotation angle when the wall slots were built
+  double slot_build_motion_ = 0.0;  // particle motion + wall translation since the list build, at the slots' build
   std::vector<std::uint8_t> wall_always_checked_{};  // per wall: moves in a way that changes distances
   NeighborList neighbors_;
   // Pair arrays aligned with neighbors_ pair indices (their histories: contact_state_).

@@ -2,11 +2,13 @@
 // Rigid walls as data: a geometry (std::variant) plus a motion law (std::variant). Walls interact
 // with particles through the particle–wall law (docs/spec.md 1, WallContactParameters) and accumulate the
 // force and the torque that the particles exert on them.
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
 
 #include "demfit/dem_core/parameters.hpp"
+#include "demfit/dem_core/triangle_mesh.hpp"
 #include "demfit/dem_core/vec3.hpp"
 
 namespace demfit::dem_core {
@@ -38,7 +40,21 @@ struct CylinderGeometry {
   double length = 0.0;
 };
 
-using WallGeometry = std::variant<PlaneGeometry, DiskGeometry, CylinderGeometry>;
+/// A triangle surface (an STL file: read_stl) placed rigidly in the world: mesh-frame point x is
+/// at origin + x.x axis_x + x.y axis_y + x.z axis_z (axes orthonormalised on add, right-handed).
+/// Contact is two-sided, a sphere feels one contact per surface point it touches where
+/// triangles meet, through the same wall law as the analytic walls (triangle_mesh.hpp). A
+/// particle keeps up to `max_contacts` simultaneous contacts with the mesh (an inside box corner
+/// needs 3), each with its own tangential history: a contact point keeps its history while its
+/// normal turns continuously (e.g. when the closest triangle changes across a shared edge).
+struct MeshGeometry {
+  std::shared_ptr<const TriangleMesh> mesh{};  ///< shared, immutable: walls copy cheaply
+  Vec3 origin{};
+  Vec3 axis_x{1, 0, 0}, axis_y{0, 1, 0}, axis_z{0, 0, 1};
+  int max_contacts = 3;  ///< contact slots per particle, 1..8
+};
+
+using WallGeometry = std::variant<PlaneGeometry, DiskGeometry, CylinderGeometry, MeshGeometry>;
 
 /// Wall does not move.
 struct FixedMotion {};
@@ -97,7 +113,8 @@ struct WallProximity {
   double overlap = 0.0;  ///< [m], > 0 when touching
 };
 
-/// Geometric contact test of a sphere (centre [m], radius [m]) with a wall geometry.
+/// Geometric contact test of a sphere (centre [m], radius [m]) with a wall geometry (a mesh: its
+/// deepest contact).
 WallProximity wall_proximity(const WallGeometry& geometry, const Vec3& center, double radius);
 /// Conservative candidate test for the wall contact list: true when the sphere could touch the
 /// wall after particle and wall moved relative to each other by less than `margin` [m].
@@ -105,6 +122,14 @@ bool wall_may_touch(const WallGeometry& geometry, const Vec3& center, double rad
 /// True when the wall's motion leaves every particle–wall distance unchanged apart from its
 /// translation (fixed, translating, or rotating about its own symmetry axis: drum shells/ends).
 bool wall_distances_rigid(const Wall& wall);
+/// Contacts of a sphere with a mesh wall (world frame), deepest first, at most `capacity`.
+int mesh_wall_contacts(const MeshGeometry& geometry, const Vec3& center, double radius, WallProximity* out,
+                       int capacity);
+/// For a rotating mesh wall: the largest distance [m] of its vertices from the rotation axis
+/// (its surface moves by at most that times the angle turned); 0 for every other wall.
+double wall_sweep_radius(const Wall& wall);
+/// Contact slots a particle gets for this wall (1; MeshGeometry::max_contacts for a mesh).
+int wall_contact_slots(const WallGeometry& geometry);
 /// Velocity [m/s] of the wall's material point at `point` [m].
 Vec3 wall_velocity_at(const Wall& wall, const Vec3& point);
 /// Angular velocity vector of the wall [rad/s] (zero unless rotating).

@@ -1,0 +1,20 @@
+#pragma once
+// Meshed against analytic drum: the Hertz drum of hertz_drum.hpp settled and spun up once with
+// its analytic walls (cylinder shell and two disks), then continued from the same particle state
+// twice: with the analytic walls and with one rotating mesh wall (drum_mesh.hpp's STL geometry,
+// read back through dem_core::parse_stl). Prints mean drive torque, bed tilt and cost of both.
+#include <cstdint>
+
+namespace demfit::bench {
+
+struct MeshDrumOptions {
+  double settle_time = 0.15;   ///< [s] at rest, analytic walls
+  double spin_up_time = 0.1;   ///< [s] turning, analytic walls (bench_dem --spin-up)
+  std::uint64_t steps = 2000;  ///< measured steps of each run, after the same restart (bench_dem --steps)
+  int segments = 360, shell_rings = 4, cap_rings = 20;
+  int threads = 1;
+};
+
+void compare_meshed_drum(const MeshDrumOptions& options);
+
+}  // namespace demfit::bench
