@@ -124,21 +124,7 @@ Study run_identify(const fs::path& study_file, const std::optional<fs::path>& ou
     py::gil_scoped_release release;
     // Every configuration error before anything is created: the study, the output folder rules,
     // the model, then one evaluation at the initial point (curve names, units, overlap).
-    const identify::StudySpec parsed = identify::load_study_file(study_file);
-    identify::OutputRequest request{identify::OutputKind::identify, cases::study_input_files(parsed, study_file)};
-    request.option = "out";
-    std::optional<identify::StoreLock> lock;
-    identify::claim_study_folder(options, request, lock, "resume=True");
-    const auto model = cases::make_identify_model(parsed, options.output_dir);
-    options.resolved_model = cases::resolved_study_model(parsed);
-    identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
-                                       static_cast<unsigned long>(parsed.seed));
-    const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
-    request.lock_held = lock.has_value();
-    identify::prepare_output_folder(options.output_dir, request);
-    if (!lock) lock.emplace(options.output_dir);
-    options.evaluator = &pool;
-    identify::run_study(spec, *model, options);
+    cases::run_study_file(study_file, options, "resume=True", "out");
   }
   return open_study(options.output_dir / "study.db");
 }

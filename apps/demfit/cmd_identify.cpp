@@ -148,24 +148,10 @@ void run_identify(const IdentifyOptions& o) {
         "and rebuild (scripts/build)");
 #endif
   }
-  // Every configuration error before anything is created: the study, the output
-  // folder rules, the model, then one evaluation at the initial point (curve names, units, overlap).
-  const identify::StudySpec parsed = identify::load_study_file(o.study_file);
-  identify::OutputRequest request{identify::OutputKind::identify, cases::study_input_files(parsed, o.study_file)};
-  std::optional<identify::StoreLock> lock;
-  identify::claim_study_folder(options, request, lock, "--resume");
-  const auto model = cases::make_identify_model(parsed, options.output_dir);
-  options.resolved_model = cases::resolved_study_model(parsed);
-  // One pool for the initial-point check and the loop (as the MPI path shares its evaluator): the
-  // check's experiments run side by side over --jobs, and the run it hands over is the loop's own.
-  identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
-                                     static_cast<unsigned long>(parsed.seed));
-  const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
-  request.lock_held = lock.has_value();
-  identify::prepare_output_folder(options.output_dir, request);
-  if (!lock) lock.emplace(options.output_dir);
-  options.evaluator = &pool;
-  const auto result = identify::run_study(spec, *model, options);
+  // Every configuration error before anything is created: the study, the output folder rules, the
+  // model, then one evaluation at the initial point (curve names, units, overlap).
+  const auto result = cases::run_study_file(o.study_file, options, "--resume", "--out");
+  const identify::StudySpec spec = identify::load_study_file(o.study_file);
   print_summary(spec, result, options.output_dir);
   print_warnings(options.output_dir / "study.db");
 }

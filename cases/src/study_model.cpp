@@ -1,6 +1,7 @@
 // What a study simulates: its model, the resolved form recorded in its store, its input files.
 #include "demfit/cases/study_model.hpp"
 
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -8,7 +9,11 @@
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/external_model.hpp"
+#include "demfit/identify/safe_output.hpp"
+#include "demfit/identify/store_lock.hpp"
+#include "demfit/identify/study_preflight.hpp"
 #include "demfit/identify/relative_axis.hpp"
 
 namespace demfit::cases {
@@ -57,6 +62,27 @@ std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& 
   const std::filesystem::path case_file = spec.base_dir / spec.model_reference;
   if (std::filesystem::is_regular_file(case_file, error)) inputs.push_back(case_file);
   return inputs;
+}
+
+identify::StudyResult run_study_file(const std::filesystem::path& study_file, identify::RunOptions options,
+                                     std::string_view resume_hint, std::string_view out_option) {
+  const identify::StudySpec parsed = identify::load_study_file(study_file);
+  identify::OutputRequest request{identify::OutputKind::identify, study_input_files(parsed, study_file)};
+  request.option = std::string(out_option);
+  std::optional<identify::StoreLock> lock;
+  identify::claim_study_folder(options, request, lock, resume_hint);
+  const auto model = make_identify_model(parsed, options.output_dir);
+  options.resolved_model = resolved_study_model(parsed);
+  // One pool for the initial-point check and the loop: the check's experiments run side by side
+  // over the jobs, and the run it hands over is the loop's own.
+  identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
+                                     static_cast<unsigned long>(parsed.seed));
+  const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
+  request.lock_held = lock.has_value();
+  identify::prepare_output_folder(options.output_dir, request);
+  if (!lock) lock.emplace(options.output_dir);
+  options.evaluator = &pool;
+  return identify::run_study(spec, *model, options);
 }
 
 }  // namespace demfit::cases

@@ -5,11 +5,13 @@
 // simulate the same thing), and the input files no output may replace.
 #include <filesystem>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::cases {
@@ -30,5 +32,13 @@ nlohmann::json resolved_study_model(const identify::StudySpec& spec);
 // The study file, its target CSV files and its case file (when the model names a file).
 std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& spec,
                                                      const std::filesystem::path& study_file);
+
+// A study file run on this machine's threads (identify::ThreadPoolEvaluator, options.jobs x
+// options.threads_per_job), every configuration error before anything is created: the study,
+// the output-folder rules and the lock (identify::claim_study_folder with `resume_hint`), the
+// model, one evaluation at the initial point (identify::preflight_study), then the loop.
+// `out_option` names the output option in errors ("--out", "out"). options.output_dir must be set.
+identify::StudyResult run_study_file(const std::filesystem::path& study_file, identify::RunOptions options,
+                                     std::string_view resume_hint, std::string_view out_option);
 
 }  // namespace demfit::cases
