@@ -1,16 +1,14 @@
-// demfit.diagnose: the discrepancy workflow (diagnose/workflow.hpp) on a study of the analytic
-// model, as `demfit diagnose STUDY` runs it: the base fit, the residual tests and, when the
-// residual is structural, the candidate effects screened, re-fitted and named only when BIC
-// improves by more than the threshold and the residual becomes noise.
-//
-// DEM studies are refused here: their candidates come from the cases effect catalogue through
-// the command line's own selection rules, which the library does not offer yet.
+// demfit.diagnose: the discrepancy workflow (diagnose/workflow.hpp) on a study, as `demfit diagnose
+// STUDY` runs it (the same model and candidates, cases/diagnosis_model.hpp): the base fit, the
+// residual tests and, when the residual is structural, the candidate effects screened, re-fitted
+// and named only when BIC improves by more than the threshold and the residual becomes noise.
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "bindings.hpp"
-#include "demfit/diagnose/analytic_effects_model.hpp"
+#include "demfit/cases/diagnosis_model.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/diagnose/effect.hpp"
 #include "demfit/diagnose/report.hpp"
 #include "demfit/diagnose/workflow.hpp"
@@ -22,21 +20,6 @@
 namespace demfit::python {
 
 namespace {
-
-// The analytic model's only override, "points" (integer >= 3), as the command line reads it.
-int analytic_points(const identify::StudySpec& spec) {
-  if (!spec.experiments.empty() || spec.model_reference != "analytic")
-    input_error("study: model: demfit.diagnose runs studies of the \"analytic\" model; diagnose a DEM study with "
-                "`demfit diagnose`");
-  int points = 41;
-  for (const auto& [key, value] : spec.model_overrides.items()) {
-    if (key != "points" || !value.is_number_integer() || value.get<int>() < 3)
-      input_error("study: model.overrides: '" + key +
-                  "' is not understood by diagnose for \"analytic\"; only \"points\" (integer >= 3)");
-    points = value.get<int>();
-  }
-  return points;
-}
 
 py::dict fit_summary(const diagnose::CandidateFit& fit) {
   py::dict out;
@@ -55,13 +38,14 @@ py::dict run(const std::filesystem::path& study_file, const std::optional<std::s
   if (!(noise >= 0.0)) input_error("noise: must be > 0 (y units of the targets), or 0 to estimate it");
   if (!(alpha > 0.0 && alpha < 1.0)) input_error("alpha: must be in (0, 1), e.g. 0.01");
   if (refit_best < 1) input_error("refit_best: must be >= 1");
-  identify::StudySpec spec = identify::load_study_file(study_file);
-  const int points = analytic_points(spec);
-  const identify::OutputRequest request{identify::OutputKind::diagnose, {study_file}};
+  const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(study_file));
+  const identify::OutputRequest request{identify::OutputKind::diagnose, cases::study_input_files(spec, study_file)};
   if (out) identify::check_output_folder(*out, request);
-  std::vector<diagnose::EffectCandidate> candidates = diagnose::analytic_effect_candidates();
+  std::vector<diagnose::EffectCandidate> candidates;
+  const auto model = cases::diagnosis_model_and_candidates(spec, candidates);
   if (effects) candidates = diagnose::select_candidates(candidates, *effects);
-  diagnose::DiagnoseOptions options;
+  diagnose::DiagnoseOptions options = cases::uses_dem(spec) ? diagnose::expensive_model_options()
+                                                             : diagnose::DiagnoseOptions{};
   options.noise_sigma = noise;
   options.alpha = alpha;
   options.bic_threshold = bic_threshold;
@@ -71,10 +55,9 @@ py::dict run(const std::filesystem::path& study_file, const std::optional<std::s
   diagnose::Diagnosis d;
   {
     py::gil_scoped_release release;
-    const diagnose::AnalyticEffectsModel model(points);
-    identify::ThreadPoolEvaluator pool(model, jobs, 1, static_cast<unsigned long>(spec.seed));
-    const identify::StudySpec checked = identify::preflight_study(spec, model, pool);
-    d = diagnose::run_diagnosis(checked, model, candidates, options);
+    identify::ThreadPoolEvaluator pool(*model, jobs, 1, static_cast<unsigned long>(spec.seed));
+    const identify::StudySpec checked = identify::preflight_study(spec, *model, pool);
+    d = diagnose::run_diagnosis(checked, *model, candidates, options);
     if (out) {
       identify::prepare_output_folder(*out, request);
       diagnose::write_diagnosis(d, *out, plots);
@@ -100,10 +83,10 @@ void register_diagnose(py::module_& m) {
   m.def("diagnose", &run, py::arg("study"), py::arg("effects") = py::none(), py::arg("noise") = 0.0,
         py::arg("alpha") = 0.01, py::arg("bic_threshold") = 10.0, py::arg("refit_best") = 2, py::arg("jobs") = 1,
         py::arg("out") = py::none(), py::arg("plots") = false,
-        "Diagnose a study of the analytic model as `demfit diagnose STUDY` does and return a dict: verdict (the "
+        "Diagnose a study as `demfit diagnose STUDY` does (analytic or DEM model, experiments too) and return a dict: verdict (the "
         "report's words), effect (the named effect or None), summary, base_parameters, base_bic, refits (effect, "
         "delta_bic, delta_aicc, passes, parameters), notes, evaluations.\n"
-        "effects: comma-separated candidates (default all: toe_shift, stiffening, yield_drop). noise: the targets' "
+        "effects: comma-separated candidates (default all of the model's; `demfit diagnose --help` lists them). noise: the targets' "
         "noise sigma in y units (0 = estimated). out: also write report.md and diagnosis.json there. The GIL is "
         "released during the fits.");
 }

@@ -11,16 +11,11 @@
 #include "commands.hpp"
 #include "demfit/identify/safe_output.hpp"
 #include "demfit/identify/study_preflight.hpp"
+#include "demfit/cases/diagnosis_model.hpp"
 #include "demfit/cases/study_model.hpp"
-#include "demfit/cases/case_spec.hpp"
-#include "demfit/cases/effect_catalogue.hpp"
-#include "demfit/cases/parameter_table.hpp"
-#include "demfit/cases/model_factory.hpp"
-#include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/diagnose/effect.hpp"
 #include "demfit/diagnose/report.hpp"
 #include "demfit/diagnose/workflow.hpp"
-#include "demfit/identify/experiments.hpp"
 #include "demfit/identify/study_spec.hpp"
 
 namespace demfit::apps {
@@ -38,134 +33,6 @@ struct DiagnoseCliOptions {
   int scatter_replicas = -1;  // -1: the model's default (4 for DEM studies, 0 for the analytic model)
   bool no_plots = false;
 };
-
-// Whether a catalogue parameter exists under the case's contact law. The catalogue offers each law
-// its own effects (cases/src/effect_catalogue.cpp); a case refuses every parameter of another law
-// (cases/src/dem_setup.cpp with_parameters), so such an effect cannot be a candidate there.
-bool exists_under_law(const cases::CaseSpec& case_spec, const std::string& parameter) {
-  const cases::ParameterRow* row = cases::find_parameter(parameter);
-  return row && row->applies_to(case_spec.law);
-}
-
-// The cases catalogue (cases/effect_catalogue.hpp) as diagnose candidates: the effects that apply
-// to a case. An effect is left out, with a note, when one of its parameters is a study variable
-// or already differs from its off value in the model (`values`: the effect is then part of the
-// base model, not a candidate). `experiment` non-empty: the effect's curves are qualified
-// "<experiment>/<curve>" as an experiments study keys them.
-std::vector<diagnose::EffectCandidate> dem_candidates(const cases::CaseSpec& case_spec,
-                                                      const identify::ParameterSet& values,
-                                                      const std::vector<identify::VariableSpec>& variables,
-                                                      const std::string& experiment) {
-  std::vector<diagnose::EffectCandidate> out;
-  for (const auto& effect : cases::effects_for_case(case_spec)) {
-    diagnose::EffectCandidate c{effect.name, effect.description, {}, effect.curves};
-    if (!experiment.empty())
-      for (auto& curve : c.curves) curve = experiment + "/" + curve;
-    std::string reason;
-    for (const auto& p : effect.parameters) {
-      c.parameters.push_back(p);
-      if (!exists_under_law(case_spec, p.name))
-        reason = "'" + p.name + "' does not exist under the case's contact law " + cases::to_string(case_spec.law);
-      for (const auto& v : variables)
-        if (v.name == p.name) reason = "'" + p.name + "' is a study variable";
-      const auto found = values.find(p.name);
-      if (reason.empty() && found != values.end() && found->second != p.off_value)
-        reason = "the model already has " + p.name + " = " + std::to_string(found->second) +
-                 " (off: " + std::to_string(p.off_value) + ")";
-    }
-    if (reason.empty()) {
-      out.push_back(std::move(c));
-    } else {
-      std::fprintf(stderr, "demfit: note: effect '%s'%s is not a candidate: %s\n", effect.name.c_str(),
-                   experiment.empty() ? "" : (" of experiment '" + experiment + "'").c_str(), reason.c_str());
-    }
-  }
-  return out;
-}
-
-// Adds one experiment's candidates to the union over experiments: an effect that applies to
-// several experiments is one candidate (its parameter is shared, as the study's variables are)
-// acting on all their curves, with the narrowest upper bound any experiment gives it.
-void merge_candidates(std::vector<diagnose::EffectCandidate>& into, std::vector<diagnose::EffectCandidate> more) {
-  for (auto& c : more) {
-    auto same = std::find_if(into.begin(), into.end(), [&](const auto& o) { return o.name == c.name; });
-    if (same == into.end()) {
-      into.push_back(std::move(c));
-      continue;
-    }
-    const bool all_curves = same->curves.empty() || c.curves.empty();
-    same->curves.insert(same->curves.end(), c.curves.begin(), c.curves.end());
-    if (all_curves) same->curves.clear();
-    for (std::size_t k = 0; k < same->parameters.size() && k < c.parameters.size(); ++k)
-      same->parameters[k].upper = std::min(same->parameters[k].upper, c.parameters[k].upper);
-  }
-}
-
-// diagnose fits least squares at the target points, so an image target's profile_area metric is
-// read as mse at the photo's abscissae (the same profile z(x); docs/study_format.md allows both).
-identify::StudySpec with_pointwise_metrics(identify::StudySpec spec) {
-  for (auto& t : spec.targets) {
-    if (t.metric != identify::CurveMetric::profile_area) continue;
-    t.metric = identify::CurveMetric::mse;
-    std::fprintf(stderr, "demfit: note: target '%s': profile_area is fitted as mse at the target's points\n",
-                 t.name.c_str());
-  }
-  return spec;
-}
-
-// One model and its candidate effects. "analytic" gets the analytic family with effect terms
-// (same base curve as identify's analytic model); DEM cases get the cases catalogue's effects.
-// `experiment` non-empty: curves are qualified "<experiment>/<curve>".
-std::unique_ptr<identify::Model> one_model(const std::string& reference, const nlohmann::json& overrides,
-                                           const identify::ParameterSet& fixed, const identify::StudySpec& spec,
-                                           const std::string& experiment,
-                                           std::vector<diagnose::EffectCandidate>& candidates) {
-  if (reference == "analytic") {
-    int points = 41;
-    for (const auto& [key, value] : overrides.items()) {
-      if (key != "points" || !value.is_number_integer() || value.get<int>() < 3)
-        throw std::runtime_error("study: model.overrides: '" + key +
-                                 "' is not understood by diagnose for \"analytic\"; only \"points\" (integer >= 3)");
-      points = value.get<int>();
-    }
-    candidates = diagnose::analytic_effect_candidates();
-    if (!experiment.empty())
-      for (auto& c : candidates)
-        for (auto& curve : c.curves) curve = experiment + "/" + curve;
-    return std::make_unique<diagnose::AnalyticEffectsModel>(points);
-  }
-  auto model = cases::make_model(reference, overrides, spec.base_dir);
-  identify::ParameterSet values = model->default_parameters();
-  for (const auto& [name, value] : fixed) values[name] = value;
-  candidates =
-      dem_candidates(cases::resolve_case(reference, overrides, spec.base_dir), values, spec.variables, experiment);
-  return model;
-}
-
-// The study's model and its candidate effects. An experiments study (e.g. the GranuDrum at 15
-// and 45 rpm) gets identify's ExperimentSetModel over one model per experiment and the union
-// of their candidates.
-std::unique_ptr<identify::Model> model_and_candidates(const identify::StudySpec& spec,
-                                                      std::vector<diagnose::EffectCandidate>& candidates) {
-  if (spec.experiments.empty())
-    return one_model(spec.model_reference, spec.model_overrides, spec.fixed_parameters, spec, "", candidates);
-  std::vector<std::unique_ptr<identify::Model>> models;
-  for (const auto& e : spec.experiments) {
-    std::vector<diagnose::EffectCandidate> own;
-    models.push_back(one_model(e.model_reference, e.model_overrides, e.fixed_parameters, spec, e.name, own));
-    merge_candidates(candidates, std::move(own));
-  }
-  // identify's evaluators split each point of the set into one job per experiment and join them.
-  return std::make_unique<identify::ExperimentSetModel>(spec, std::move(models));
-}
-
-// Expensive, chaotic DEM models get diagnose's options for them; the analytic model does not.
-bool uses_dem(const identify::StudySpec& spec) {
-  if (spec.experiments.empty()) return spec.model_reference != "analytic";
-  for (const auto& e : spec.experiments)
-    if (e.model_reference != "analytic") return true;
-  return false;
-}
 
 // Documented upper limits: each replica or re-fit costs whole model runs.
 constexpr int kMaxScatterReplicas = 64;
@@ -185,7 +52,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   require_at_most(o.scatter_replicas, kMaxScatterReplicas, "--scatter-replicas",
                   "a few replica runs measure the scatter (default 4 for DEM studies)");
   require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
-  const identify::StudySpec spec = with_pointwise_metrics(identify::load_study_file(o.study_file));
+  const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
                     : std::filesystem::path(o.out);
@@ -193,8 +60,8 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   const identify::OutputRequest request{identify::OutputKind::diagnose, cases::study_input_files(spec, o.study_file)};
   identify::check_output_folder(out, request);
   std::vector<diagnose::EffectCandidate> candidates;
-  const auto model = model_and_candidates(spec, candidates);
-  const bool dem = uses_dem(spec);
+  const auto model = cases::diagnosis_model_and_candidates(spec, candidates);
+  const bool dem = cases::uses_dem(spec);
   if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
   diagnose::DiagnoseOptions options = dem ? diagnose::expensive_model_options() : diagnose::DiagnoseOptions{};
   options.noise_sigma = o.noise;

@@ -39,7 +39,30 @@ def test_an_unknown_effect_raises_the_command_lines_one_line_message(study_file,
     assert str(raised.value) == cli_error(err)
 
 
-def test_a_dem_study_is_refused_with_a_pointer_to_the_command_line(source_dir):
-    with pytest.raises(demfit.InputError, match=r'^study: model: demfit\.diagnose runs studies of the "analytic" '
-                                                r'model; diagnose a DEM study with `demfit diagnose`$'):
-        demfit.diagnose(source_dir / "cases" / "table1_study_quick.json")
+def test_a_study_with_experiments_is_diagnosed_as_the_command_line_does(source_dir, demfit_exe, tmp_path):
+    data = source_dir / "tests" / "cases" / "data" / "diagnose_two_experiments_study.json"
+    study = json.loads(data.read_text())
+    csv = (data.parent / "../../diagnose/data/hidden_stiffening.csv").resolve()
+    for experiment in study["experiments"]:
+        experiment["targets"][0]["csv"] = str(csv)
+    study_file = tmp_path / "two_experiments.json"
+    study_file.write_text(json.dumps(study))
+    out = tmp_path / "cli"
+    code, stdout, err = run_cli(demfit_exe, "diagnose", study_file, "--out", out, "--no-plots")
+    assert code == 0, err
+    cli = json.loads((out / "diagnosis.json").read_text())
+    result = demfit.diagnose(study_file)
+    assert result["effect"] == cli["effect"] == "stiffening"
+    assert result["summary"] in stdout
+
+
+def test_a_dem_study_gets_the_dem_candidates_of_the_command_line(source_dir, demfit_exe, tmp_path):
+    # An effect that is not among the DEM pellet case's candidates: both front ends build the DEM
+    # model and its candidates, then refuse the selection with the same line, before any run.
+    study_file = source_dir / "cases" / "table1_study_quick.json"
+    code, _, err = run_cli(demfit_exe, "diagnose", study_file, "--out", tmp_path / "cli", "--effects", "stiffening")
+    assert code != 0
+    with pytest.raises(demfit.Error) as raised:
+        demfit.diagnose(study_file, effects="stiffening", out=tmp_path / "py")
+    assert str(raised.value) == cli_error(err)
+    assert "hertz_stiffness" in str(raised.value) or "cohesion" in str(raised.value) or "wall" in str(raised.value)
