@@ -176,6 +176,12 @@ TEST_CASE("reproduce granudrum runs its study and the anchor on a tiny drum and 
   CHECK(text.find("| rpm45.surface | 6 | ") != std::string::npos);
   CHECK(fs::exists(options.base.out_dir / "published_rpm15_s1_free_surface_image.csv"));
   CHECK(fs::exists(options.base.out_dir / "published_rpm45_s6_free_surface_image.csv"));
+  // The HTML page beside granudrum.md: self-contained, its pictures embedded.
+  std::ifstream html_file(options.base.out_dir / "granudrum.html");
+  const std::string html((std::istreambuf_iterator<char>(html_file)), std::istreambuf_iterator<char>());
+  CHECK(html.find("data:image/png;base64,") != std::string::npos);
+  CHECK(html.find("src=\"http") == std::string::npos);
+  CHECK(html.find("| rpm45.surface |") == std::string::npos);  // the tables are rendered, not left as text
 }
 
 TEST_CASE("The granudrum report splits each gap into level tilt and shape and names a level difference no fill removes",
