@@ -124,7 +124,7 @@ Study run_identify(const fs::path& study_file, const std::optional<fs::path>& ou
     py::gil_scoped_release release;
     // Every configuration error before anything is created: the study, the output folder rules,
     // the model, then one evaluation at the initial point (curve names, units, overlap).
-    cases::run_study_file(study_file, options, "resume=True", "out");
+    cases::run_study_file(identify::load_study_file(study_file), study_file, options, "resume=True", "out");
   }
   return open_study(options.output_dir / "study.db");
 }

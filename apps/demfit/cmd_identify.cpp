@@ -150,8 +150,8 @@ void run_identify(const IdentifyOptions& o) {
   }
   // Every configuration error before anything is created: the study, the output folder rules, the
   // model, then one evaluation at the initial point (curve names, units, overlap).
-  const auto result = cases::run_study_file(o.study_file, options, "--resume", "--out");
   const identify::StudySpec spec = identify::load_study_file(o.study_file);
+  const auto result = cases::run_study_file(spec, o.study_file, options, "--resume", "--out");
   print_summary(spec, result, options.output_dir);
   print_warnings(options.output_dir / "study.db");
 }

@@ -101,9 +101,13 @@ double instrument_angle_degrees(const std::vector<std::array<double, 3>>& positi
   check_bed(positions, radii);
   if (positions.empty() || !(drum_diameter > 0.0) || !(drum_length > 0.0)) return kNaN;
   const double r_mean = mean_radius(radii);
-  const double cell = 0.5 * r_mean, half = 0.5 * drum_diameter;
+  // Half a mean radius per cell, but at most kMaxCells a side: the field and its two smoothing
+  // passes hold 3 n^2 doubles (~100 MB at 2048), so a drum thousands of radii across is sampled
+  // more coarsely instead of exhausting memory.
+  constexpr int kMaxCells = 2048;
+  const double half = 0.5 * drum_diameter;
+  const double cell = std::max(0.5 * r_mean, drum_diameter / (kMaxCells - 1));
   const int n = static_cast<int>(std::ceil(drum_diameter / cell)) + 1;
-  if (n > 20000) throw std::runtime_error("bed angle: drum diameter / particle radius above 10,000");
   std::vector<double> phi(static_cast<std::size_t>(n) * n, 0.0);
   const auto centre_of = [&](int k) { return -half + (k + 0.5) * cell; };
   for (std::size_t p = 0; p < positions.size(); ++p) {
@@ -118,7 +122,7 @@ double instrument_angle_degrees(const std::vector<std::array<double, 3>>& positi
         if (d2 < r * r) phi[static_cast<std::size_t>(j) * n + i] += 2.0 * std::sqrt(r * r - d2) / drum_length;
       }
   }
-  phi = smooth(phi, n, n, r_mean / cell);
+  phi = smooth(phi, n, n, std::max(1.0, r_mean / cell));
   const double threshold = 0.5 * *std::max_element(phi.begin(), phi.end());
   const double circle_radius = 0.1 * drum_diameter;  // the central circle of diameter D/5
   std::vector<double> x, y;

@@ -64,9 +64,9 @@ std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& 
   return inputs;
 }
 
-identify::StudyResult run_study_file(const std::filesystem::path& study_file, identify::RunOptions options,
-                                     std::string_view resume_hint, std::string_view out_option) {
-  const identify::StudySpec parsed = identify::load_study_file(study_file);
+identify::StudyResult run_study_file(const identify::StudySpec& parsed, const std::filesystem::path& study_file,
+                                     identify::RunOptions options, std::string_view resume_hint,
+                                     std::string_view out_option) {
   identify::OutputRequest request{identify::OutputKind::identify, study_input_files(parsed, study_file)};
   request.option = std::string(out_option);
   std::optional<identify::StoreLock> lock;

@@ -89,3 +89,13 @@ TEST_CASE("A line fit through exact points gives the angle of their slope", "[be
   CHECK(std::isnan(line_fit_angle_degrees({1.0}, {2.0})));
   CHECK(std::isnan(line_fit_angle_degrees({1.0, 1.0}, {2.0, 3.0})));
 }
+
+TEST_CASE("The instrument angle of a drum many thousand radii across is sampled on a capped grid, not refused",
+          "[bed_angles]") {
+  // D / r = 100,000: half a radius per cell would be 200,000 cells a side (3 x 320 GB of doubles).
+  const std::vector<std::array<double, 3>> positions = {{0.0, -0.01, 0.01}, {0.001, -0.01, 0.01}};
+  const std::vector<double> radii = {1e-6, 1e-6};
+  double angle = 0.0;
+  CHECK_NOTHROW(angle = instrument_angle_degrees(positions, radii, kDiameter, kLength));
+  CHECK(std::isnan(angle));  // two specks: no contour inside the central circle
+}

@@ -38,7 +38,9 @@ std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& 
 // the output-folder rules and the lock (identify::claim_study_folder with `resume_hint`), the
 // model, one evaluation at the initial point (identify::preflight_study), then the loop.
 // `out_option` names the output option in errors ("--out", "out"). options.output_dir must be set.
-identify::StudyResult run_study_file(const std::filesystem::path& study_file, identify::RunOptions options,
-                                     std::string_view resume_hint, std::string_view out_option);
+// `parsed` is identify::load_study_file(study_file), read once by the caller.
+identify::StudyResult run_study_file(const identify::StudySpec& parsed, const std::filesystem::path& study_file,
+                                     identify::RunOptions options, std::string_view resume_hint,
+                                     std::string_view out_option);
 
 }  // namespace demfit::cases
