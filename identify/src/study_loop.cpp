@@ -164,9 +164,11 @@ bool StudyLoop::budget_reached() {
   if (spec_.max_runs > 0 && total_runs_ + spec_.points_per_iteration > spec_.max_runs) {
     std::snprintf(text, sizeof text, "run budget reached (%d runs; stopping.max_runs %d)", total_runs_,
                   spec_.max_runs);
+    budget_stop_kind_ = StopKind::run_budget;
   } else if (spec_.max_wall_seconds > 0.0 && wall >= spec_.max_wall_seconds) {
     std::snprintf(text, sizeof text, "wall-time budget reached (%.0f s; stopping.max_wall_seconds %.0f)", wall,
                   spec_.max_wall_seconds);
+    budget_stop_kind_ = StopKind::wall_time_budget;
   } else {
     return false;
   }
@@ -236,8 +238,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   result.iterations = verification_iteration;
   // The tolerance rule alone does not make a study converged (stop_reason.hpp).
   StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
-  if (!stopped.converged && !budget_stop_.empty() && stopped.text.rfind("NOT converged", 0) != 0)
-    stopped.text = budget_stop_ + " without converging";
+  if (budget_stop_kind_) stopped = with_budget_stop(stopped, *budget_stop_kind_, budget_stop_);
   result.converged = stopped.converged;
   result.stop_reason = stopped.text;
   nlohmann::json uncertainty = nullptr;
@@ -283,6 +284,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
                      {"iterations", result.iterations},
                      {"converged", stopped.converged},
                      {"stop_reason", stopped.text},
+                     {"stop_kind", to_string(stopped.kind)},
                      {"final_selection", answer.record},
                      {"wall_seconds", result.wall_seconds},
                      {"uncertainty", uncertainty}});

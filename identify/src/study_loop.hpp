@@ -13,6 +13,7 @@
 
 #include "demfit/identify/evaluator.hpp"
 #include "demfit/identify/interval_check.hpp"
+#include "demfit/identify/stop_reason.hpp"
 #include "demfit/identify/objective.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
@@ -119,7 +120,8 @@ class StudyLoop {
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
   double evaluated_wall_ = 0.0;
   std::string first_error_;
-  std::string budget_stop_;  // the budget that ended the loop, empty when none did
+  std::string budget_stop_;                   // the budget that ended the loop, empty when none did
+  std::optional<StopKind> budget_stop_kind_;  // its kind
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/stop_reason.hpp"
 #include "demfit/identify/study_answer.hpp"
 
 namespace demfit::identify {
@@ -108,6 +109,33 @@ std::string misfit_warning(const TargetSpec& t, const TargetMisfit& m, const std
                 "measurement";
 }
 
+// The warning for a study that ended without converging, by what ended it (stop_reason.hpp).
+void stop_warning(const StudySpec& spec, const nlohmann::json& result, std::vector<std::string>& warnings) {
+  const std::string stopped = result.value("stop_reason", std::string());
+  const std::optional<StopKind> kind = stop_kind_of(result);
+  if (!kind) {
+    if (!result.value("converged", false)) warnings.push_back("the study stopped without converging: " + stopped);
+    return;
+  }
+  switch (*kind) {
+    case StopKind::converged:
+      return;
+    case StopKind::failed_runs:
+    case StopKind::collapsed_design:
+      warnings.push_back("the study " + stopped);
+      return;
+    case StopKind::run_budget:
+    case StopKind::wall_time_budget:
+      warnings.push_back("stopped by the " + stopped +
+                         "; resume with a larger stopping.max_runs or stopping.max_wall_seconds");
+      return;
+    case StopKind::iteration_limit:
+      warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
+                         ") without converging; resume with a larger stopping.max_iterations");
+      return;
+  }
+}
+
 }  // namespace
 
 StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
@@ -117,15 +145,7 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
   if (!best) return d;
   bound_warnings(spec, *best, d.warnings);
   quasi_static_warnings(runs, *best, d.warnings);
-  const std::string stopped = result ? result->value("stop_reason", std::string()) : std::string();
-  if (stopped.rfind("NOT converged", 0) == 0)
-    d.warnings.push_back("the study " + stopped);
-  else if (result && !result->value("converged", false) && stopped.find("budget reached") != std::string::npos)
-    d.warnings.push_back("stopped by the " + stopped +
-                         "; resume with a larger stopping.max_runs or stopping.max_wall_seconds");
-  else if (result && !result->value("converged", false))
-    d.warnings.push_back("stopped at the iteration limit (" + std::to_string(spec.max_iterations) +
-                         ") without converging; resume with a larger stopping.max_iterations");
+  if (result) stop_warning(spec, *result, d.warnings);
   const EvaluationRecord* verification = nullptr;
   for (const auto& r : runs)
     if (r.kind == "verification" && r.ok) verification = &r;

@@ -31,12 +31,14 @@ std::vector<EvaluationRecord> spread_runs(int count) {
 TEST_CASE("met tolerances over distinct successful runs are reported as converged") {
   const StopReason r = stop_reason(true, 10, spread_runs(13), 2);
   CHECK(r.converged);
+  CHECK(r.kind == StopKind::converged);
   CHECK(r.text.rfind("converged", 0) == 0);
 }
 
 TEST_CASE("the iteration limit is reported with the limit, not as converged") {
   const StopReason r = stop_reason(false, 7, spread_runs(13), 2);
   CHECK_FALSE(r.converged);
+  CHECK(r.kind == StopKind::iteration_limit);
   CHECK(r.text == "iteration limit reached (7) without converging");
 }
 
@@ -45,6 +47,7 @@ TEST_CASE("a study with 11 of 13 runs failed never says converged") {
   for (int i = 0; i < 11; ++i) runs[i].ok = false;
   const StopReason r = stop_reason(true, 10, runs, 2);
   CHECK_FALSE(r.converged);
+  CHECK(r.kind == StopKind::failed_runs);
   CHECK(r.text.find("11 of 13 runs failed") != std::string::npos);
 }
 
@@ -62,5 +65,39 @@ TEST_CASE("a design collapsed onto the start point never says converged") {
   CHECK(distinct_successful_points(runs) == 1);
   const StopReason r = stop_reason(true, 10, runs, 2);
   CHECK_FALSE(r.converged);
+  CHECK(r.kind == StopKind::collapsed_design);
   CHECK(r.text.find("collapsed onto 1 distinct successful point") != std::string::npos);
+}
+
+TEST_CASE("a user budget replaces the iteration-limit stop but never a failed or collapsed study") {
+  const StopReason limit = stop_reason(false, 7, spread_runs(13), 2);
+  const StopReason budget = with_budget_stop(limit, StopKind::run_budget, "run budget reached (13 runs)");
+  CHECK(budget.kind == StopKind::run_budget);
+  CHECK(budget.text == "run budget reached (13 runs) without converging");
+  auto runs = spread_runs(13);
+  for (int i = 0; i < 11; ++i) runs[i].ok = false;
+  const StopReason failed = stop_reason(false, 7, runs, 2);
+  CHECK(with_budget_stop(failed, StopKind::wall_time_budget, "wall-time budget reached").kind == StopKind::failed_runs);
+  const StopReason converged = stop_reason(true, 7, spread_runs(13), 2);
+  CHECK(with_budget_stop(converged, StopKind::run_budget, "run budget reached").converged);
+}
+
+TEST_CASE("every stop kind is stored by a name that reads back as the same kind") {
+  for (StopKind kind : {StopKind::converged, StopKind::iteration_limit, StopKind::run_budget,
+                        StopKind::wall_time_budget, StopKind::failed_runs, StopKind::collapsed_design}) {
+    CHECK(stop_kind_from_string(to_string(kind)) == kind);
+    CHECK(stop_kind_of(nlohmann::json{{"stop_kind", to_string(kind)}, {"stop_reason", "text not read"}}) == kind);
+  }
+  CHECK_FALSE(stop_kind_from_string("budget reached").has_value());
+}
+
+TEST_CASE("a result stored without a stop kind is read by the text its stop reason begins with") {
+  const auto kind_of = [](const char* text) { return stop_kind_of(nlohmann::json{{"stop_reason", text}}); };
+  CHECK(kind_of("run budget reached (9 runs; stopping.max_runs 9) without converging") == StopKind::run_budget);
+  CHECK(kind_of("wall-time budget reached (60 s; stopping.max_wall_seconds 60) without converging") ==
+        StopKind::wall_time_budget);
+  CHECK(kind_of("iteration limit reached (7) without converging") == StopKind::iteration_limit);
+  CHECK(kind_of("NOT converged: 7 of 13 runs failed") == StopKind::failed_runs);
+  CHECK(kind_of("NOT converged: the design collapsed onto 1 distinct successful point") == StopKind::collapsed_design);
+  CHECK_FALSE(kind_of("something else").has_value());
 }
