@@ -203,7 +203,9 @@ Run pour(const CaseSpec& spec, const CaseRunOptions& options) {
       torque_wall = run.setup.part_wall[p];
       sense = m.meshes[p].rpm >= 0.0 ? 1.0 : -1.0;
     }
-  const auto steps_per_sample = static_cast<std::uint64_t>(std::max(1.0, std::round(m.output_interval / run.time_step)));
+  // Sample k is taken at the first step that reaches k x output_interval (Simulation::reached),
+  // so a run holds floor(duration / output_interval) samples whatever the time step.
+  long long next_sample = 1;
   SnapshotSchedule snapshots(spec.output.snapshot_times, options.snapshot_dir.string(), "mesh_container");
   double torque_sum = 0.0;
   std::uint64_t in_sample = 0, steps_done = 0;
@@ -214,7 +216,9 @@ Run pour(const CaseSpec& spec, const CaseRunOptions& options) {
     // rotation, so a bed resisting the part gives a positive torque (as the drum's).
     if (m.moving_part_torque.enabled) torque_sum -= sense * s.wall_torque(torque_wall);
     snapshots.maybe_write(s, s.time());
-    if (++in_sample < steps_per_sample) return true;
+    ++in_sample;
+    if (!s.reached(static_cast<double>(next_sample) * m.output_interval)) return true;
+    while (s.reached(static_cast<double>(next_sample) * m.output_interval)) ++next_sample;  // interval < step
     Sample out = sample_now(s, m);
     out.torque = torque_sum / static_cast<double>(in_sample);
     if (!std::isfinite(out.torque) || !std::isfinite(out.kinetic))
