@@ -23,7 +23,7 @@ namespace {
 
 using dem_core::Vec3;
 using Clock = std::chrono::steady_clock;
-constexpr double kGravity = 9.81;  // [m/s^2], along -z
+constexpr double kGravity = 9.81;    // [m/s^2], along -z
 constexpr double kLatticeGap = 0.1;  // site spacing 2 r_max (1 + gap)
 
 std::string fmt(const char* pattern, double value) {
@@ -54,7 +54,8 @@ std::vector<double> particle_radii(const CaseSpec& spec) {
 // Lattice sites of the fill box from the lowest layer up (x fastest), each jittered within its
 // free gap; sites closer than r_max (1 + gap) to a mesh are skipped. Throws naming fill_box when
 // the box holds fewer sites than particles.
-std::vector<Vec3> fill_positions(const CaseSpec& spec, double r_max, const std::vector<const dem_core::TriangleMesh*>& meshes) {
+std::vector<Vec3> fill_positions(const CaseSpec& spec, double r_max,
+                                 const std::vector<const dem_core::TriangleMesh*>& meshes) {
   const MeshContainerSpec& m = spec.mesh_container;
   const double a = 2.0 * r_max * (1.0 + kLatticeGap), jitter = r_max * kLatticeGap;
   std::array<long long, 3> n{};
@@ -67,11 +68,13 @@ std::vector<Vec3> fill_positions(const CaseSpec& spec, double r_max, const std::
   for (long long k = 0; k < n[2] && sites.size() < wanted; ++k)
     for (long long j = 0; j < n[1] && sites.size() < wanted; ++j)
       for (long long i = 0; i < n[0] && sites.size() < wanted; ++i) {
-        Vec3 c{m.fill_lower[0] + r_max + static_cast<double>(i) * a, m.fill_lower[1] + r_max + static_cast<double>(j) * a,
+        Vec3 c{m.fill_lower[0] + r_max + static_cast<double>(i) * a,
+               m.fill_lower[1] + r_max + static_cast<double>(j) * a,
                m.fill_lower[2] + r_max + static_cast<double>(k) * a};
         c = c + Vec3{uniform() * jitter, uniform() * jitter, uniform() * jitter};
         bool free = true;
-        for (const dem_core::TriangleMesh* mesh : meshes) free = free && !mesh->any_within(c, r_max * (1.0 + kLatticeGap));
+        for (const dem_core::TriangleMesh* mesh : meshes)
+          free = free && !mesh->any_within(c, r_max * (1.0 + kLatticeGap));
         if (free) sites.push_back(c);
       }
   if (sites.size() < wanted)
@@ -110,19 +113,24 @@ Setup build(dem_core::Simulation& sim, const CaseSpec& spec) {
     const MeshPartSpec& part = m.meshes[p];
     dem_core::WallSpec wall{dem_core::MeshGeometry{meshes[p]}, dem_core::FixedMotion{}, spec.wall, {}, part.name};
     // The torque of a rotating part is about its rotation axis from the start (also before it turns).
-    if (part.motion == MeshMotion::rotation) wall.torque_axis = dem_core::Axis{vec(part.axis_point), vec(part.axis_direction)};
+    if (part.motion == MeshMotion::rotation)
+      wall.torque_axis = dem_core::Axis{vec(part.axis_point), vec(part.axis_direction)};
     setup.part_wall.push_back(sim.add_wall(wall));
   }
   // Catch floor: a mesh height plus ten radii below the lowest mesh point and the counting plane.
   const double bottom = m.discharge_mass.enabled ? std::min(low, m.discharge_mass.plane_z) : low;
   setup.catch_floor_z = bottom - (high - low) - 10.0 * r_max;
-  sim.add_wall({dem_core::PlaneGeometry{{0, 0, setup.catch_floor_z}, {0, 0, 1}}, dem_core::FixedMotion{}, spec.wall, {},
+  sim.add_wall({dem_core::PlaneGeometry{{0, 0, setup.catch_floor_z}, {0, 0, 1}},
+                dem_core::FixedMotion{},
+                spec.wall,
+                {},
                 "catch_floor"});
   return setup;
 }
 
 // Starts the motions whose start time has come (once each).
-void start_motions(dem_core::Simulation& sim, const MeshContainerSpec& m, const Setup& setup, std::vector<bool>& started) {
+void start_motions(dem_core::Simulation& sim, const MeshContainerSpec& m, const Setup& setup,
+                   std::vector<bool>& started) {
   for (std::size_t p = 0; p < m.meshes.size(); ++p) {
     const MeshPartSpec& part = m.meshes[p];
     if (started[p] || part.motion == MeshMotion::fixed || sim.time() + 1e-12 < part.start_time) continue;
@@ -307,12 +315,13 @@ void add_curves(CaseResult& result, const Run& run, const MeshContainerSpec& m) 
   }
   if (m.discharge_mass.enabled) result.curves["discharge_mass"] = discharge;
   if (m.moving_part_torque.enabled) result.curves["moving_part_torque"] = torque;
-  CurveTable history{{"mesh_container history: discharged = centres below outputs.discharge_mass.plane_z (all "
-                      "particles when no discharge output), retained = the others; drive torque on the torque part; "
-                      "heap angle by: " + std::string(kHeapAngleDefinition)},
-                     {"time_s", "discharged_mass_kg", "retained_mass_kg", "drive_torque_Nm", "heap_angle_deg",
-                      "kinetic_energy_J"},
-                     std::vector<std::vector<double>>(6)};
+  CurveTable history{
+      {"mesh_container history: discharged = centres below outputs.discharge_mass.plane_z (0 without "
+       "a discharge output), retained = the others; drive torque on the torque part; "
+       "heap angle by: " +
+       std::string(kHeapAngleDefinition)},
+      {"time_s", "discharged_mass_kg", "retained_mass_kg", "drive_torque_Nm", "heap_angle_deg", "kinetic_energy_J"},
+      std::vector<std::vector<double>>(6)};
   for (const Sample& s : run.samples) {
     const double v[6] = {s.time, s.discharged, s.retained, s.torque, s.heap, s.kinetic};
     for (int c = 0; c < 6; ++c) history.values[c].push_back(v[c]);
@@ -331,18 +340,21 @@ void add_summary(CaseResult& result, const Run& run, const CaseSpec& spec, doubl
   mean_diameter /= static_cast<double>(run.particles.values[3].size());
   sum.emplace_back("mean particle diameter [mm]", fmt("%.4f", mean_diameter * 1e3));
   sum.emplace_back("total particle mass [kg]", fmt("%.6g", run.setup.total_mass));
-  sum.emplace_back("catch floor z [m] (particles falling past the meshes land here)", fmt("%.5g", run.setup.catch_floor_z));
+  sum.emplace_back("catch floor z [m] (particles falling past the meshes land here)",
+                   fmt("%.5g", run.setup.catch_floor_z));
   const Sample& last = run.samples.back();
   if (m.heap_angle.enabled)
     sum.emplace_back("heap angle at the end [deg] (" + std::string(kHeapAngleDefinition) + ")", fmt("%.2f", last.heap));
   if (m.discharge_mass.enabled) {
     sum.emplace_back("discharged mass at the end [kg]", fmt("%.6g", last.discharged));
     const double rate = discharge_rate(run.samples);
-    sum.emplace_back("mean discharge rate [kg/s] (slope between 20 % and 80 % of the final discharged mass)",
-                     std::isfinite(rate) ? fmt("%.5g", rate) : std::string("not defined (too few samples in the flow)"));
+    sum.emplace_back(
+        "mean discharge rate [kg/s] (slope between 20 % and 80 % of the final discharged mass)",
+        std::isfinite(rate) ? fmt("%.5g", rate) : std::string("not defined (too few samples in the flow)"));
     if (m.discharge_mass.orifice_diameter > 0.0)
-      sum.emplace_back("Beverloo reference rate [kg/s] (C 0.58, k 1.5, bulk density 0.6 rho_p; order of magnitude only)",
-                       fmt("%.5g", beverloo_rate(m.discharge_mass.orifice_diameter, mean_diameter, spec.material.density)));
+      sum.emplace_back(
+          "Beverloo reference rate [kg/s] (C 0.58, k 1.5, bulk density 0.6 rho_p; order of magnitude only)",
+          fmt("%.5g", beverloo_rate(m.discharge_mass.orifice_diameter, mean_diameter, spec.material.density)));
   }
   if (m.moving_part_torque.enabled) {
     double mean = 0.0;

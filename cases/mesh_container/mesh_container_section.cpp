@@ -80,7 +80,8 @@ void parse_motion(const json& m, const std::string& path, MeshPartSpec& part) {
     if (std::hypot(part.axis_direction[0], part.axis_direction[1], part.axis_direction[2]) == 0.0)
       throw std::runtime_error("'" + path + ".axis_direction' is the zero vector: give the axis, e.g. [0, 0, 1]");
     if (m.contains("velocity"))
-      throw std::runtime_error("'" + path + ".velocity' belongs to a translation: remove it or set type \"translation\"");
+      throw std::runtime_error("'" + path +
+                               ".velocity' belongs to a translation: remove it or set type \"translation\"");
   } else if (type == "translation") {
     part.motion = MeshMotion::translation;
     part.velocity = read_numbers<3>(m, path, "velocity", "[0, 0, -0.01] (m/s)");
@@ -96,7 +97,8 @@ void parse_motion(const json& m, const std::string& path, MeshPartSpec& part) {
 MeshPartSpec parse_part(const json& j, const std::string& path, const std::filesystem::path& base_dir) {
   require_known_keys(j, path, {"name", "stl", "unit", "motion"});
   MeshPartSpec part;
-  if (!j.contains("stl")) throw std::runtime_error("'" + path + ".stl' is missing: give the STL file (relative to the case file)");
+  if (!j.contains("stl"))
+    throw std::runtime_error("'" + path + ".stl' is missing: give the STL file (relative to the case file)");
   part.stl = read_string(j, path, "stl", "");
   part.name = read_string(j, path, "name", std::filesystem::path(part.stl).stem().string());
   if (!j.contains("unit"))
@@ -117,10 +119,9 @@ MeshPartSpec parse_part(const json& j, const std::string& path, const std::files
     auto triangles = dem_core::read_stl(file, {metres, 5'000'000});
     part.content_hash = triangles_hash(triangles);
     part.triangles = std::make_shared<const std::vector<dem_core::Triangle>>(std::move(triangles));
-  } catch (const std::exception& e) {
-    throw std::runtime_error("'" + path + ".stl': " + e.what());
-  }
-  if (part.triangles->empty()) throw std::runtime_error("'" + path + ".stl' holds no triangle: export the surface again");
+  } catch (const std::exception& e) { throw std::runtime_error("'" + path + ".stl': " + e.what()); }
+  if (part.triangles->empty())
+    throw std::runtime_error("'" + path + ".stl' holds no triangle: export the surface again");
   return part;
 }
 
@@ -167,7 +168,8 @@ void check_fill_box(const MeshContainerSpec& s) {
 void parse_fill_box(const json& j, MeshContainerSpec& s) {
   const char* p = "mesh_container.fill_box";
   if (!j.is_object() || j.empty())
-    throw std::runtime_error(std::string("'") + p + "' is missing: give {\"lower\": [x, y, z], \"upper\": [x, y, z]} in metres");
+    throw std::runtime_error(std::string("'") + p +
+                             "' is missing: give {\"lower\": [x, y, z], \"upper\": [x, y, z]} in metres");
   require_known_keys(j, p, {"lower", "upper"});
   s.fill_lower = read_numbers<3>(j, p, "lower", "[-0.01, -0.01, 0.02] (m)");
   s.fill_upper = read_numbers<3>(j, p, "upper", "[0.01, 0.01, 0.05] (m)");
@@ -182,8 +184,9 @@ HeapAngleSpec parse_heap(const json& j) {
   h.base_z = required_number(j, p, "base_z", Sign::any, "the pedestal top height z [m]");
   for (const char* k : {"r_min", "r_max"})
     if (j.contains(k) && j.at(k).is_number() && j.at(k).get<double>() < 0.0)
-      throw std::runtime_error("'" + p + "." + k + "' = " + j.at(k).dump() +
-                               " is a negative radius: give the radial window as distances from the heap axis >= 0 [m]");
+      throw std::runtime_error(
+          "'" + p + "." + k + "' = " + j.at(k).dump() +
+          " is a negative radius: give the radial window as distances from the heap axis >= 0 [m]");
   h.r_min = required_number(j, p, "r_min", Sign::non_negative, "the inner radius of the fit window [m]");
   h.r_max = required_number(j, p, "r_max", Sign::positive, "the outer radius of the fit window [m]");
   if (!(h.r_max > h.r_min))
@@ -206,7 +209,8 @@ void parse_outputs(const json& j, MeshContainerSpec& s) {
     const json& d = child_object(j, p, "discharge_mass");
     require_known_keys(d, q, {"plane_z", "orifice_diameter"});
     s.discharge_mass.enabled = true;
-    s.discharge_mass.plane_z = required_number(d, q, "plane_z", Sign::any, "the height z [m] of the counting plane below the orifice");
+    s.discharge_mass.plane_z =
+        required_number(d, q, "plane_z", Sign::any, "the height z [m] of the counting plane below the orifice");
     s.discharge_mass.orifice_diameter = read_number(d, q, "orifice_diameter", 0.0, Sign::non_negative);
   }
   if (j.contains("moving_part_torque")) {
@@ -229,10 +233,12 @@ void parse_outputs(const json& j, MeshContainerSpec& s) {
 
 MeshContainerSpec parse_section(const json& j, MeshContainerSpec s, const std::filesystem::path& base_dir) {
   const char* p = "mesh_container";
-  require_known_keys(j, p, {"meshes", "fill_box", "particle_count", "fill_seed", "size_distribution", "duration",
-                            "output_interval", "outputs"});
+  require_known_keys(j, p,
+                     {"meshes", "fill_box", "particle_count", "fill_seed", "size_distribution", "duration",
+                      "output_interval", "outputs"});
   if (!j.contains("meshes") || !j.at("meshes").is_array() || j.at("meshes").empty())
-    throw std::runtime_error("'mesh_container.meshes' must be a non-empty array of {\"stl\": file, \"unit\": \"mm\", ...}");
+    throw std::runtime_error(
+        "'mesh_container.meshes' must be a non-empty array of {\"stl\": file, \"unit\": \"mm\", ...}");
   std::set<std::string> names;
   for (std::size_t i = 0; i < j.at("meshes").size(); ++i) {
     const std::string path = "mesh_container.meshes[" + std::to_string(i) + "]";
@@ -250,12 +256,13 @@ MeshContainerSpec parse_section(const json& j, MeshContainerSpec s, const std::f
   s.duration = read_number(j, p, "duration", s.duration, Sign::positive);
   s.output_interval = read_number(j, p, "output_interval", s.output_interval, Sign::positive);
   if (s.output_interval > s.duration)
-    throw std::runtime_error("'mesh_container.output_interval' must not exceed 'mesh_container.duration': give e.g. 0.01 s");
+    throw std::runtime_error(
+        "'mesh_container.output_interval' must not exceed 'mesh_container.duration': give e.g. 0.01 s");
   if (s.duration / s.output_interval > 1e6)
     throw std::runtime_error("'mesh_container.output_interval' gives more than 1e6 samples: raise it");
   if (j.contains("size_distribution"))
-    s.size_distribution = parse_size_distribution(child_object(j, p, "size_distribution"),
-                                                  "mesh_container.size_distribution", base_dir);
+    s.size_distribution =
+        parse_size_distribution(child_object(j, p, "size_distribution"), "mesh_container.size_distribution", base_dir);
   if (!j.contains("outputs"))
     throw std::runtime_error(
         "'mesh_container.outputs' is missing: select one or more of heap_angle, discharge_mass, moving_part_torque");
@@ -275,7 +282,8 @@ double metres_per_stl_unit(std::string_view unit) {
 
 void parse_mesh_container_section(const json& document, CaseSpec& spec, const std::filesystem::path& base_dir) {
   if (!document.contains("mesh_container"))
-    throw std::runtime_error("'mesh_container' is missing: a mesh_container case needs its section (docs/mesh-container.md)");
+    throw std::runtime_error(
+        "'mesh_container' is missing: a mesh_container case needs its section (docs/mesh-container.md)");
   spec.mesh_container = parse_section(child_object(document, "", "mesh_container"), spec.mesh_container, base_dir);
   if (!spec.mesh_container.size_distribution.enabled()) return;
   if (child_object(document, "", "particle").contains("radius"))
@@ -316,8 +324,9 @@ json mesh_container_section_json(const MeshContainerSpec& s) {
   json outputs = json::object();
   if (s.heap_angle.enabled) {
     const HeapAngleSpec& h = s.heap_angle;
-    outputs["heap_angle"] = {{"center", numbers(h.center)}, {"base_z", h.base_z}, {"r_min", h.r_min},
-                             {"r_max", h.r_max},            {"bins", h.bins},     {"rest_speed", h.rest_speed}};
+    outputs["heap_angle"] = {
+        {"center", numbers(h.center)}, {"base_z", h.base_z}, {"r_min", h.r_min}, {"r_max", h.r_max}, {"bins", h.bins},
+        {"rest_speed", h.rest_speed}};
   }
   if (s.discharge_mass.enabled)
     outputs["discharge_mass"] = {{"plane_z", s.discharge_mass.plane_z},

@@ -79,7 +79,8 @@ struct Folder {
 json lsdyna_case(double frics) {
   return json{{"case", "mesh_container"},
               {"particle", {{"radius", 0.001}, {"density", 2500.0}, {"youngs_modulus", 3e8}, {"poisson_ratio", 0.3}}},
-              {"contact", {{"normk", 0.01}, {"sheark", 0.05}, {"ndamp", 0.5}, {"tdamp", 0.5}, {"frics", frics}, {"fricr", 0.1}}},
+              {"contact",
+               {{"normk", 0.01}, {"sheark", 0.05}, {"ndamp", 0.5}, {"tdamp", 0.5}, {"frics", frics}, {"fricr", 0.1}}},
               {"wall_contact", {{"frics", frics}, {"fricd", 0.1}, {"damp", 0.5}}}};
 }
 
@@ -145,7 +146,9 @@ TEST_CASE("The heap angle is undefined when fewer than two annuli of the window 
   CHECK(std::isnan(detail::heap_angle_degrees({{0.0, 0.0, 0.001}}, {0.001}, heap)));
 }
 
-TEST_CASE("Discharged and retained mass add up to the poured mass at every sample, and the silo empties at a Beverloo-order rate") {
+TEST_CASE(
+    "Discharged and retained mass add up to the poured mass at every sample, and the silo empties at a Beverloo-order "
+    "rate") {
   const Folder folder("silo");
   const CaseResult result = run(silo_case(folder.path), folder.path);
   const double poured = 150 * 2500.0 * 4.0 / 3.0 * kPi * 1e-9;  // N rho 4/3 pi r^3 [kg]
@@ -169,12 +172,25 @@ TEST_CASE("Discharged and retained mass add up to the poured mass at every sampl
   CHECK(rate < beverloo * 4.0);
 }
 
-TEST_CASE("A paddle lifting a sphere that rests on it at lever arm d needs the drive torque m g d") {
-  const Folder folder("paddle");
+namespace {
+
+json hertz_case() {
+  return json{{"case", "mesh_container"},
+              {"particle", {{"radius", 0.001}, {"density", 2500.0}, {"youngs_modulus", 3e8}, {"poisson_ratio", 0.3}}},
+              {"contact", {{"law", "hertz_mindlin"}, {"restitution", 0.5}, {"frics", 0.5}, {"fricr", 0.1}}},
+              {"wall_contact", {{"youngs_modulus", 3e8}, {"poisson_ratio", 0.3}, {"frics", 0.5}, {"fricr", 0.1}}}};
+}
+
+}  // namespace
+
+TEST_CASE("A paddle lifting a sphere that rests on it at lever arm d needs the drive torque m g d, under either law") {
+  const bool hertz = GENERATE(false, true);
+  CAPTURE(hertz);
+  const Folder folder(hertz ? "paddle_hertz" : "paddle");
   // A flat paddle from the axis (the y axis through the origin) out to x = 30 mm, 10 mm wide.
-  write_stl(folder.path / "paddle.stl", {{Point{0, -5, 0}, Point{30, -5, 0}, Point{30, 5, 0}},
-                                         {Point{0, -5, 0}, Point{30, 5, 0}, Point{0, 5, 0}}});
-  json doc = lsdyna_case(0.5);
+  write_stl(folder.path / "paddle.stl",
+            {{Point{0, -5, 0}, Point{30, -5, 0}, Point{30, 5, 0}}, {Point{0, -5, 0}, Point{30, 5, 0}, Point{0, 5, 0}}});
+  json doc = hertz ? hertz_case() : lsdyna_case(0.5);
   // Turning right-handed about -y lifts the paddle's +x end: 0.5 rpm tilts it by 0.9 degrees in
   // 0.3 s (cos = 0.99988), too little for the sphere to roll against the rolling friction.
   doc["mesh_container"] = {
@@ -212,7 +228,8 @@ TEST_CASE("The same mesh_container case run twice gives bit-identical curves") {
 TEST_CASE("A mesh_container case file is a model whose curves are the outputs it selects") {
   const Folder folder("model");
   json doc = silo_case(folder.path);
-  doc["mesh_container"]["outputs"]["heap_angle"] = {{"center", {0, 0}}, {"base_z", 0.0}, {"r_min", 0.0}, {"r_max", 0.008}};
+  doc["mesh_container"]["outputs"]["heap_angle"] = {
+      {"center", {0, 0}}, {"base_z", 0.0}, {"r_min", 0.0}, {"r_max", 0.008}};
   std::ofstream(folder.path / "silo.json") << doc.dump(2);
   const auto model = make_model("silo.json", json::object(), folder.path);
   const auto curves = model->curves();
@@ -222,7 +239,8 @@ TEST_CASE("A mesh_container case file is a model whose curves are the outputs it
   CHECK(curves[1].name == "discharge_mass");
   CHECK(model->default_parameters().count("frics") == 1);
   // The resolved case reads back as the same case.
-  CHECK(to_json(parse_case(to_json(parse_case(doc, folder.path)), folder.path)) == to_json(parse_case(doc, folder.path)));
+  CHECK(to_json(parse_case(to_json(parse_case(doc, folder.path)), folder.path)) ==
+        to_json(parse_case(doc, folder.path)));
 }
 
 TEST_CASE("A missing STL file is refused naming the field and the folder searched") {
@@ -248,7 +266,8 @@ TEST_CASE("A rotating part without its axis is refused naming the axis field") {
   const Folder folder("axis");
   json doc = silo_case(folder.path);
   doc["mesh_container"]["meshes"][0]["motion"] = {{"type", "rotation"}, {"rpm", 30}};
-  CHECK(parse_error(doc, folder.path).find("'mesh_container.meshes[0].motion.axis_direction' is missing: a rotating part needs its axis") == 0);
+  CHECK(parse_error(doc, folder.path)
+            .find("'mesh_container.meshes[0].motion.axis_direction' is missing: a rotating part needs its axis") == 0);
 }
 
 TEST_CASE("A fill box outside the meshes' extent is refused naming the box and the meshes' range") {
@@ -263,8 +282,10 @@ TEST_CASE("A fill box outside the meshes' extent is refused naming the box and t
 TEST_CASE("A negative radius of the heap window is refused naming the field") {
   const Folder folder("radius");
   json doc = silo_case(folder.path);
-  doc["mesh_container"]["outputs"]["heap_angle"] = {{"center", {0, 0}}, {"base_z", 0.0}, {"r_min", -0.002}, {"r_max", 0.008}};
-  CHECK(parse_error(doc, folder.path).find("'mesh_container.outputs.heap_angle.r_min' = -0.002 is a negative radius") == 0);
+  doc["mesh_container"]["outputs"]["heap_angle"] = {
+      {"center", {0, 0}}, {"base_z", 0.0}, {"r_min", -0.002}, {"r_max", 0.008}};
+  CHECK(parse_error(doc, folder.path).find("'mesh_container.outputs.heap_angle.r_min' = -0.002 is a negative radius") ==
+        0);
 }
 
 TEST_CASE("A torque output on a part that does not rotate is refused") {
