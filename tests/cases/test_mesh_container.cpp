@@ -221,8 +221,45 @@ TEST_CASE("The same mesh_container case run twice gives bit-identical curves") {
   shorter["mesh_container"]["duration"] = 0.15;
   const CaseResult a = run(shorter, folder.path), b = run(shorter, folder.path);
   REQUIRE(a.curves.at("discharge_mass").y.size() == 15);
+  CHECK(a.curves.at("discharge_mass").y.back() > 0.0);  // the flow has begun: the curve is not all zeros
   CHECK(a.curves.at("discharge_mass").y == b.curves.at("discharge_mass").y);
   CHECK(a.tables.at("particles_end").values == b.tables.at("particles_end").values);
+}
+
+TEST_CASE("A translating part starts at its start time and carries a sphere resting on it at its velocity") {
+  const Folder folder("lift");
+  write_stl(folder.path / "plate.stl", {{Point{-15, -15, 0}, Point{15, -15, 0}, Point{15, 15, 0}},
+                                        {Point{-15, -15, 0}, Point{15, 15, 0}, Point{-15, 15, 0}}});
+  json doc = lsdyna_case(0.5);
+  doc["mesh_container"] = {{"meshes",
+                            {{{"name", "plate"},
+                              {"stl", "plate.stl"},
+                              {"unit", "mm"},
+                              {"motion", {{"type", "translation"}, {"velocity", {0, 0, 0.01}}, {"start_time", 0.1}}}}}},
+                           {"fill_box", {{"lower", {-0.0015, -0.0015, 0.0002}}, {"upper", {0.0015, 0.0015, 0.0032}}}},
+                           {"particle_count", 1},
+                           {"duration", 0.1},
+                           {"output_interval", 0.01},
+                           {"outputs", {{"discharge_mass", {{"plane_z", -0.01}}}}}};
+  const double resting = run(doc, folder.path).tables.at("particles_end").values[2].at(0);  // z [mm] at 0.1 s
+  doc["mesh_container"]["duration"] = 0.3;
+  const double lifted = run(doc, folder.path).tables.at("particles_end").values[2].at(0);  // z [mm] at 0.3 s
+  // 0.01 m/s for 0.2 s: 2 mm.
+  CHECK(lifted - resting == Approx(2.0).epsilon(0.01));
+}
+
+TEST_CASE("A size distribution replaces the particle radius and sets the smallest radius of the case") {
+  const Folder folder("sizes");
+  json doc = silo_case(folder.path);
+  doc["mesh_container"]["size_distribution"] = {
+      {"unit", "mm"}, {"diameter", {1.5, 2.0}}, {"number_fraction", {0.5, 0.5}}};
+  CHECK(
+      parse_error(doc, folder.path).find("'particle.radius' cannot be given with 'mesh_container.size_distribution'") ==
+      0);
+  doc["particle"].erase("radius");
+  const CaseSpec spec = parse_case(doc, folder.path);
+  CHECK(spec.material.radius == Approx(0.75e-3));
+  CHECK(to_json(spec)["mesh_container"]["size_distribution"]["diameter"] == json({1.5, 2.0}));
 }
 
 TEST_CASE("A mesh_container case file is a model whose curves are the outputs it selects") {
