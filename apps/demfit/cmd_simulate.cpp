@@ -164,7 +164,8 @@ void register_simulate(CLI::App& app) {
       "simulate",
       "Run one case (pellet_compression, rotary_drum or mesh_container) and write its curves.\n"
       "Outputs in --out: <curve>.csv (header names carry units: volume_cm3, pressure_MPa, time_s,\n"
-      "torque_Nm, x_mm, height_mm, heap_angle_deg, discharged_mass_kg), history/particle tables, case_resolved.json (all defaults\n"
+      "torque_Nm, x_mm, height_mm, heap_angle_deg, discharged_mass_kg), history/particle tables, case_resolved.json "
+      "(all defaults\n"
       "filled in), summary.txt, snapshots/*.vtk when requested. Case files are JSON in SI units\n"
       "(m, kg, s, Pa; rpm named). Settled fills are cached in $DEMFIT_CACHE_DIR (default\n"
       "~/.cache/demfit). Nothing is written when the input is bad or the run fails.\n"

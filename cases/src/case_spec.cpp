@@ -205,7 +205,8 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
   }
   if (spec.material.radius_spread != 0.0)
     throw std::runtime_error(
-        "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
+        "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution (or "
+        "mesh_container.size_distribution) with hertz_mindlin");
 }
 
 }  // namespace

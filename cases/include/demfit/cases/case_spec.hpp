@@ -133,23 +133,23 @@ struct MeshPartSpec {
   std::string stl;   // path as written in the case file (relative to the case file's folder)
   std::string unit;  // length unit of the STL: "m", "cm", "mm", "um" or "in"
   MeshMotion motion = MeshMotion::fixed;
-  std::array<double, 3> axis_point{};               // [m], rotation
-  std::array<double, 3> axis_direction{0, 0, 1};    // rotation, right-handed
-  double rpm = 0.0;                                 // [rev/min], rotation
-  std::array<double, 3> velocity{};                 // [m/s], translation
-  double start_time = 0.0;                          // [s] the motion starts (fixed before)
+  std::array<double, 3> axis_point{};                                // [m], rotation
+  std::array<double, 3> axis_direction{0, 0, 1};                     // rotation, right-handed
+  double rpm = 0.0;                                                  // [rev/min], rotation
+  std::array<double, 3> velocity{};                                  // [m/s], translation
+  double start_time = 0.0;                                           // [s] the motion starts (fixed before)
   std::shared_ptr<const std::vector<dem_core::Triangle>> triangles;  // [m], resolved at parse time
-  std::uint64_t content_hash = 0;                   // FNV-1a of the triangles (result keys)
+  std::uint64_t content_hash = 0;                                    // FNV-1a of the triangles (result keys)
 };
 
 // heap_angle: surface of the resting heap on a pedestal, fitted over a radial window.
 struct HeapAngleSpec {
   bool enabled = false;
-  std::array<double, 2> center{};  // heap axis (x, y) [m]
-  double base_z = 0.0;             // pedestal top [m]: particles below it are not the heap
-  double r_min = 0.0, r_max = 0.0; // radial window of the fit [m]
-  long long bins = 8;              // annuli in the window
-  double rest_speed = 0.05;        // particles faster than this [m/s] are not the heap
+  std::array<double, 2> center{};   // heap axis (x, y) [m]
+  double base_z = 0.0;              // pedestal top [m]: particles below it are not the heap
+  double r_min = 0.0, r_max = 0.0;  // radial window of the fit [m]
+  long long bins = 8;               // annuli in the window
+  double rest_speed = 0.05;         // particles faster than this [m/s] are not the heap
 };
 
 // discharge_mass: mass of particles whose centre is below plane_z.
@@ -199,8 +199,8 @@ struct CaseSpec {
   TimeStepSpec time_step;
   OutputSpec output;
   NumericsSpec numerics;
-  PelletSpec pellet;  // used when kind == pellet_compression
-  DrumSpec drum;      // used when kind == rotary_drum
+  PelletSpec pellet;                 // used when kind == pellet_compression
+  DrumSpec drum;                     // used when kind == rotary_drum
   MeshContainerSpec mesh_container;  // used when kind == mesh_container
 };
 
