@@ -36,16 +36,29 @@ constexpr unsigned long long kMaxSeed = 1ull << 62;
 // at its speed (loading, and as long again when it unloads). A snapshot time after it would never
 // be written.
 void check_snapshot_times(const cases::CaseSpec& spec) {
-  const bool drum = spec.kind == cases::CaseKind::rotary_drum;
-  const double end =
-      drum ? spec.drum.duration : spec.pellet.max_travel / spec.pellet.piston_speed * (spec.pellet.unload ? 2.0 : 1.0);
+  double end = 0.0;
+  const char* what = "";
+  switch (spec.kind) {  // exhaustive (case_registry.hpp)
+    case cases::CaseKind::pellet_compression:
+      end = spec.pellet.max_travel / spec.pellet.piston_speed * (spec.pellet.unload ? 2.0 : 1.0);
+      what = ", the longest piston stroke: max_travel / piston_speed";
+      break;
+    case cases::CaseKind::rotary_drum:
+      end = spec.drum.duration;
+      what = ": drum.duration";
+      break;
+    case cases::CaseKind::mesh_container:
+      end = spec.mesh_container.duration;
+      what = ": mesh_container.duration";
+      break;
+  }
   for (double t : spec.output.snapshot_times) {
     if (t <= end) continue;
     char text[240];
     std::snprintf(text, sizeof text,
                   "--snapshots / output.snapshot_times: %.6g s is after the end of the measured stage (%.6g s%s); "
                   "give times from 0 to %.6g s",
-                  t, end, drum ? ": drum.duration" : ", the longest piston stroke: max_travel / piston_speed", end);
+                  t, end, what, end);
     throw std::runtime_error(text);
   }
 }
@@ -149,9 +162,10 @@ void register_simulate(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   auto* cmd = app.add_subcommand(
       "simulate",
-      "Run one case (pellet_compression or rotary_drum) and write its curves.\n"
+      "Run one case (pellet_compression, rotary_drum or mesh_container) and write its curves.\n"
       "Outputs in --out: <curve>.csv (header names carry units: volume_cm3, pressure_MPa, time_s,\n"
-      "torque_Nm, x_mm, height_mm), history/particle tables, case_resolved.json (all defaults\n"
+      "torque_Nm, x_mm, height_mm, heap_angle_deg, discharged_mass_kg), history/particle tables, case_resolved.json "
+      "(all defaults\n"
       "filled in), summary.txt, snapshots/*.vtk when requested. Case files are JSON in SI units\n"
       "(m, kg, s, Pa; rpm named). Settled fills are cached in $DEMFIT_CACHE_DIR (default\n"
       "~/.cache/demfit). Nothing is written when the input is bad or the run fails.\n"

@@ -23,6 +23,13 @@ const std::vector<CaseKindRow>& case_kind_table() {
        {{{"torque", "time_s", "torque_Nm"}},
         {{"free_surface", "x_mm", "height_mm"}},
         {{"free_surface_image", "x_mm", "z_mm"}, CurveCondition::drum_image}}},
+      {CaseKind::mesh_container,
+       "mesh_container",
+       "mesh_container",
+       "particles poured into STL geometry with fixed and moving parts (docs/mesh-container.md)",
+       {{{"heap_angle", "time_s", "heap_angle_deg"}, CurveCondition::mesh_heap_angle},
+        {{"discharge_mass", "time_s", "discharged_mass_kg"}, CurveCondition::mesh_discharge_mass},
+        {{"moving_part_torque", "time_s", "torque_Nm"}, CurveCondition::mesh_part_torque}}},
   };
   return table;
 }
@@ -58,6 +65,12 @@ bool option_on(const CaseSpec& spec, CurveCondition produced) {
       return spec.pellet.unload;
     case CurveCondition::drum_image:
       return spec.drum.image.enabled;
+    case CurveCondition::mesh_heap_angle:
+      return spec.mesh_container.heap_angle.enabled;
+    case CurveCondition::mesh_discharge_mass:
+      return spec.mesh_container.discharge_mass.enabled;
+    case CurveCondition::mesh_part_torque:
+      return spec.mesh_container.moving_part_torque.enabled;
   }
   throw std::logic_error("case registry: a CurveCondition without its option");
 }

@@ -6,6 +6,7 @@
 
 #include "dem_setup.hpp"
 #include "drum_case.hpp"
+#include "mesh_container_case.hpp"
 #include "pellet_case.hpp"
 
 namespace demfit::cases {
@@ -35,6 +36,8 @@ CaseResult run_case(const CaseSpec& spec, const identify::ParameterSet& paramete
       return detail::run_pellet_compression(fill, evaluated, resolved);
     case CaseKind::rotary_drum:
       return detail::run_rotary_drum(fill, evaluated, resolved);
+    case CaseKind::mesh_container:  // no cached fill: the pour is the measured stage
+      return detail::run_mesh_container(evaluated, resolved);
   }
   throw std::logic_error("run_case: a CaseKind without a runner");
 }

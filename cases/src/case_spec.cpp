@@ -14,6 +14,7 @@
 #include "demfit/cases/section_fields.hpp"
 #include "demfit/dem_core/contact_laws.hpp"
 #include "drum_case.hpp"
+#include "mesh_container_case.hpp"
 #include "pellet_case.hpp"
 
 namespace demfit::cases {
@@ -176,6 +177,7 @@ bool hertz_supported(CaseKind kind) {
     case CaseKind::pellet_compression:
       return false;
     case CaseKind::rotary_drum:
+    case CaseKind::mesh_container:
       return true;
   }
   return false;
@@ -193,7 +195,8 @@ std::string law_names() {
 void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec) {
   if (!hertz_supported(spec.kind))
     throw std::runtime_error(
-        "'contact.law' = \"hertz_mindlin\" is supported by rotary_drum cases only: use lsdyna_linear");
+        "'contact.law' = \"hertz_mindlin\" is supported by rotary_drum and mesh_container cases only: use "
+        "lsdyna_linear");
   parse_hertz_contact(contact, spec);
   parse_hertz_wall(child_object(document, "", "wall_contact"), spec);
   if (spec.wall_friction_as_particles) {
@@ -202,7 +205,8 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
   }
   if (spec.material.radius_spread != 0.0)
     throw std::runtime_error(
-        "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution with hertz_mindlin");
+        "'particle.radius_spread' is an effect of law lsdyna_linear: use drum.size_distribution (or "
+        "mesh_container.size_distribution) with hertz_mindlin");
 }
 
 }  // namespace
@@ -210,7 +214,7 @@ void parse_hertz_case(const json& document, const json& contact, CaseSpec& spec)
 CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir) {
   require_known_keys(document, "",
                      {"case", "description", "particle", "contact", "wall_contact", "time_step", "output", "numerics",
-                      "pellet", "drum"});
+                      "pellet", "drum", "mesh_container"});
   CaseSpec spec;
   if (!document.contains("case")) throw std::runtime_error("'case' is missing: set \"case\": " + case_kind_names());
   const std::string kind = read_string(document, "", "case", "");
@@ -248,6 +252,9 @@ CaseSpec parse_case(const json& document, const std::filesystem::path& base_dir)
     case CaseKind::rotary_drum:
       detail::parse_drum_section(document, spec, base_dir);
       break;
+    case CaseKind::mesh_container:
+      detail::parse_mesh_container_section(document, spec, base_dir);
+      break;
   }
   return spec;
 }
@@ -259,7 +266,8 @@ json to_json(const CaseSpec& s) {
   j["particle"] = json::object();
   write_section_fields<MaterialSpec>(j["particle"], kParticleFields, s.material);
   j["particle"]["radius_spread"] = s.material.radius_spread;
-  const bool distribution = s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled();
+  const bool distribution = (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.enabled()) ||
+                            (s.kind == CaseKind::mesh_container && s.mesh_container.size_distribution.enabled());
   if (distribution) j["particle"].erase("radius");
   // The identified parameters' fields come from the parameter table (write_parameter_fields).
   switch (s.law) {
@@ -297,6 +305,9 @@ json to_json(const CaseSpec& s) {
     case CaseKind::rotary_drum:
       j["drum"] = detail::drum_section_json(s.drum);
       break;
+    case CaseKind::mesh_container:
+      j["mesh_container"] = detail::mesh_container_section_json(s.mesh_container);
+      break;
   }
   return j;
 }
@@ -325,6 +336,14 @@ json to_key_json(const CaseSpec& s) {
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());
+  // So do the STL files' triangles (and a size CSV's content) of a mesh_container case.
+  if (s.kind == CaseKind::mesh_container) {
+    for (std::size_t p = 0; p < s.mesh_container.meshes.size(); ++p)
+      j["mesh_container"]["meshes"][p]["content_hash"] = std::to_string(s.mesh_container.meshes[p].content_hash);
+    if (s.mesh_container.size_distribution.source == SizeDistributionSpec::Source::csv)
+      j["mesh_container"]["size_distribution"]["content_hash"] =
+          std::to_string(s.mesh_container.size_distribution.content_hash());
+  }
   return j;
 }
 

@@ -49,6 +49,7 @@ double case_cohesion_bound(const CaseSpec& spec) {
       return cohesion_surface_energy_bound(p.radius, p.density, kDrumCohesionWeights);
     }
     case CaseKind::pellet_compression:
+    case CaseKind::mesh_container:  // the simulated particle is the case's own, as in the pellet
       return cohesion_surface_energy_bound(spec.material.radius, spec.material.density, kPelletCohesionWeights);
   }
   throw std::logic_error("effect catalogue: a CaseKind without a cohesion bound");

@@ -45,6 +45,10 @@ nlohmann::json builtin_document(CaseKind kind) {
       return nlohmann::json::parse(detail::kBuiltinPelletCompression);
     case CaseKind::rotary_drum:
       return nlohmann::json::parse(detail::kBuiltinRotaryDrum);
+    case CaseKind::mesh_container:
+      throw std::runtime_error(
+          "\"mesh_container\" has no built-in case: give the path of a mesh_container case file (its STL files "
+          "are found relative to it), e.g. examples/mesh_container/heap.json");
   }
   throw std::logic_error("a CaseKind without a built-in case file");
 }

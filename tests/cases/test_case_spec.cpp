@@ -102,7 +102,10 @@ TEST_CASE("Every case kind has one registry row, found by its case-file name, an
   for (std::size_t i = 0; i < table.size(); ++i) {
     CHECK(&case_kind_row(table[i].kind) == &table[i]);
     REQUIRE(find_case_kind(table[i].name) == &table[i]);
-    CHECK(parse_case({{"case", table[i].name}}).kind == table[i].kind);
+    if (table[i].kind == CaseKind::mesh_container)  // no default geometry: the error names its section
+      CHECK(message_of({{"case", table[i].name}}).find("'mesh_container' is missing") == 0);
+    else
+      CHECK(parse_case({{"case", table[i].name}}).kind == table[i].kind);
     for (std::size_t j = 0; j < table.size(); ++j)
       if (j != i) CHECK(std::string(table[i].section) != table[j].section);
   }

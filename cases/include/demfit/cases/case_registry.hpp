@@ -13,7 +13,7 @@
 namespace demfit::cases {
 
 // When a kind produces a curve: always, or only with a case-file option on.
-enum class CurveCondition { always, pellet_unload, drum_image };
+enum class CurveCondition { always, pellet_unload, drum_image, mesh_heap_angle, mesh_discharge_mass, mesh_part_torque };
 
 // A curve of a case kind and when the kind produces it.
 struct CaseCurve {
@@ -34,7 +34,7 @@ const std::vector<CaseKindRow>& case_kind_table();
 const CaseKindRow& case_kind_row(CaseKind kind);
 // nullptr when no kind has this case-file name.
 const CaseKindRow* find_case_kind(std::string_view name);
-// "pellet_compression" or "rotary_drum" (every name, for error messages).
+// "pellet_compression", "rotary_drum" or "mesh_container" (every name, for error messages).
 std::string case_kind_names();
 
 // The curves a run of `spec` returns (its kind's curves whose option is on), names and labels.

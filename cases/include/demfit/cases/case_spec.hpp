@@ -3,7 +3,10 @@
 // impossible values are errors naming the dotted field. Every quantity is SI (m, kg, s, Pa)
 // unless the key names its unit (e.g. "rpm"). to_json() gives the resolved case with every
 // default filled in; parse_case(to_json(spec)) == spec.
+#include <array>
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "demfit/cases/size_distribution.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "demfit/dem_core/stl_mesh.hpp"
 
 namespace demfit::cases {
 
@@ -118,7 +122,63 @@ struct NumericsSpec {
   dem_core::PairLoadOrder pair_load_order = dem_core::PairLoadOrder::own_row_first;
 };
 
-enum class CaseKind { pellet_compression, rotary_drum };
+// docs/mesh-container.md: particles poured into the user's STL geometry, gravity -z. Every
+// length is in metres except the STL files, whose unit each part states.
+enum class MeshMotion { fixed, rotation, translation };
+
+// One STL surface: fixed, or moving from `start_time` on (rotation about an axis at rpm, or
+// translation at a velocity). The file is read at parse time (errors before any output).
+struct MeshPartSpec {
+  std::string name;
+  std::string stl;   // path as written in the case file (relative to the case file's folder)
+  std::string unit;  // length unit of the STL: "m", "cm", "mm", "um" or "in"
+  MeshMotion motion = MeshMotion::fixed;
+  std::array<double, 3> axis_point{};                                // [m], rotation
+  std::array<double, 3> axis_direction{0, 0, 1};                     // rotation, right-handed
+  double rpm = 0.0;                                                  // [rev/min], rotation
+  std::array<double, 3> velocity{};                                  // [m/s], translation
+  double start_time = 0.0;                                           // [s] the motion starts (fixed before)
+  std::shared_ptr<const std::vector<dem_core::Triangle>> triangles;  // [m], resolved at parse time
+  std::uint64_t content_hash = 0;                                    // FNV-1a of the triangles (result keys)
+};
+
+// heap_angle: surface of the resting heap on a pedestal, fitted over a radial window.
+struct HeapAngleSpec {
+  bool enabled = false;
+  std::array<double, 2> center{};   // heap axis (x, y) [m]
+  double base_z = 0.0;              // pedestal top [m]: particles below it are not the heap
+  double r_min = 0.0, r_max = 0.0;  // radial window of the fit [m]
+  long long bins = 8;               // annuli in the window
+  double rest_speed = 0.05;         // particles faster than this [m/s] are not the heap
+};
+
+// discharge_mass: mass of particles whose centre is below plane_z.
+struct DischargeSpec {
+  bool enabled = false;
+  double plane_z = 0.0;           // [m]
+  double orifice_diameter = 0.0;  // [m], optional: Beverloo reference rate in the summary (0 = none)
+};
+
+// moving_part_torque: drive torque of one rotating part about its axis.
+struct PartTorqueSpec {
+  bool enabled = false;
+  std::string mesh;  // name of a rotating part
+};
+
+struct MeshContainerSpec {
+  std::vector<MeshPartSpec> meshes;
+  std::array<double, 3> fill_lower{}, fill_upper{};  // fill box [m]
+  long long particle_count = 500;
+  long long fill_seed = 1;
+  SizeDistributionSpec size_distribution;  // none = particle.radius (with particle.radius_spread)
+  double duration = 1.0;                   // simulated time [s] from the pour on
+  double output_interval = 0.01;           // curve sampling interval [s]
+  HeapAngleSpec heap_angle;
+  DischargeSpec discharge_mass;
+  PartTorqueSpec moving_part_torque;
+};
+
+enum class CaseKind { pellet_compression, rotary_drum, mesh_container };
 
 struct CaseSpec {
   CaseKind kind = CaseKind::pellet_compression;
@@ -139,8 +199,9 @@ struct CaseSpec {
   TimeStepSpec time_step;
   OutputSpec output;
   NumericsSpec numerics;
-  PelletSpec pellet;  // used when kind == pellet_compression
-  DrumSpec drum;      // used when kind == rotary_drum
+  PelletSpec pellet;                 // used when kind == pellet_compression
+  DrumSpec drum;                     // used when kind == rotary_drum
+  MeshContainerSpec mesh_container;  // used when kind == mesh_container
 };
 
 // `base_dir`: folder against which relative file references (size CSV) resolve; empty = cwd.
