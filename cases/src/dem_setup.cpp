@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "demfit/cases/case_registry.hpp"
 #include "demfit/cases/parameter_table.hpp"
 #include "demfit/dem_core/snapshot.hpp"
 
@@ -71,7 +72,8 @@ void check_applicable(const ParameterRow& row, const CaseSpec& base) {
                              " (its parameters: " + law_parameters_text(base.law) + ")");
   if (row.drum_only && base.kind != CaseKind::rotary_drum)
     throw std::runtime_error("parameter '" + name +
-                             "' is a drum fill amount: it does not apply to a pellet_compression case");
+                             "' is a drum fill amount: it does not apply to a " +
+                             case_kind_row(base.kind).name + " case");
   if (base.wall_friction_as_particles && row.home == ParameterHome::wall_contact)
     throw std::runtime_error("parameter '" + name +
                              "': the case's wall friction follows the particles "

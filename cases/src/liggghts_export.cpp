@@ -127,8 +127,11 @@ void write_header(std::ostringstream& out, const CaseSpec& spec, const std::stri
       << comment("give your walls type 2 and use the wall model of this file, e.g.")
       << comment("  fix walls all wall/gran ${demfit_wall_model} mesh n_meshes 1 meshes cad");
   std::string particles = "particles of the case: density " + number(spec.material.density) + " kg/m^3";
-  if (spec.kind == CaseKind::rotary_drum && spec.drum.size_distribution.source != SizeDistributionSpec::Source::none)
+  const auto none = SizeDistributionSpec::Source::none;
+  if (spec.kind == CaseKind::rotary_drum && spec.drum.size_distribution.source != none)
     particles += ", the case's size distribution (drum.size_distribution)";
+  else if (spec.kind == CaseKind::mesh_container && spec.mesh_container.size_distribution.source != none)
+    particles += ", the case's size distribution (mesh_container.size_distribution)";
   else
     particles += ", radius " + number(spec.material.radius) + " m";
   if (spec.kind == CaseKind::rotary_drum && spec.drum.scale_factor != 1.0)
