@@ -325,6 +325,8 @@ json to_key_json(const CaseSpec& s) {
   // The CSV's content (not only its name) decides the fill.
   if (s.kind == CaseKind::rotary_drum && s.drum.size_distribution.source == SizeDistributionSpec::Source::csv)
     j["drum"]["size_distribution"]["content_hash"] = std::to_string(s.drum.size_distribution.content_hash());
+  if (s.kind == CaseKind::rotary_drum && s.drum.wall_mesh.source == DrumWallMeshSpec::Source::stl)
+    j["drum"]["wall_mesh"]["content_hash"] = std::to_string(s.drum.wall_mesh.stl_hash);
   return j;
 }
 
