@@ -143,7 +143,7 @@ std::unique_ptr<identify::Model> diagnosis_model_and_candidates(const identify::
                                                                 const std::filesystem::path& output_dir) {
   if (spec.model_reference == identify::kExternalModelReference && spec.experiments.empty()) {
     if (output_dir.empty())
-      throw std::runtime_error("diagnose: an external model needs an output folder for its runs; give one");
+      throw std::runtime_error("diagnose: an external model needs an output folder for its runs (external_runs); give one (out=...)");
     auto model = identify::make_external_model(spec, output_dir, identify::OutputKind::diagnose);
     candidates = external_candidates(spec);
     return model;
