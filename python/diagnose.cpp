@@ -42,7 +42,7 @@ py::dict run(const std::filesystem::path& study_file, const std::optional<std::s
   const identify::OutputRequest request{identify::OutputKind::diagnose, cases::study_input_files(spec, study_file)};
   if (out) identify::check_output_folder(*out, request);
   std::vector<diagnose::EffectCandidate> candidates;
-  const auto model = cases::diagnosis_model_and_candidates(spec, candidates);
+  const auto model = cases::diagnosis_model_and_candidates(spec, candidates, out.value_or(std::filesystem::path{}));
   if (effects) candidates = diagnose::select_candidates(candidates, *effects);
   diagnose::DiagnoseOptions options = cases::uses_dem(spec) ? diagnose::expensive_model_options()
                                                              : diagnose::DiagnoseOptions{};

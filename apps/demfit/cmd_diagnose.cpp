@@ -60,7 +60,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   const identify::OutputRequest request{identify::OutputKind::diagnose, cases::study_input_files(spec, o.study_file)};
   identify::check_output_folder(out, request);
   std::vector<diagnose::EffectCandidate> candidates;
-  const auto model = cases::diagnosis_model_and_candidates(spec, candidates);
+  const auto model = cases::diagnosis_model_and_candidates(spec, candidates, out);
   const bool dem = cases::uses_dem(spec);
   if (!o.effects.empty()) candidates = diagnose::select_candidates(candidates, o.effects);
   diagnose::DiagnoseOptions options = dem ? diagnose::expensive_model_options() : diagnose::DiagnoseOptions{};
@@ -102,7 +102,9 @@ void register_diagnose(CLI::App& app) {
       "(plasticity, "
       "cohesion, hertz_stiffness, wall_friction, rolling_resistance, polydispersity; one already on in the model is "
       "left "
-      "out); for the \"analytic\" model toe_shift, stiffening, yield_drop. DEM fits use central differences of 2 % of "
+      "out); for the \"analytic\" model toe_shift, stiffening, yield_drop; for an external program the study's "
+      "model.external.candidates (template parameters with off values and ranges, docs/external-model.md; runs in "
+      "<out>/external_runs). DEM fits use central differences of 2 % of "
       "each "
       "range and about 100 evaluations. Targets must use metric \"mse\" (a loading-unloading curve is matched branch "
       "by branch; "

@@ -65,6 +65,21 @@ void add_image_snapshot(imaging::OccupancyAccumulator& image, const dem_core::Si
   image.add_snapshot(x, z, r);
 }
 
+// Walls of the rotation stage, all turning about the z axis at `omega` [rad/s]: the analytic
+// shell and end disks (add_drum), or the one mesh wall of drum.wall_mesh (shell and both caps).
+struct DrumWalls {
+  std::size_t first = 0, count = 0;
+};
+DrumWalls add_rotating_drum(dem_core::Simulation& sim, const CaseSpec& spec, double omega) {
+  const DrumSpec& d = spec.drum;
+  if (!d.wall_mesh.enabled()) return {add_drum(sim, spec, omega), 3};
+  const dem_core::RotatingMotion motion{{0, 0, 0}, {0, 0, 1}, omega};
+  const dem_core::Axis axis{{0, 0, 0}, {0, 0, 1}};
+  dem_core::MeshGeometry geometry;
+  geometry.mesh = drum_wall_mesh(d.wall_mesh, d.diameter, d.length);
+  return {sim.add_wall({geometry, motion, spec.wall, axis, "drum_mesh"}), 1};
+}
+
 struct RotationRun {
   std::vector<double> times, torques;
   SurfaceProfile surface;
@@ -87,7 +102,7 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
     sim.add_particle({fill.positions[i][0], fill.positions[i][1], fill.positions[i][2]}, fill.radii[i]);
   }
   const double omega = spec.drum.rpm * 2.0 * std::numbers::pi / 60.0;
-  const std::size_t shell = add_drum(sim, spec, omega);
+  const DrumWalls walls = add_rotating_drum(sim, spec, omega);
   check_user_time_step(spec, sim);
   RotationRun run;
   run.time_step = sim.time_step();
@@ -118,7 +133,9 @@ RotationRun rotate(const CaseSpec& spec, const Powder& powder, const Fill& fill,
     // Progress at least every 256 steps (the printer throttles by wall time), also when a
     // torque sample spans millions of steps.
     if (options.progress && (++steps_done & 255u) == 0) options.progress("rotate", s.time(), d.duration);
-    torque_sum -= sense * (s.wall_torque(shell) + s.wall_torque(shell + 1) + s.wall_torque(shell + 2));
+    double drum_torque = 0.0;
+    for (std::size_t w = walls.first; w < walls.first + walls.count; ++w) drum_torque += s.wall_torque(w);
+    torque_sum -= sense * drum_torque;
     snapshots.maybe_write(s, s.time());
     while (profiles.size() < surface_times.size() && s.time() >= surface_times[profiles.size()] - 1e-12)
       take_surface(s);
@@ -273,6 +290,14 @@ CaseResult run_rotary_drum(const CaseSpec& fill_spec, const CaseSpec& spec, cons
   double total_mass = 0.0;  // summed per particle: radii differ with a radius spread
   for (double r : fill.radii) total_mass += powder.particle.density * sphere_volume(r);
   sum.emplace_back("total particle mass [g]", fmt("%.3f", total_mass * 1e3));
+  if (spec.drum.wall_mesh.enabled()) {
+    const auto& m = spec.drum.wall_mesh;
+    sum.emplace_back("drum wall", m.source == DrumWallMeshSpec::Source::stl
+                                      ? "mesh " + m.stl + " (" + std::to_string(m.stl_triangles.size()) + " triangles)"
+                                      : "generated mesh, " + std::to_string(m.segments) + " segments, " +
+                                            std::to_string(m.shell_rings) + " shell rings, " +
+                                            std::to_string(m.cap_rings) + " cap rings");
+  }
   sum.emplace_back("fill", generated ? "generated and cached" : "read from cache");
   sum.emplace_back("fill wall time [s]", fmt("%.1f", fill_seconds));
   sum.emplace_back("dynamic angle of repose [deg] (" + std::string(kClusterSurfaceAngleName) + ")",

@@ -78,7 +78,7 @@ void parse_fill_amount(const json& j, DrumSpec& s) {
 DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base_dir) {
   const char* p = "drum";
   std::vector<std::string> special(std::begin(kDrumFillKeys), std::end(kDrumFillKeys));
-  special.insert(special.end(), {"coarse_graining", "size_distribution", "image"});
+  special.insert(special.end(), {"coarse_graining", "size_distribution", "image", "wall_mesh"});
   require_known_keys(j, p, section_keys<DrumSpec>(kDrumFields, special));
   read_section_fields<DrumSpec>(j, p, kDrumFields, s);
   parse_fill_amount(j, s);
@@ -104,6 +104,8 @@ DrumSpec parse_drum(const json& j, DrumSpec s, const std::filesystem::path& base
     s.size_distribution =
         parse_size_distribution(child_object(j, p, "size_distribution"), "drum.size_distribution", base_dir);
   if (j.contains("image")) s.image = parse_drum_image(child_object(j, p, "image"));
+  if (j.contains("wall_mesh"))
+    s.wall_mesh = parse_drum_wall_mesh(child_object(j, p, "wall_mesh"), s.diameter, s.length, base_dir);
   if (s.fill_by == FillBy::fill_volume) {
     const double drum_ml = std::numbers::pi * 0.25 * s.diameter * s.diameter * s.length * 1e6;
     if (s.fill_volume_ml > 0.9 * drum_ml)
@@ -138,6 +140,7 @@ json drum_section_json(const DrumSpec& d) {
   if (d.size_distribution.enabled()) j["size_distribution"] = to_json(d.size_distribution);
   if (d.image.enabled)
     j["image"] = {{"pixels", d.image.pixels}, {"margin", d.image.margin}, {"points", d.image.points}};
+  if (d.wall_mesh.enabled()) j["wall_mesh"] = to_json(d.wall_mesh);
   return j;
 }
 

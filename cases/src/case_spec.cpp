@@ -344,6 +344,9 @@ json to_key_json(const CaseSpec& s) {
       j["mesh_container"]["size_distribution"]["content_hash"] =
           std::to_string(s.mesh_container.size_distribution.content_hash());
   }
+  // So does the user's drum STL (its triangles' hash).
+  if (s.kind == CaseKind::rotary_drum && s.drum.wall_mesh.source == DrumWallMeshSpec::Source::stl)
+    j["drum"]["wall_mesh"]["content_hash"] = std::to_string(s.drum.wall_mesh.stl_hash);
   return j;
 }
 

@@ -12,6 +12,7 @@
 #include "demfit/cases/parameter_table.hpp"
 #include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/identify/experiments.hpp"
+#include "demfit/identify/external_model.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -56,6 +57,31 @@ std::vector<diagnose::EffectCandidate> dem_candidates(const CaseSpec& case_spec,
       std::fprintf(stderr, "demfit: note: effect '%s'%s is not a candidate: %s\n", effect.name.c_str(),
                    experiment.empty() ? "" : (" of experiment '" + experiment + "'").c_str(), reason.c_str());
     }
+  }
+  return out;
+}
+
+// The candidates an external study declares (model.external.candidates), as diagnose candidates.
+// Left out with a note, as for the catalogue: a candidate whose parameter the study varies, or
+// fixes at another value than its off value (the effect is then part of the base model).
+std::vector<diagnose::EffectCandidate> external_candidates(const identify::StudySpec& spec) {
+  const identify::ExternalModelSpec external =
+      identify::parse_external_spec(spec.model_overrides, "study: model.external");
+  std::vector<diagnose::EffectCandidate> out;
+  for (const auto& e : external.candidates) {
+    std::string reason;
+    for (const auto& v : spec.variables)
+      if (v.name == e.parameter) reason = "'" + e.parameter + "' is a study variable";
+    const auto fixed = spec.fixed_parameters.find(e.parameter);
+    if (fixed != spec.fixed_parameters.end() && fixed->second != e.off_value)
+      reason = "the study fixes " + e.parameter + " = " + std::to_string(fixed->second) +
+               " (off: " + std::to_string(e.off_value) + ")";
+    if (!reason.empty()) {
+      std::fprintf(stderr, "demfit: note: effect '%s' is not a candidate: %s\n", e.name.c_str(), reason.c_str());
+      continue;
+    }
+    const std::string unit = external.units.at(e.parameter);
+    out.push_back({e.name, e.description, {{e.parameter, e.lower, e.upper, e.off_value, unit}}, e.curves});
   }
   return out;
 }
@@ -113,7 +139,15 @@ std::unique_ptr<identify::Model> one_model(const std::string& reference, const n
 }  // namespace
 
 std::unique_ptr<identify::Model> diagnosis_model_and_candidates(const identify::StudySpec& spec,
-                                                                std::vector<diagnose::EffectCandidate>& candidates) {
+                                                                std::vector<diagnose::EffectCandidate>& candidates,
+                                                                const std::filesystem::path& output_dir) {
+  if (spec.model_reference == identify::kExternalModelReference && spec.experiments.empty()) {
+    if (output_dir.empty())
+      throw std::runtime_error("diagnose: an external model needs an output folder for its runs (external_runs); give one (out=...)");
+    auto model = identify::make_external_model(spec, output_dir, identify::OutputKind::diagnose);
+    candidates = external_candidates(spec);
+    return model;
+  }
   if (spec.experiments.empty())
     return one_model(spec.model_reference, spec.model_overrides, spec.fixed_parameters, spec, "", candidates);
   std::vector<std::unique_ptr<identify::Model>> models;

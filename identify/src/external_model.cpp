@@ -21,13 +21,14 @@ namespace demfit::identify {
 namespace fs = std::filesystem;
 
 ExternalModel::ExternalModel(ExternalModelSpec spec, std::string template_text, std::vector<std::string> file_contents,
-                             std::string program, fs::path output_dir, ParameterSet fixed)
+                             std::string program, fs::path output_dir, ParameterSet fixed, OutputKind output_kind)
     : spec_(std::move(spec)),
       template_text_(std::move(template_text)),
       file_contents_(std::move(file_contents)),
       program_(std::move(program)),
       output_dir_(std::move(output_dir)),
-      fixed_(std::move(fixed)) {}
+      fixed_(std::move(fixed)),
+      output_kind_(output_kind) {}
 
 std::vector<ParameterDescriptor> ExternalModel::parameters() const {
   std::vector<ParameterDescriptor> out;
@@ -74,7 +75,7 @@ fs::path ExternalModel::fresh_run_folder() const {
   if (!fs::exists(fs::symlink_status(output_dir_, error))) {
     fs::create_directories(output_dir_, error);
     if (error) throw std::runtime_error("cannot create " + quote_path(output_dir_) + ": " + error.message());
-    mark_output_folder(output_dir_, OutputKind::identify, {});
+    mark_output_folder(output_dir_, output_kind_, {});
   }
   const fs::path runs = output_dir_ / kExternalRunsFolder;
   if (::mkdir(runs.c_str(), 0755) != 0 && errno != EEXIST)

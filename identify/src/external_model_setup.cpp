@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -62,11 +63,13 @@ void check_parameters(const ExternalModelSpec& external, const std::string& text
   std::set<std::string> set_by_study;
   for (const auto& v : spec.variables) set_by_study.insert(v.name);
   for (const auto& [name, value] : spec.fixed_parameters) set_by_study.insert(name);
+  std::set<std::string> candidate_parameters;  // at their off values unless the study sets them
+  for (const auto& c : external.candidates) candidate_parameters.insert(c.parameter);
   for (const auto& [name, unit] : external.units) {
     if (!used.count(name))
       throw std::runtime_error(kField + ".parameters." + name + ": the template " + quote_path(external.template_file) +
                                " never uses {{" + name + "}}; remove the parameter or place it in the template");
-    if (!set_by_study.count(name))
+    if (!set_by_study.count(name) && !candidate_parameters.count(name))
       throw std::runtime_error(kField + ".parameters." + name +
                                ": the study neither varies nor fixes it; add it to \"variables\" or to "
                                "model.fixed_parameters");
@@ -105,7 +108,8 @@ nlohmann::json resolved_external_model(const nlohmann::json& external, const fs:
   return ExternalModel(spec, read_template(spec, base_dir), read_files(spec, base_dir), {}, {}, {}).fingerprint();
 }
 
-std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const fs::path& output_dir) {
+std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const fs::path& output_dir,
+                                                   OutputKind output_kind) {
   if (!spec.experiments.empty())
     throw std::runtime_error("study: experiments: an external model is for a single-model study (\"model\" + "
                              "\"targets\"); give one study per external program");
@@ -113,8 +117,14 @@ std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const 
   std::string text = read_template(external, spec.base_dir);
   check_parameters(external, text, spec);
   std::string program = resolve_program(external.command[0], spec.base_dir);
+  ParameterSet fixed = spec.fixed_parameters;
+  for (const auto& c : external.candidates) {
+    const bool varied = std::any_of(spec.variables.begin(), spec.variables.end(),
+                                    [&](const VariableSpec& v) { return v.name == c.parameter; });
+    if (!varied && !fixed.count(c.parameter)) fixed[c.parameter] = c.off_value;  // the base model: effect off
+  }
   return std::make_unique<ExternalModel>(external, std::move(text), read_files(external, spec.base_dir),
-                                         std::move(program), output_dir, spec.fixed_parameters);
+                                         std::move(program), output_dir, std::move(fixed), output_kind);
 }
 
 }  // namespace demfit::identify

@@ -1,5 +1,6 @@
 // The "external" object of a study's model, read strictly (external_model.hpp,
 // docs/external-model.md): every problem is one line naming the field and the fix.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -123,6 +124,73 @@ std::vector<std::string> parse_files(JsonReader& in) {
   return out;
 }
 
+// One "candidates" entry: {"name", "parameter", "off", "range": [lower, upper], optional "unit"
+// (must be the parameter's declared one), "description", "curves" (output names)}.
+ExternalCandidate parse_candidate(const nlohmann::json& json, const std::string& path, const ExternalModelSpec& spec) {
+  JsonReader in(json, path);
+  ExternalCandidate c;
+  c.name = in.text("name");
+  if (!is_parameter_identifier(c.name))
+    in.fail("name", "'" + printable(c.name) + "' is not an effect name; use letters, digits and '_' (e.g. \"cohesion\")");
+  c.parameter = in.text("parameter");
+  const auto declared = spec.units.find(c.parameter);
+  if (declared == spec.units.end())
+    in.fail("parameter", "'" + printable(c.parameter) +
+                             "' is not a parameter of the template; name one declared in model.external.parameters "
+                             "and used as {{name}} in the template");
+  c.off_value = in.number("off");
+  const auto& range = in.raw("range");
+  if (!range.is_array() || range.size() != 2 || !range[0].is_number() || !range[1].is_number())
+    in.fail("range", "expected [lower, upper] in the parameter's unit, e.g. [0, 1e5]");
+  c.lower = range[0].get<double>();
+  c.upper = range[1].get<double>();
+  if (!(std::isfinite(c.lower) && std::isfinite(c.upper) && c.lower < c.upper))
+    in.fail("range", "lower must be below upper, both finite");
+  if (!std::isfinite(c.off_value) || c.off_value < c.lower || c.off_value > c.upper)
+    in.fail("off", "the off value " + json_excerpt(in.raw("off")) + " lies outside the range [" +
+                       json_excerpt(range[0]) + ", " + json_excerpt(range[1]) +
+                       "]; give the value at which the effect vanishes, inside the range");
+  if (in.has("unit") && in.text("unit") != declared->second)
+    in.fail("unit", "'" + printable(in.text("unit")) + "' differs from the unit of parameter '" + c.parameter +
+                        "' in model.external.parameters ('" + declared->second + "'); give that unit or omit it");
+  c.description = in.text_or("description", c.parameter + " from " + json_excerpt(in.raw("off")) + " (off)");
+  check_user_text(in.field("description"), c.description);
+  if (in.has("curves")) {
+    const auto& curves = in.raw("curves");
+    if (!curves.is_array()) in.fail("curves", "expected an array of output curve names, e.g. [\"torque\"]");
+    for (const auto& curve : curves) {
+      const bool known = curve.is_string() && std::any_of(spec.outputs.begin(), spec.outputs.end(), [&](const auto& o) {
+                           return o.curve == curve.get<std::string>();
+                         });
+      if (!known) in.fail("curves", json_excerpt(curve) + " is not a curve of model.external.outputs");
+      c.curves.push_back(curve.get<std::string>());
+    }
+  }
+  in.finish();
+  return c;
+}
+
+std::vector<ExternalCandidate> parse_candidates(JsonReader& in, const ExternalModelSpec& spec) {
+  std::vector<ExternalCandidate> out;
+  if (!in.has("candidates")) return out;
+  const auto& value = in.raw("candidates");
+  if (!value.is_array() || value.size() > kMaxCommandWords)
+    in.fail("candidates", "expected an array of effects, e.g. [{\"name\": \"cohesion\", \"parameter\": \"ced\", "
+                          "\"off\": 0, \"range\": [0, 1e5]}]");
+  std::set<std::string> names, parameters;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const std::string path = in.field("candidates") + "[" + std::to_string(i) + "]";
+    out.push_back(parse_candidate(value[i], path, spec));
+    const JsonReader item(value[i], path);
+    if (!names.insert(out.back().name).second)
+      item.fail("name", "'" + out.back().name + "' names two candidates; give each its own name");
+    if (!parameters.insert(out.back().parameter).second)
+      item.fail("parameter", "'" + out.back().parameter +
+                                 "' is the parameter of an earlier candidate; one candidate per parameter");
+  }
+  return out;
+}
+
 }  // namespace
 
 ExternalModelSpec parse_external_spec(const nlohmann::json& json, const std::string& field) {
@@ -144,6 +212,7 @@ ExternalModelSpec parse_external_spec(const nlohmann::json& json, const std::str
     in.fail("time_limit_s", "must be > 0 and at most 1e7 seconds (the wall time after which a run is killed)");
   spec.outputs = parse_outputs(in);
   spec.files = parse_files(in);
+  spec.candidates = parse_candidates(in, spec);
   in.finish();
   for (const auto& f : spec.files) {
     const std::string name = std::filesystem::path(f).filename().string();
@@ -164,6 +233,19 @@ nlohmann::json to_json(const ExternalModelSpec& spec) {
   nlohmann::json json = {{"command", spec.command},  {"template", spec.template_file},   {"input", spec.input_file},
                          {"parameters", spec.units}, {"time_limit_s", spec.time_limit_s}, {"outputs", outputs}};
   if (!spec.files.empty()) json["files"] = spec.files;  // written only when given
+  if (!spec.candidates.empty()) {  // written only when given: a study without them keeps its fingerprint
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const auto& c : spec.candidates) {
+      nlohmann::json one = {{"name", c.name},
+                            {"parameter", c.parameter},
+                            {"off", c.off_value},
+                            {"range", {c.lower, c.upper}},
+                            {"description", c.description}};
+      if (!c.curves.empty()) one["curves"] = c.curves;
+      candidates.push_back(one);
+    }
+    json["candidates"] = candidates;
+  }
   return json;
 }
 

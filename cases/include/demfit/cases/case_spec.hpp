@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/cases/coarse_graining.hpp"
+#include "demfit/cases/drum_wall_mesh.hpp"
 #include "demfit/cases/size_distribution.hpp"
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/simulation.hpp"
@@ -102,6 +103,7 @@ struct DrumSpec {
   double fill_mass = 0.0;                  // [kg] (fill_by == fill_mass)
   SizeDistributionSpec size_distribution;  // none = monodisperse particle.radius
   DrumImageSpec image;
+  DrumWallMeshSpec wall_mesh;  // none = analytic shell and end disks (drum_wall_mesh.hpp)
 };
 
 struct OutputSpec {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demfit/identify/model.hpp"
+#include "demfit/identify/safe_output.hpp"
 
 namespace demfit::identify {
 
@@ -33,6 +34,19 @@ struct ExternalOutput {
   std::string y_column;
 };
 
+// A candidate effect for `demfit diagnose` (docs/external-model.md "Candidate effects"): one
+// template parameter with the value at which the effect vanishes (`off`, inside [lower, upper]),
+// in the parameter's declared unit. Unless the study varies or fixes the parameter, the base model
+// runs with it at `off`.
+struct ExternalCandidate {
+  std::string name;         // effect name in reports ("cohesion"); unique
+  std::string description;  // one line (default: "<parameter> from <off> (off)")
+  std::string parameter;    // a declared template parameter
+  double off_value = 0.0;
+  double lower = 0.0, upper = 0.0;  // fitting range, lower < upper, finite
+  std::vector<std::string> curves;  // outputs it changes; empty = all
+};
+
 // The "external" object of a study's model, checked for form (parse_external_spec) but not yet
 // against the template file or the study's variables (make_external_model).
 struct ExternalModelSpec {
@@ -45,6 +59,7 @@ struct ExternalModelSpec {
   // Files copied into each run folder under their own names (meshes, data files), relative to
   // the study file.
   std::vector<std::string> files;
+  std::vector<ExternalCandidate> candidates;  // for demfit diagnose; none = none declared
 };
 
 // Reads and checks the "external" object; errors name `field` ("study: model.external") and the fix.
@@ -59,7 +74,8 @@ class ExternalModel final : public Model {
   // study's own files).
   // `file_contents` holds the content of each spec.files entry, in its order.
   ExternalModel(ExternalModelSpec spec, std::string template_text, std::vector<std::string> file_contents,
-                std::string program, std::filesystem::path output_dir, ParameterSet fixed);
+                std::string program, std::filesystem::path output_dir, ParameterSet fixed,
+                OutputKind output_kind = OutputKind::identify);
   std::vector<ParameterDescriptor> parameters() const override;
   std::vector<CurveDescriptor> curves() const override;
   ParameterSet default_parameters() const override { return fixed_; }
@@ -78,14 +94,18 @@ class ExternalModel final : public Model {
   std::string program_;
   std::filesystem::path output_dir_;
   ParameterSet fixed_;
+  OutputKind output_kind_ = OutputKind::identify;  // marker of an output folder the first run creates
   mutable std::atomic<long> next_run_{1};
 };
 
 // The study's external model: reads the template (relative to spec.base_dir), refuses a
 // placeholder that is not a declared parameter, a declared parameter the template never uses or
-// the study neither varies nor fixes, a variable that is not declared, and a command[0] that is
-// not an executable program. Run folders go to output_dir/external_runs.
-std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const std::filesystem::path& output_dir);
+// the study neither varies nor fixes (a candidate's parameter runs at its off value unless the
+// study sets it), a variable that is not declared, and a command[0] that is not an executable
+// program. Run folders go to output_dir/external_runs; `output_kind` marks output_dir when the
+// first run creates it (identify, or diagnose for demfit diagnose).
+std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const std::filesystem::path& output_dir,
+                                                   OutputKind output_kind = OutputKind::identify);
 
 // What --resume compares for an external model ("external" object of a study's model, read
 // against base_dir): the model's fingerprint(), from the template file as it is now.
