@@ -1,0 +1,144 @@
+// A synthetic Hertz–Mindlin drum twin with a hidden SJKR cohesion: the GranuDrum case of
+// cases/granudrum_mcc.json made small (SCG s = 4, 16,000 original particles = 250 simulated ones,
+// 30 rpm, dt 6e-5 s = 0.3 Rayleigh times of the smallest particle, 1.5 s of rotation with the image
+// surface averaged over the last 1.0 s in 41 snapshots; one evaluation ~1.3 s of one core). Measurements: its
+// free_surface_image with cohesion on, plus 3 % Gaussian noise (cases::add_relative_noise, as `demfit simulate
+// --noise`). Base variable: sliding friction; the candidates are the ones `demfit diagnose` gives this study
+// (cases::diagnosis_model_and_candidates: cohesion, wall friction released from the tie,
+// restitution released; rolling resistance is part of the base model at the case's 0.2). The
+// workflow is not told which candidate is hidden, nor whether one is. The figures of these tests,
+// and the simulate runs that chose the hidden level, are in
+// docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "dem_hidden_effects.hpp"
+#include "demfit/cases/diagnosis_model.hpp"
+
+using namespace demfit;
+using namespace demfit::diagnose;
+using namespace demfit::diagnose::hidden_effect_test;
+
+namespace {
+
+// Hidden SJKR cohesion energy density [J/m^3]. Measured with `demfit simulate` on the twin
+// (image surface, RMS on the data abscissae): 1.5e4 moves the surface by 4.1 mm and steepens it
+// from 52.3 to 56.4 degrees, against 1.4 mm between two runs 2e-7 apart in sliding friction (with
+// and without cohesion) and 1.04 mm data noise; sliding friction at the top of its range (0.9)
+// stays 2.4 mm away. Between 1.5e4 and 2e4 an s = 4 bed switches to rising as a block (456
+// particles: 2e4 moves the surface by 22 mm).
+constexpr double kHiddenCohesion = 1.5e4;
+
+nlohmann::json twin_overrides() {
+  return {{"time_step", {{"value", 6.0e-5}}},
+          {"drum",
+           {{"scale_factor", 4.0},
+            {"particle_count", 16000},
+            {"rpm", 30.0},
+            {"duration", 1.5},
+            {"surface_window", 1.0},
+            {"surface_snapshots", 41}}}};
+}
+
+// Truth: sliding friction 0.5 (the case's value; the fit starts at 0.4), rolling friction 0.2 and
+// restitution 0.3 as the case, walls tied to the particles' friction, cohesion `cohesion` (0: none).
+Scenario twin_scenario(double cohesion, std::uint64_t seed) {
+  Scenario s{"Hertz drum twin, hidden cohesion " + std::to_string(static_cast<int>(cohesion)) + " J/m3, seed " +
+                 std::to_string(seed),
+             "cases/granudrum_mcc.json",
+             twin_overrides(),
+             {{"frics", 0.1, 0.9, 0.4, false, 1.0}},
+             {{"frics", 0.5}},
+             {"free_surface_image"},
+             seed,
+             0.03};  // sigma 1.04 mm on a profile of +-35 mm
+  if (cohesion > 0.0) s.truth["cohesion_energy_density"] = cohesion;
+  s.noise_given = true;
+  return s;
+}
+
+// The candidates `demfit diagnose` would give a study of this scenario.
+std::vector<EffectCandidate> twin_candidates(const Scenario& s) {
+  identify::StudySpec study;
+  study.model_reference = s.case_name;
+  study.model_overrides = s.overrides;
+  study.variables = s.variables;
+  study.base_dir = DEMFIT_SOURCE_DIR;
+  std::vector<EffectCandidate> candidates;
+  cases::diagnosis_model_and_candidates(study, candidates);
+  return candidates;
+}
+
+// The machine's load while a seed ran (the wall times are shared-machine figures).
+void print_load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string line;
+  if (std::getline(in, line)) std::printf("  load average (1, 5, 15 min): %s\n", line.c_str());
+}
+
+// Seeds 41-45, or the range "first,last" in DEMFIT_HERTZ_TWIN_SEEDS (to spread the seeds over
+// processes; each seed's diagnosis is independent of the others).
+std::pair<std::uint64_t, std::uint64_t> twin_seeds() {
+  std::uint64_t first = 41, last = 45;
+  if (const char* text = std::getenv("DEMFIT_HERTZ_TWIN_SEEDS")) {
+    unsigned long long a = 0, b = 0;
+    if (std::sscanf(text, "%llu,%llu", &a, &b) == 2 && a <= b) first = a, last = b;
+  }
+  return {first, last};
+}
+
+bool names_cohesion_or_ties_it(const Diagnosis& d) {
+  bool tied = false;
+  for (int i : d.tied) tied = tied || d.refits[i].effect == "cohesion";
+  const bool named = d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "cohesion";
+  return named || (d.verdict == Verdict::ambiguous && tied);
+}
+
+}  // namespace
+
+// The target: the right name or "ambiguous" with cohesion among the tied, on every one of 5
+// noise seeds, never another effect. 94-138 evaluations (~2-3 CPU-minutes) per seed; hidden ([.]),
+// run it by name. Measured 2026-12-06 (docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md)
+// this twin does NOT reach it: no seed names any effect, but seeds 41 and 43 end "unexplained"
+// (cohesion best, its delta BIC above the threshold, k_c re-fitted to ~8.8e3 with the residual
+// still structural) and 42, 44, 45 "no missing effect" (sliding friction 0.75-0.83 takes the
+// cohesion's place within the scatter of the s = 4 bed). The test states the requirement and fails.
+TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin is named or called ambiguous on every seed",
+          "[.][slow][drum]") {
+  const auto [first, last] = twin_seeds();
+  for (std::uint64_t seed = first; seed <= last; ++seed) {
+    const Scenario s = twin_scenario(kHiddenCohesion, seed);
+    const std::vector<EffectCandidate> candidates = twin_candidates(s);
+    REQUIRE(std::any_of(candidates.begin(), candidates.end(), [](const auto& c) { return c.name == "cohesion"; }));
+    const Outcome o = run(s, candidates);
+    print_load_average();
+    const Diagnosis& d = o.diagnosis;
+    INFO("seed " << seed << ": " << d.summary);
+    CHECK(d.base_analysis.structural);  // sliding friction alone leaves the cohesion in the residual
+    CHECK(names_cohesion_or_ties_it(d));
+    if (d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "cohesion")
+      CHECK(d.refits[d.chosen].fit.parameters.at("cohesion_energy_density") ==
+            Approx(kHiddenCohesion).margin(0.3 * kHiddenCohesion));
+  }
+}
+
+// The control: the same twin without cohesion must not name cohesion (any other verdict is
+// reported by the test's output, not judged here). Measured: "no missing effect", cohesion's
+// re-fit delta BIC 16.6 against a threshold of 37.6; 181 evaluations.
+TEST_CASE("Without cohesion the s = 4 Hertz-Mindlin drum twin does not name cohesion", "[.][slow][drum]") {
+  const Scenario s = twin_scenario(0.0, 46);
+  const Outcome o = run(s, twin_candidates(s));
+  print_load_average();
+  const Diagnosis& d = o.diagnosis;
+  INFO(d.summary);
+  CHECK_FALSE((d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "cohesion"));
+}
