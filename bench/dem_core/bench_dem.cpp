@@ -79,9 +79,9 @@ int usage() {
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
       "                 [--lattice-order] [--no-liggghts (drum: time demfit only)]\n"
       "                 [--demfit-mesh (drum: demfit on LIGGGHTS' STL drum, one rotating mesh wall)]\n"
-      "                 [--physics-time SECONDS (0.5)] [--cohesion J_PER_M3 (60000, the sjkr variant)]\n"
+      "                 [--physics-time SECONDS (0.5)] [--cohesion J_PER_M3 (35000, the sjkr variant)]\n"
       "                 [--physics-variants cdt,sjkr,sjkr2,epsd2 (cdt,sjkr,epsd2)]\n"
-      "                 (physics runs only with --only physics: ~15 min; its --spin-up default is 0.5 s)\n"
+      "                 (physics runs only with --only physics: 10-45 min; its --spin-up default is 0.5 s)\n"
       "                 [--malloc-defaults (glibc's own thresholds instead of retain_freed_memory)]\n");
   return EXIT_FAILURE;
 }
