@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -73,7 +74,8 @@ void cases(const dem_core::Simulation& bed) {
 
 int usage() {
   std::printf(
-      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases|mesh|physics] [--steps N (drum, 10000)]\n"
+      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases|mesh|physics]\n"
+      "                 [--steps N (drum, 10000)]\n"
       "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
       "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
@@ -130,8 +132,7 @@ int main(int argc, char** argv) {
       physics.variants.clear();
       std::stringstream list(argv[++a]);
       for (std::string v; std::getline(list, v, ',');) physics.variants.push_back(v);
-    }
-    else if (arg == "--scaling-work" && has_value)
+    } else if (arg == "--scaling-work" && has_value)
       scaling.work = std::stod(argv[++a]);
     else if (arg == "--no-liggghts")
       drum.liggghts = false;
@@ -156,7 +157,14 @@ int main(int argc, char** argv) {
   std::printf("bench_dem (dem_core)%s, %s\n", quick ? " --quick" : "", dem_core::openmp_waiting_description().c_str());
   if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
   if (wanted("mesh")) bench::compare_meshed_drum(mesh_drum);
-  if (only == "physics") bench::check_physics_against_liggghts(physics);  // long: on request only
+  if (only == "physics") {  // long: on request only
+    try {
+      bench::check_physics_against_liggghts(physics);
+    } catch (const std::exception& e) {  // e.g. an unknown --physics-variants name, before any run
+      std::fprintf(stderr, "bench_dem: %s\n", e.what());
+      return EXIT_FAILURE;
+    }
+  }
   if (wanted("scaling")) bench::print_scaling_table(scaling);
   if (wanted("roundoff")) bench::print_reordering_roundoff(quick);
   if (wanted("throughput")) {

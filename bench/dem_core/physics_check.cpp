@@ -89,7 +89,8 @@ Summary summarise(const PhysicsRun& run, double run_time, double bed_mass, doubl
   }
   std::vector<double> angles;
   for (const BedSnapshot& b : run.snapshots)
-    if (b.time > 0.5 * run_time + 1e-9) angles.push_back(cases::slab_surface_angle_degrees(b.positions, b.radii, depth));
+    if (b.time > 0.5 * run_time + 1e-9)
+      angles.push_back(cases::slab_surface_angle_degrees(b.positions, b.radii, depth));
   for (double a : angles) s.angle += a;
   s.angles = static_cast<int>(angles.size());
   if (s.angles > 0) s.angle /= s.angles;
@@ -180,8 +181,9 @@ void check_physics_against_liggghts(const PhysicsCheckOptions& o) {
     std::printf("%s\n", row);
     rows.emplace_back(row);
   }
-  std::printf("summary (second-half means; slab angle over the second half's snapshots; targets: torque within 5 %%,\n"
-              "slab angle within 2 deg of LIGGGHTS):\n");
+  std::printf(
+      "summary (second-half means; slab angle over the second half's snapshots; targets: torque within 5 %%,\n"
+      "slab angle within 2 deg of LIGGGHTS):\n");
   for (const std::string& r : rows) std::printf("%s\n", r.c_str());
   print_differences(o.cohesion_energy_density);
 }

@@ -20,16 +20,16 @@
 namespace demfit::bench {
 
 struct PhysicsCheckOptions {
-  double settle_time = 0.3;                ///< [s] drum at rest (demfit)
-  double spin_up_time = 0.5;               ///< [s] turning with cdt before the restart (demfit)
-  double run_time = 0.5;                   ///< [s] of each variant after the restart, both codes
-  double window = 0.05;                    ///< [s] averaging window of the torque and snapshots
+  double settle_time = 0.3;   ///< [s] drum at rest (demfit)
+  double spin_up_time = 0.5;  ///< [s] turning with cdt before the restart (demfit)
+  double run_time = 0.5;      ///< [s] of each variant after the restart, both codes
+  double window = 0.05;       ///< [s] averaging window of the torque and snapshots
   /// k_c of the sjkr variant [J/m^3]: raises the slab angle ~7 deg over cdt; 60e3 consolidates the
   /// bed into a block that slips on the shell (in both codes).
   double cohesion_energy_density = 35e3;
   std::vector<std::string> variants{"cdt", "sjkr", "epsd2"};
-  std::filesystem::path dir;               ///< LIGGGHTS files
-  DrumMeshShape mesh{};                    ///< LIGGGHTS' drum mesh
+  std::filesystem::path dir;  ///< LIGGGHTS files
+  DrumMeshShape mesh{};       ///< LIGGGHTS' drum mesh
 };
 
 void check_physics_against_liggghts(const PhysicsCheckOptions& options);

@@ -108,7 +108,8 @@ void write_physics_input(const std::filesystem::path& dir, const HertzDrumSpec& 
     in << "fix m6 all property/global cohesionEnergyDensity peratomtypepair 1 " << v.cohesion_energy_density << '\n';
   in << "pair_style gran model " << model << "\npair_coeff * *\n"
      << "timestep " << spec.time_step << '\n'
-     << "fix gravi all gravity " << spec.gravity << " vector 0.0 -1.0 0.0\n"
+     << "fix gravi all gravity " << spec.gravity
+     << " vector 0.0 -1.0 0.0\n"
      // The mesh (atom type 1) gets the particles' material and the same cohesion as the pairs.
      << "fix cad all mesh/surface/stress file drum.stl type 1 reference_point 0. 0. 0.\n"
      << "fix walls all wall/gran model " << model << " mesh n_meshes 1 meshes cad\n"
