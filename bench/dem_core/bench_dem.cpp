@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@
 #include "demfit/dem_core/openmp_waiting.hpp"
 #include "drum_comparison.hpp"
 #include "mesh_drum.hpp"
+#include "physics_check.hpp"
 #include "roundoff.hpp"
 #include "scaling.hpp"
 
@@ -72,11 +74,16 @@ void cases(const dem_core::Simulation& bed) {
 
 int usage() {
   std::printf(
-      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases|mesh] [--steps N (drum, 10000)]\n"
+      "usage: bench_dem [--quick] [--only drum|scaling|roundoff|throughput|cases|mesh|physics]\n"
+      "                 [--steps N (drum, 10000)]\n"
       "                 [--repeats N (3)] [--spin-up SECONDS (1.0)] [--dir PATH (LIGGGHTS files)]\n"
       "                 [--mesh SEGMENTS SHELL_RINGS CAP_RINGS (360 1 2)]\n"
       "                 [--scaling-work PARTICLE_STEPS (1e7)] [--scaling-sizes N,N,.. (1000,10000,100000,1000000)]\n"
       "                 [--lattice-order] [--no-liggghts (drum: time demfit only)]\n"
+      "                 [--demfit-mesh (drum: demfit on LIGGGHTS' STL drum, one rotating mesh wall)]\n"
+      "                 [--physics-time SECONDS (0.5)] [--cohesion J_PER_M3 (35000, the sjkr variant)]\n"
+      "                 [--physics-variants cdt,sjkr,sjkr2,epsd2 (cdt,sjkr,epsd2)]\n"
+      "                 (physics runs only with --only physics: 10-45 min; its --spin-up default is 0.5 s)\n"
       "                 [--malloc-defaults (glibc's own thresholds instead of retain_freed_memory)]\n");
   return EXIT_FAILURE;
 }
@@ -98,6 +105,8 @@ int main(int argc, char** argv) {
       retained ? "kept in the process (retain_freed_memory, as the CLI)" : "returned to the kernel (glibc defaults)";
   bench::ScalingOptions scaling;
   bench::MeshDrumOptions mesh_drum;
+  bench::PhysicsCheckOptions physics;
+  physics.dir = std::filesystem::temp_directory_path() / ("demfit_bench_physics_" + std::to_string(getpid()));
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     const bool has_value = a + 1 < argc;
@@ -110,10 +119,20 @@ int main(int argc, char** argv) {
     else if (arg == "--repeats" && has_value)
       drum.repeats = scaling.repeats = std::stoi(argv[++a]);
     else if (arg == "--spin-up" && has_value)
-      drum.spin_up_time = mesh_drum.spin_up_time = std::stod(argv[++a]);
+      drum.spin_up_time = mesh_drum.spin_up_time = physics.spin_up_time = std::stod(argv[++a]);
     else if (arg == "--dir" && has_value)
-      drum.dir = argv[++a];
-    else if (arg == "--scaling-work" && has_value)
+      drum.dir = physics.dir = argv[++a];
+    else if (arg == "--demfit-mesh")
+      drum.demfit_mesh = true;
+    else if (arg == "--physics-time" && has_value)
+      physics.run_time = std::stod(argv[++a]);
+    else if (arg == "--cohesion" && has_value)
+      physics.cohesion_energy_density = std::stod(argv[++a]);
+    else if (arg == "--physics-variants" && has_value) {
+      physics.variants.clear();
+      std::stringstream list(argv[++a]);
+      for (std::string v; std::getline(list, v, ',');) physics.variants.push_back(v);
+    } else if (arg == "--scaling-work" && has_value)
       scaling.work = std::stod(argv[++a]);
     else if (arg == "--no-liggghts")
       drum.liggghts = false;
@@ -129,6 +148,7 @@ int main(int argc, char** argv) {
       drum.mesh.segments = std::stoi(argv[++a]);
       drum.mesh.shell_rings = std::stoi(argv[++a]);
       drum.mesh.cap_rings = std::stoi(argv[++a]);
+      physics.mesh = drum.mesh;
     } else
       return usage();
   }
@@ -137,6 +157,14 @@ int main(int argc, char** argv) {
   std::printf("bench_dem (dem_core)%s, %s\n", quick ? " --quick" : "", dem_core::openmp_waiting_description().c_str());
   if (wanted("drum")) bench::compare_drum_with_liggghts(drum);
   if (wanted("mesh")) bench::compare_meshed_drum(mesh_drum);
+  if (only == "physics") {  // long: on request only
+    try {
+      bench::check_physics_against_liggghts(physics);
+    } catch (const std::exception& e) {  // e.g. an unknown --physics-variants name, before any run
+      std::fprintf(stderr, "bench_dem: %s\n", e.what());
+      return EXIT_FAILURE;
+    }
+  }
   if (wanted("scaling")) bench::print_scaling_table(scaling);
   if (wanted("roundoff")) bench::print_reordering_roundoff(quick);
   if (wanted("throughput")) {

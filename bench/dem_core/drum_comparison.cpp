@@ -4,12 +4,17 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "bench_timing.hpp"
 #include "hertz_drum.hpp"
+#include "demfit/dem_core/stl_mesh.hpp"
+#include "drum_mesh.hpp"
 #include "liggghts_drum.hpp"
+#include "mesh_drum.hpp"
 
 namespace demfit::bench {
 namespace {
@@ -45,7 +50,13 @@ double crossing_share_at_middle(const dem_core::NeighborList& list) {
   return static_cast<double>(crossing) / static_cast<double>(second.size());
 }
 
-double time_demfit(const Simulation& prepared, int threads, long steps, Simulation* keep, const Variant& v = {}) {
+/// What the timed runs' drum walls are ("analytic walls" or "mesh N triangles"), printed beside every rate.
+struct Walls {
+  std::string demfit, liggghts;
+};
+
+double time_demfit(const Simulation& prepared, const Walls& walls, int threads, long steps, Simulation* keep,
+                   const Variant& v = {}) {
   Simulation sim = prepared;
   sim.set_threads(threads);
   sim.set_reorder_particles(v.reorder);
@@ -57,33 +68,43 @@ double time_demfit(const Simulation& prepared, int threads, long steps, Simulati
   const double rate = static_cast<double>(sim.particle_count()) * static_cast<double>(steps) / seconds;
   std::printf(
       "  demfit   %d thread%s %8.3f s  %6.3g M particle-steps/s  (%zu list builds, %.1f %% of pairs cross the "
-      "middle, %llu page faults)%s  [%s]\n",
+      "middle, %llu page faults)%s  {%s}  [%s]\n",
       threads, threads > 1 ? "s" : " ", seconds, rate / 1e6, sim.neighbor_list().build_count() - builds,
       100.0 * crossing_share_at_middle(sim.neighbor_list()), static_cast<unsigned long long>(new_pages), v.label,
-      load_average().c_str());
+      walls.demfit.c_str(), load_average().c_str());
   if (keep != nullptr) *keep = std::move(sim);
   return rate;
 }
 
-double time_liggghts(const std::filesystem::path& dir, int px, int py, int pz, LiggghtsRun* keep) {
+double time_liggghts(const std::filesystem::path& dir, const Walls& walls, int px, int py, int pz, LiggghtsRun* keep) {
   const std::string name = "run_" + std::to_string(px) + std::to_string(py) + std::to_string(pz);
   const LiggghtsRun run = run_liggghts_drum(dir, px, py, pz, name);
   if (!run.ok) {
     std::printf("  LIGGGHTS %d %d %d: %s\n", px, py, pz, run.note.c_str());
     return 0.0;
   }
-  std::printf("  LIGGGHTS %ld rank%s %d %d %d %8.3f s  %6.3g M particle-steps/s  (%ld list builds, %ld atoms)  [%s]\n",
-              run.procs, run.procs > 1 ? "s" : " ", px, py, pz, run.loop_seconds, run.particle_steps_per_second() / 1e6,
-              run.neighbour_builds, run.atoms, load_average().c_str());
+  std::printf(
+      "  LIGGGHTS %ld rank%s %d %d %d %8.3f s  %6.3g M particle-steps/s  (%ld list builds, %ld atoms)  {%s}  [%s]\n",
+      run.procs, run.procs > 1 ? "s" : " ", px, py, pz, run.loop_seconds, run.particle_steps_per_second() / 1e6,
+      run.neighbour_builds, run.atoms, walls.liggghts.c_str(), load_average().c_str());
   if (keep != nullptr) *keep = run;
   return run.particle_steps_per_second();
 }
 
-void print_differences(std::size_t triangles) {
+void print_differences(std::size_t triangles, bool demfit_mesh) {
+  if (demfit_mesh)
+    std::printf(
+        "What still differs (and which way it biases the ratio demfit/LIGGGHTS):\n"
+        "  - drum wall: both the same triangle mesh (%zu triangles), demfit restarted on it without contact\n"
+        "    histories as LIGGGHTS is. No wall bias.\n",
+        triangles);
+  else
+    std::printf(
+        "What still differs (and which way it biases the ratio demfit/LIGGGHTS):\n"
+        "  - drum wall: LIGGGHTS a triangle mesh (%zu triangles: shell + both end caps, facets within ~1 um of the\n"
+        "    cylinder), demfit an analytic cylinder and two disks. Mesh contact search costs more: favours demfit.\n",
+        triangles);
   std::printf(
-      "What still differs (and which way it biases the ratio demfit/LIGGGHTS):\n"
-      "  - drum wall: LIGGGHTS a triangle mesh (%zu triangles: shell + both end caps, facets within ~1 um of the\n"
-      "    cylinder), demfit an analytic cylinder and two disks. Mesh contact search costs more: favours demfit.\n"
       "  - rolling friction: both constant directional torque (LIGGGHTS `rolling_friction cdt`, chosen over\n"
       "    epsd2 because demfit's model is a constant torque mu_r |F_n| R*); demfit caps the torque at what stops\n"
       "    the relative rotation in one step, cdt does not. Same work per contact: no bias expected.\n"
@@ -99,8 +120,7 @@ void print_differences(std::size_t triangles) {
       "  - parallelism: demfit OpenMP threads (bounded spin, then sleep: the waiting line above) vs LIGGGHTS MPI\n"
       "    ranks (unbound,\n"
       "    mpi_yield_when_idle 1, best of the splits 2 1 1 and 1 2 1, with ghost-atom exchange). Inherent\n"
-      "    to the codes; on a loaded machine MPI ranks suffer more from a preempted partner.\n",
-      triangles);
+      "    to the codes; on a loaded machine MPI ranks suffer more from a preempted partner.\n");
 }
 
 }  // namespace
@@ -126,27 +146,45 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
     std::printf(o.liggghts ? "LIGGGHTS not on PATH: timing demfit only (install: scripts/setup --bench)\n"
                            : "--no-liggghts: timing demfit only\n");
   }
+  // demfit's walls: the analytic drum, or (--demfit-mesh) the same STL as LIGGGHTS' read back
+  // through dem_core::parse_stl as one rotating mesh wall, the particles restarted without
+  // contact histories as LIGGGHTS restarts them.
+  Walls walls{"analytic walls", "mesh " + std::to_string(triangles) + " triangles"};
+  Simulation demfit_bed = bed;
+  if (o.demfit_mesh) {
+    std::ostringstream stl;
+    const std::size_t meshed = write_drum_stl(stl, {spec.drum_radius, spec.depth, bed.wall(0).rotation_angle,
+                                                    o.mesh.segments, o.mesh.shell_rings, o.mesh.cap_rings});
+    const auto mesh =
+        std::make_shared<const dem_core::TriangleMesh>(dem_core::parse_stl(stl.str(), {1.0}, "drum mesh"));
+    demfit_bed = restart_drum(bed, spec, drum_restart_settings(spec, 2), mesh);
+    walls.demfit = "mesh " + std::to_string(meshed) + " triangles";
+    std::printf("demfit on the STL drum: %zu triangles, %zu contact cells, same shape and angle as LIGGGHTS'\n", meshed,
+                mesh->cell_count());
+  }
   Series d1, d2, l1, l2, l1_bound, d1_stored, d2_stored, d1_own, d2_own;
   Simulation demfit_end;
   LiggghtsRun liggghts_end;
   for (int r = 0; r < o.repeats; ++r) {
     std::printf("repeat %d of %d:\n", r + 1, o.repeats);
-    d1.rates.push_back(time_demfit(bed, 1, o.steps, &demfit_end));
+    d1.rates.push_back(time_demfit(demfit_bed, walls, 1, o.steps, &demfit_end));
     if (have_liggghts) {
-      l1.rates.push_back(time_liggghts(o.dir, 1, 1, 1, &liggghts_end));
+      l1.rates.push_back(time_liggghts(o.dir, walls, 1, 1, 1, &liggghts_end));
       l1_bound.rates.push_back(liggghts_end.particle_steps_per_second_without_fixes());
     }
-    d2.rates.push_back(time_demfit(bed, 2, o.steps, nullptr));
-    d1_stored.rates.push_back(time_demfit(bed, 1, o.steps, nullptr, kStoredOrder));
-    d2_stored.rates.push_back(time_demfit(bed, 2, o.steps, nullptr, kStoredOrder));
-    d1_own.rates.push_back(time_demfit(bed, 1, o.steps, nullptr, kOwnRowFirst));
-    d2_own.rates.push_back(time_demfit(bed, 2, o.steps, nullptr, kOwnRowFirst));
+    d2.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr));
+    d1_stored.rates.push_back(time_demfit(demfit_bed, walls, 1, o.steps, nullptr, kStoredOrder));
+    d2_stored.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr, kStoredOrder));
+    d1_own.rates.push_back(time_demfit(demfit_bed, walls, 1, o.steps, nullptr, kOwnRowFirst));
+    d2_own.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr, kOwnRowFirst));
     if (have_liggghts) {
-      const double a = time_liggghts(o.dir, 2, 1, 1, nullptr), b = time_liggghts(o.dir, 1, 2, 1, nullptr);
+      const double a = time_liggghts(o.dir, walls, 2, 1, 1, nullptr);
+      const double b = time_liggghts(o.dir, walls, 1, 2, 1, nullptr);
       l2.rates.push_back(std::max(a, b));
     }
   }
-  std::printf("medians of %d (M particle-steps/s)  [%s]\n", o.repeats, load_average().c_str());
+  std::printf("medians of %d (M particle-steps/s; demfit {%s}, LIGGGHTS {%s})  [%s]\n", o.repeats, walls.demfit.c_str(),
+              walls.liggghts.c_str(), load_average().c_str());
   std::printf("  1 core : demfit %.3g  LIGGGHTS %.3g  ratio %.2f   [target >= 2.0]\n", d1.median_rate() / 1e6,
               l1.median_rate() / 1e6, have_liggghts ? d1.median_rate() / l1.median_rate() : 0.0);
   std::printf("  2 cores: demfit %.3g  LIGGGHTS best split %.3g  ratio %.2f   [target >= 2.0]\n",
@@ -175,7 +213,7 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
       "x,y demfit %.4g %.4g m, LIGGGHTS %.4g %.4g m\n",
       o.steps, translational_kinetic_energy(demfit_end), liggghts_end.kinetic_energy, c.x, c.y, liggghts_end.centre_x,
       liggghts_end.centre_y);
-  print_differences(triangles);
+  print_differences(triangles, o.demfit_mesh);
   std::printf(
       "These figures were measured on a shared machine unless the load averages above are ~0: re-run on a "
       "quiet machine for the record.\n");

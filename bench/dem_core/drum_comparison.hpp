@@ -17,6 +17,7 @@ struct DrumComparisonOptions {
   std::filesystem::path dir;     ///< where the LIGGGHTS files go
   DrumMeshShape mesh{};          ///< LIGGGHTS' drum mesh
   bool liggghts = true;          ///< false: time demfit only (e.g. comparing OpenMP waiting policies)
+  bool demfit_mesh = false;      ///< demfit on the same STL drum as LIGGGHTS (one rotating mesh wall)
   std::string memory_retention;  ///< how freed memory is handled (printed)
 };
 

@@ -23,12 +23,10 @@ struct RunFigures {
   std::size_t list_builds = 0;
 };
 
-/// The same particles (positions, velocities, spins; contact histories start afresh) in a new
-/// drum turning at the spec's speed, with either the analytic walls or one mesh wall.
-Simulation restart(const Simulation& from, const HertzDrumSpec& spec, const std::shared_ptr<const TriangleMesh>& mesh,
-                   int threads) {
-  SimulationSettings settings = hertz_settings(spec, threads);
-  settings.gravity = {0.0, -spec.gravity, 0.0};
+}  // namespace
+
+Simulation restart_drum(const Simulation& from, const HertzDrumSpec& spec, const SimulationSettings& settings,
+                        const std::shared_ptr<const TriangleMesh>& mesh) {
   Simulation sim(settings);
   add_hertz_material(sim, spec);
   const RotatingMotion turning{{0, 0, 0}, {0, 0, 1}, 2.0 * std::numbers::pi * spec.revolutions_per_second};
@@ -43,6 +41,19 @@ Simulation restart(const Simulation& from, const HertzDrumSpec& spec, const std:
   for (std::size_t i = 0; i < from.particle_count(); ++i)
     sim.add_particle(from.positions()[i], from.radii()[i], 0, from.velocities()[i], from.angular_velocities()[i]);
   return sim;
+}
+
+SimulationSettings drum_restart_settings(const HertzDrumSpec& spec, int threads) {
+  SimulationSettings settings = hertz_settings(spec, threads);
+  settings.gravity = {0.0, -spec.gravity, 0.0};
+  return settings;
+}
+
+namespace {
+
+Simulation restart(const Simulation& from, const HertzDrumSpec& spec, const std::shared_ptr<const TriangleMesh>& mesh,
+                   int threads) {
+  return restart_drum(from, spec, drum_restart_settings(spec, threads), mesh);
 }
 
 RunFigures measure(Simulation& sim, std::uint64_t steps) {

@@ -4,6 +4,11 @@
 // twice: with the analytic walls and with one rotating mesh wall (drum_mesh.hpp's STL geometry,
 // read back through dem_core::parse_stl). Prints mean drive torque, bed tilt and cost of both.
 #include <cstdint>
+#include <memory>
+
+#include "demfit/dem_core/simulation.hpp"
+#include "demfit/dem_core/triangle_mesh.hpp"
+#include "hertz_drum.hpp"
 
 namespace demfit::bench {
 
@@ -16,5 +21,15 @@ struct MeshDrumOptions {
 };
 
 void compare_meshed_drum(const MeshDrumOptions& options);
+
+/// The spec's settings for a restarted drum (its law, step, skin, gravity along -y).
+dem_core::SimulationSettings drum_restart_settings(const HertzDrumSpec& spec, int threads);
+
+/// The same particles (positions, velocities, spins; contact histories start afresh, as
+/// LIGGGHTS' read_data gives them) in a new drum turning at the spec's speed under `settings`,
+/// with the analytic walls (cylinder shell, two disks) or, when `mesh` is set, one mesh wall.
+dem_core::Simulation restart_drum(const dem_core::Simulation& from, const HertzDrumSpec& spec,
+                                  const dem_core::SimulationSettings& settings,
+                                  const std::shared_ptr<const dem_core::TriangleMesh>& mesh);
 
 }  // namespace demfit::bench

@@ -10,11 +10,14 @@
 //          A sphere on a wall is the limit R_j -> infinity: a^2 = 2 R delta - delta^2. A cylinder
 //          wall is taken as its tangent plane at the contact point (a drum is many particle radii
 //          across, so its curvature changes a^2 by a relative R/R_drum, below the model's accuracy).
-//   sjkr2: A = 2 pi delta (2 R*), the formula of the LIGGGHTS sjkr2 page (walls: R* = R). For
-//          small overlaps the sjkr lens gives 2 pi R* delta, so sjkr2 pulls twice as hard.
-// The Coulomb limit and the rolling torque use the REPULSIVE (Hertz) part of the normal force
-// (LIGGGHTS' tangential_reduce = on): cohesion presses the surfaces together and so does not
-// cancel the friction a contact can carry.
+//   sjkr2: A = 2 pi delta (2 R*), the formula of the LIGGGHTS sjkr2 page (walls: R* = R, the wall
+//          convention of LIGGGHTS' Hertz law). For small overlaps the sjkr lens gives 2 pi R* delta,
+//          so sjkr2 pulls twice as hard. LIGGGHTS 3.8's code (cohesion_model_sjkr2.h) takes
+//          2 pi R delta on a wall, half of this: demfit's sjkr2 wall cohesion is twice LIGGGHTS'.
+// The Coulomb limit and the rolling torque use the REPULSIVE (Hertz) part of the normal force, as
+// LIGGGHTS does by default (its tangential_reduce = off; `on` would subtract the cohesion from the
+// force the friction limit sees): cohesion presses the surfaces together and so does not cancel
+// the friction a contact can carry.
 #include <cmath>
 #include <numbers>
 
