@@ -36,7 +36,7 @@ struct HertzNormal {
     double contact_radius;  ///< a = sqrt(R* delta) [m]
     double energy;          ///< 8/15 E* sqrt(R*) delta^{5/2} [J]
   };
-  Result evaluate(const ContactGeometry& g) const {
+  [[gnu::always_inline]] Result evaluate(const ContactGeometry& g) const {
     const double e_star = 1.0 / g.normal_compliance;
     const double a = std::sqrt(g.effective_radius * g.overlap);
     const double elastic = (4.0 / 3.0) * e_star * a * g.overlap;
@@ -104,7 +104,7 @@ struct HertzLaw {
     return false;
   }
 
-  ContactForce force(const ContactGeometry& contact, History& history, double dt) const {
+  [[gnu::always_inline]] ContactForce force(const ContactGeometry& contact, History& history, double dt) const {
     ContactGeometry g = contact;
     g.normal_compliance += body_normal_compliance;
     g.shear_compliance += body_shear_compliance;

@@ -18,8 +18,9 @@ struct CoulombTangentialSpring {
 
   /// stiffness k_t [N/m], damping c_t [N s/m], normal_force |F_n| [N]; `displacement` is the
   /// contact history's xi_t [m], updated. Returns the force on i.
-  Vec3 evaluate(const ContactGeometry& g, double stiffness, double damping, double normal_force, Vec3& displacement,
-                double dt, double& elastic_energy) const {
+  /// Always inlined into the contact loops (per contact per step; see pair_geometry).
+  [[gnu::always_inline]] Vec3 evaluate(const ContactGeometry& g, double stiffness, double damping, double normal_force,
+                                       Vec3& displacement, double dt, double& elastic_energy) const {
     if (static_friction <= 0.0 && dynamic_friction <= 0.0) {
       displacement = {};
       return {};
@@ -59,7 +60,7 @@ struct CoulombTangentialSpring {
 struct ConstantTorqueRolling {
   double coefficient = 0.0;  ///< FRICR (pairs) or wall FRICD (walls) [-]
 
-  Vec3 evaluate(const ContactGeometry& g, double normal_force, double dt) const {
+  [[gnu::always_inline]] Vec3 evaluate(const ContactGeometry& g, double normal_force, double dt) const {
     if (coefficient <= 0.0) return {};
     const Vec3& w = g.relative_angular_velocity;
     const double w_length = norm(w);
