@@ -15,7 +15,7 @@ std::string load_average();
 /// Minor page faults of this process so far (getrusage): fresh pages the kernel handed over.
 std::uint64_t minor_page_faults();
 /// Microseconds per fresh page on this host: 280 KiB mapped, touched and unmapped 500 times (the
-/// size of a list's partner array on the issue-16 drum).
+/// size of a list's partner array on the Hertz benchmark drum).
 double fresh_page_microseconds();
 /// Wall-clock seconds of sim.run_steps(steps).
 double wall_seconds_for_steps(dem_core::Simulation& sim, std::uint64_t steps);

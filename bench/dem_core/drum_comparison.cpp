@@ -1,4 +1,4 @@
-// The issue-16 comparison. Every figure printed here is measured in this run.
+// The kernel comparison against LIGGGHTS. Every figure printed here is measured in this run.
 #include "drum_comparison.hpp"
 
 #include <algorithm>

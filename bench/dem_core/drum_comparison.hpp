@@ -1,5 +1,5 @@
 #pragma once
-// demfit vs LIGGGHTS on the issue-16 drum from the same settled, flowing bed: particle-steps/s of
+// demfit vs LIGGGHTS on the Hertz benchmark drum from the same settled, flowing bed: particle-steps/s of
 // each code on 1 core (1 thread vs 1 rank) and 2 cores (2 threads vs the best 2-rank split),
 // median of `repeats` interleaved repeats, each printed with the load average.
 #include <filesystem>

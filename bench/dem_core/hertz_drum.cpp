@@ -1,4 +1,4 @@
-// The issue-16 drum built with the public dem_core API.
+// The Hertz benchmark drum built with the public dem_core API.
 #include "hertz_drum.hpp"
 
 #include <numbers>

@@ -1,4 +1,4 @@
-// LIGGGHTS input for the issue-16 drum, written from demfit's state, and its run.
+// LIGGGHTS input for the Hertz benchmark drum, written from demfit's state, and its run.
 #include "liggghts_drum.hpp"
 
 #include <unistd.h>
@@ -41,7 +41,7 @@ void write_data_file(const std::filesystem::path& file, const HertzDrumSpec& spe
 void write_input(const std::filesystem::path& file, const HertzDrumSpec& spec, long steps) {
   std::ofstream in(file);
   in.precision(17);
-  in << "# issue-16 drum: same bed, contact law and step as demfit's (bench/dem_core/hertz_drum.hpp)\n"
+  in << "# Hertz benchmark drum: same bed, contact law and step as demfit's (bench/dem_core/hertz_drum.hpp)\n"
      << "variable px index 1\nvariable py index 1\nvariable pz index 1\n"
      << "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n"
      << "communicate single vel yes\nunits si\nprocessors ${px} ${py} ${pz}\nread_data bed.data\n"
