@@ -27,7 +27,7 @@ run_seconds() {
   DEMFIT_CACHE_DIR="$work/cache" "$demfit" simulate "$case_file" --threads 1 --out "$work/out" "${options[@]}" \
     >"$work/log" 2>&1 || { cat "$work/log" >&2; exit 1; }
   end=$(date +%s.%N)
-  echo "$(echo "$end - $start" | bc -l) $(awk '/fill wall time/ {print $NF}' "$work/out/summary.txt")"
+  echo "$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}') $(awk '/fill wall time/ {print $NF}' "$work/out/summary.txt")"
 }
 median() { printf '%s\n' "$@" | sort -g | awk '{v[NR]=$1} END {print (NR % 2) ? v[(NR+1)/2] : (v[NR/2] + v[NR/2+1]) / 2}'; }
 echo "fill reuse: $case_file ${options[*]}, 1 thread, $repeats repeats; load $(load)"
@@ -41,4 +41,5 @@ for ((i = 1; i <= repeats; ++i)); do
 done
 mc=$(median "${cold[@]}") mf=$(median "${fill[@]}") mw=$(median "${warm[@]}")
 printf 'median: cold cache %.2f s of which the fill %.2f s (%.1f %%); cached fill %.2f s (%.1f %% of a cold run saved)  [load %s]\n' \
-  "$mc" "$mf" "$(echo "100 * $mf / $mc" | bc -l)" "$mw" "$(echo "100 * ($mc - $mw) / $mc" | bc -l)" "$(load)"
+  "$mc" "$mf" "$(awk -v f="$mf" -v c="$mc" 'BEGIN {print 100 * f / c}')" "$mw" \
+  "$(awk -v w="$mw" -v c="$mc" 'BEGIN {print 100 * (c - w) / c}')" "$(load)"
