@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     else if (arg == "--steps" && has_value)
       drum.steps = mesh_drum.steps = std::stoul(argv[++a]);
     else if (arg == "--repeats" && has_value)
-      drum.repeats = scaling.repeats = std::stoi(argv[++a]);
+      drum.repeats = scaling.repeats = mesh_drum.repeats = std::stoi(argv[++a]);
     else if (arg == "--spin-up" && has_value)
       drum.spin_up_time = mesh_drum.spin_up_time = physics.spin_up_time = std::stod(argv[++a]);
     else if (arg == "--dir" && has_value)
@@ -149,6 +149,8 @@ int main(int argc, char** argv) {
       drum.mesh.shell_rings = std::stoi(argv[++a]);
       drum.mesh.cap_rings = std::stoi(argv[++a]);
       physics.mesh = drum.mesh;
+      mesh_drum.segments = drum.mesh.segments, mesh_drum.shell_rings = drum.mesh.shell_rings;
+      mesh_drum.cap_rings = drum.mesh.cap_rings;
     } else
       return usage();
   }

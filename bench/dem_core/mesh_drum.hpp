@@ -16,8 +16,9 @@ struct MeshDrumOptions {
   double settle_time = 0.15;   ///< [s] at rest, analytic walls
   double spin_up_time = 0.1;   ///< [s] turning, analytic walls (bench_dem --spin-up)
   std::uint64_t steps = 2000;  ///< measured steps of each run, after the same restart (bench_dem --steps)
-  int segments = 360, shell_rings = 4, cap_rings = 20;
+  int segments = 360, shell_rings = 4, cap_rings = 20;  ///< bench_dem --mesh
   int threads = 1;
+  int repeats = 3;  ///< analytic and meshed runs alternate; the median cost ratio is printed (--repeats)
 };
 
 void compare_meshed_drum(const MeshDrumOptions& options);

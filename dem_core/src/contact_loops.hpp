@@ -38,6 +38,8 @@ struct WallSide {
   Vec3* rolling_torque;  // on the particle
   double* energy;
   std::uint8_t* touching;
+  const std::uint32_t* triangle_rows;  // mesh walls: candidate triangles of each slot (WallSlots)
+  const std::uint32_t* triangles;
 };
 
 /// The step: gravity [m/s^2], dt [s] (0 = no history increment), closing half kick [s] (0 =
@@ -222,7 +224,9 @@ std::uint32_t mesh_slot_contacts(std::size_t i, std::uint32_t first, std::uint32
                                  const StepInputs& step) {
   WallProximity found[8];
   const int slots = static_cast<int>(end - first);
-  const int n = mesh_wall_contacts(mesh, p.position[i], p.radius[i], found, slots);
+  const std::span<const std::uint32_t> candidates(walls.triangles + walls.triangle_rows[first],
+                                                  walls.triangles + walls.triangle_rows[first + 1]);
+  const int n = mesh_wall_contacts(mesh, p.position[i], p.radius[i], candidates, found, slots);
   int contact_of[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  // per slot
   for (int k = 0; k < n; ++k) {
     int best = -1;

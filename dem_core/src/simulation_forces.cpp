@@ -121,7 +121,9 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
                             slots.contact_point.data(),
                             slots.rolling_torque.data(),
                             slots.energy.data(),
-                            slots.touching.data()};
+                            slots.touching.data(),
+                            slots.triangle_rows.data(),
+                            slots.triangles.data()};
   const StepInputs step{settings_.gravity, dt, closing_kick, c.rotation_enabled(), settings_.threads};
   switch (settings_.pair_load_order) {
     case PairLoadOrder::own_row_first: {

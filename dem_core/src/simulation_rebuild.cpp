@@ -42,21 +42,78 @@ void Simulation::rebuild_pair_arrays(NeighborList&& old, const std::vector<std::
   pair_torque_second_.assign(pairs, Vec3{});
 }
 
+namespace {
+
+/// Particle–wall candidate flags, and for mesh walls the triangles within R + margin of each
+/// candidate particle: per contiguous particle range (one per thread, in particle order) one
+/// list, particle by particle, walls ascending, so that their concatenation is in slot order.
+struct WallCandidates {
+  std::vector<std::uint8_t> flag;                     // per (particle, wall)
+  std::vector<std::uint32_t> triangle_count;          // per (particle, wall); meshes only
+  std::vector<std::vector<std::uint32_t>> triangles;  // per particle range
+};
+
+WallCandidates flag_wall_candidates(const ParticleState& p, const std::vector<Wall>& walls,
+                                    const std::vector<std::uint8_t>& always_checked, double margin, int threads) {
+  const std::size_t n = p.size(), w_count = walls.size();
+  WallCandidates c;
+  c.flag.assign(n * w_count, 0);
+  c.triangle_count.assign(n * w_count, 0);
+  const int ranges = std::max(1, threads);
+  c.triangles.resize(static_cast<std::size_t>(ranges));
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+  for (int r = 0; r < ranges; ++r) {
+    std::vector<std::uint32_t>& listed = c.triangles[static_cast<std::size_t>(r)];
+    const std::size_t begin = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranges);
+    const std::size_t end = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(ranges);
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t w = 0; w < w_count; ++w) {
+        const std::size_t k = i * w_count + w;
+        if (const auto* mesh = std::get_if<MeshGeometry>(&walls[w].geometry)) {
+          const std::size_t before = listed.size();
+          mesh_wall_candidates(*mesh, p.position[i], p.radius[i] + margin, listed);
+          c.triangle_count[k] = static_cast<std::uint32_t>(listed.size() - before);
+          c.flag[k] = always_checked[w] || c.triangle_count[k] > 0;
+        } else {
+          c.flag[k] = always_checked[w] || wall_may_touch(walls[w].geometry, p.position[i], p.radius[i], margin);
+        }
+      }
+  }
+  return c;
+}
+
+/// The mesh walls' candidate triangles in CSR over the slots (all on a group's first slot).
+void list_slot_triangles(const WallCandidates& c, const std::vector<std::uint32_t>& slots_of, WallSlots& s) {
+  const std::size_t walls = slots_of.size(), n = s.rows.size() - 1;
+  s.triangle_rows.assign(s.size() + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t slot = s.rows[i];
+    for (std::size_t w = 0; w < walls; ++w) {
+      if (!c.flag[i * walls + w]) continue;
+      s.triangle_rows[slot + 1] = c.triangle_count[i * walls + w];
+      slot += slots_of[w];
+    }
+  }
+  for (std::size_t k = 0; k < s.size(); ++k) s.triangle_rows[k + 1] += s.triangle_rows[k];
+  s.triangles.clear();
+  s.triangles.reserve(s.triangle_rows.back());
+  for (const std::vector<std::uint32_t>& listed : c.triangles) s.triangles.insert(s.triangles.end(), listed.begin(), listed.end());
+}
+
+}  // namespace
+
 void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
   const std::size_t n = particles_.size(), walls = walls_.size();
-  const double margin = skin();
   // Candidate flags per (particle, wall), in parallel; then the CSR rows in a fixed order.
-  std::vector<std::uint8_t> flag(n * walls);
+  const WallCandidates candidates = flag_wall_candidates(particles_, walls_, wall_always_checked_, skin(), settings_.threads);
+  const std::vector<std::uint8_t>& flag = candidates.flag;
   std::vector<std::uint32_t> slots_of(walls);  // a mesh wall has several contact slots per particle
-  for (std::size_t w = 0; w < walls; ++w) slots_of[w] = static_cast<std::uint32_t>(wall_contact_slots(walls_[w].geometry));
-  const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
-  for (std::int64_t ii = 0; ii < count; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    for (std::size_t w = 0; w < walls; ++w)
-      flag[i * walls + w] = wall_always_checked_[w] ||
-                            wall_may_touch(walls_[w].geometry, particles_.position[i], particles_.radius[i], margin);
+  bool any_mesh = false;
+  for (std::size_t w = 0; w < walls; ++w) {
+    slots_of[w] = static_cast<std::uint32_t>(wall_contact_slots(walls_[w].geometry));
+    any_mesh = any_mesh || std::holds_alternative<MeshGeometry>(walls_[w].geometry);
   }
+  const auto count = static_cast<std::int64_t>(n);
   WallSlots old;
   std::swap(old, wall_slots_);
   WallSlots& s = wall_slots_;
@@ -80,6 +137,7 @@ void Simulation::find_wall_candidates(const std::vector<std::uint32_t>& order) {
     for (std::size_t w = 0; w < walls; ++w)
       for (std::uint32_t k = 0; flag[i * walls + w] && k < slots_of[w]; ++k) s.wall[slot++] = static_cast<std::uint32_t>(w);
   }
+  if (any_mesh) list_slot_triangles(candidates, slots_of, s);
   // Contact state of walls that stay candidates is carried over (contact_history.hpp).
   std::visit([&](auto& state) { carry_wall_histories(old, s, order, state.wall_history, settings_.threads); },
              contact_state_);

@@ -193,11 +193,19 @@ bool holds(const std::array<std::uint32_t, 3>& corners, std::uint32_t id) {
 
 int TriangleMesh::contacts(const Vec3& center, double radius, MeshContact* out, int capacity) const {
   thread_local std::vector<std::uint32_t> near;
-  thread_local std::vector<Candidate> found;
   triangles_near(center, radius, near);
+  return contacts(center, radius, near, out, capacity);
+}
+
+int TriangleMesh::contacts(const Vec3& center, double radius, std::span<const std::uint32_t> candidates,
+                           MeshContact* out, int capacity) const {
+  thread_local std::vector<Candidate> found;
   found.clear();
-  for (const std::uint32_t t : near) {
+  for (const std::uint32_t t : candidates) {
     const auto& k = corner_[t];
+    // A triangle is no closer than its plane: a plane at r or beyond rules it out (one dot product).
+    const double plane_distance = dot(center - vertex_[k[0]], normal_[t]);
+    if (plane_distance * plane_distance >= radius * radius) continue;
     Candidate c = closest_point(center, vertex_[k[0]], vertex_[k[1]], vertex_[k[2]], k[0], k[1], k[2], normal_[t]);
     if (c.feature != Feature::face) {
       const Vec3 to_surface = c.point - center;
@@ -240,6 +248,16 @@ int TriangleMesh::contacts(const Vec3& center, double radius, MeshContact* out, 
     out[count++] = {kept[i].normal, radius - kept[i].distance, kept[i].triangle};
   }
   return count;
+}
+
+void TriangleMesh::triangles_within(const Vec3& center, double reach, std::vector<std::uint32_t>& found) const {
+  thread_local std::vector<std::uint32_t> near;
+  triangles_near(center, reach, near);
+  for (const std::uint32_t t : near) {
+    const auto& k = corner_[t];
+    const Candidate c = closest_point(center, vertex_[k[0]], vertex_[k[1]], vertex_[k[2]], k[0], k[1], k[2], normal_[t]);
+    if (norm2(c.point - center) < reach * reach) found.push_back(t);
+  }
 }
 
 bool TriangleMesh::any_within(const Vec3& center, double distance) const {

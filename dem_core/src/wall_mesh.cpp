@@ -46,6 +46,19 @@ int mesh_wall_contacts(const MeshGeometry& g, const Vec3& center, double radius,
   return n;
 }
 
+int mesh_wall_contacts(const MeshGeometry& g, const Vec3& center, double radius,
+                       std::span<const std::uint32_t> candidates, WallProximity* out, int capacity) {
+  MeshContact found[kMostMeshContacts];
+  const int n = g.mesh->contacts(mesh_frame_point(g, center), radius, candidates, found,
+                                 std::min(capacity, kMostMeshContacts));
+  for (int k = 0; k < n; ++k) out[k] = {true, world_direction(g, found[k].normal), found[k].overlap};
+  return n;
+}
+
+void mesh_wall_candidates(const MeshGeometry& g, const Vec3& center, double reach, std::vector<std::uint32_t>& found) {
+  g.mesh->triangles_within(mesh_frame_point(g, center), reach, found);
+}
+
 double wall_sweep_radius(const Wall& wall) {
   const auto* g = std::get_if<MeshGeometry>(&wall.geometry);
   const auto* m = std::get_if<RotatingMotion>(&wall.motion);

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "demfit/dem_core/drum_mesh.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "mesh_shapes.hpp"
 
@@ -346,4 +347,48 @@ TEST_CASE("A sphere pressed into a face next to a convex edge or corner feels on
       REQUIRE(meshed.wall_force(0) == analytic.wall_force(0));
     }
   }
+}
+
+TEST_CASE("A sphere's contacts from its candidate triangles equal those found through the mesh's cells",
+          "[dem_core][mesh]") {
+  // The candidate list of a slot is built at one centre with reach r + margin and used at centres
+  // up to `margin` away: the contacts must be those of the whole mesh, to the bit.
+  const TriangleMesh mesh(drum_mesh_triangles({0.05, 0.02, 0.3, 90, 2, 3}));
+  const double radius = 1.5e-3, margin = 0.4e-3;
+  std::uint64_t state = 12345;
+  auto uniform = [&state] {  // splitmix64 -> [0, 1)
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  int with_contacts = 0, several = 0;
+  std::vector<std::uint32_t> candidates;
+  for (int k = 0; k < 4000; ++k) {
+    // Centres near the shell, the caps and the rim where they meet.
+    const double angle = 2.0 * std::numbers::pi * uniform();
+    const double rho = 0.05 - 2.0 * radius * uniform();
+    const double z = uniform() < 0.5 ? 0.02 * uniform() : (uniform() < 0.5 ? 2.0 * radius * uniform()
+                                                                              : 0.02 - 2.0 * radius * uniform());
+    const Vec3 built{rho * std::cos(angle), rho * std::sin(angle), z};
+    const Vec3 step{uniform() - 0.5, uniform() - 0.5, uniform() - 0.5};
+    const Vec3 now = built + (margin * 0.999 / std::sqrt(norm2(step))) * step;  // moved just under margin
+    candidates.clear();
+    mesh.triangles_within(built, radius + margin, candidates);
+    MeshContact from_cells[8], from_list[8];
+    const int n_cells = mesh.contacts(now, radius, from_cells, 8);
+    const int n_list = mesh.contacts(now, radius, candidates, from_list, 8);
+    REQUIRE(n_list == n_cells);
+    for (int c = 0; c < n_cells; ++c) {
+      REQUIRE(from_list[c].triangle == from_cells[c].triangle);
+      REQUIRE(from_list[c].overlap == from_cells[c].overlap);
+      REQUIRE(from_list[c].normal.x == from_cells[c].normal.x);
+      REQUIRE(from_list[c].normal.y == from_cells[c].normal.y);
+      REQUIRE(from_list[c].normal.z == from_cells[c].normal.z);
+    }
+    with_contacts += n_cells > 0;
+    several += n_cells > 1;
+  }
+  CHECK(with_contacts > 1000);  // the sample reaches the surface, its edges and the rim
+  CHECK(several > 20);
 }

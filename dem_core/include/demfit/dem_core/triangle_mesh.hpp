@@ -35,6 +35,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "demfit/dem_core/stl_mesh.hpp"
@@ -65,6 +66,15 @@ class TriangleMesh {
   /// Contacts of the sphere (centre [m] in the mesh frame, radius [m]) after the rule above,
   /// deepest first, at most `capacity` (the shallowest are dropped); returns how many.
   int contacts(const Vec3& center, double radius, MeshContact* out, int capacity) const;
+  /// The same contacts, testing only `candidates` instead of the cells: the result is identical
+  /// whenever `candidates` holds every triangle closer than `radius` to `center` (the rule above
+  /// reads only triangles closer than r, and the contacts are ordered by depth, then index).
+  int contacts(const Vec3& center, double radius, std::span<const std::uint32_t> candidates, MeshContact* out,
+               int capacity) const;
+  /// Triangles closer than `reach` [m] to `center` (mesh frame), each once, appended to `found`
+  /// in a fixed order: a particle's candidate list for contacts(..., candidates, ...). It stays
+  /// complete while the sphere moves less than reach - r relative to the mesh.
+  void triangles_within(const Vec3& center, double reach, std::vector<std::uint32_t>& found) const;
   /// True when some triangle lies closer than `distance` [m] to `center`.
   [[nodiscard]] bool any_within(const Vec3& center, double distance) const;
 

@@ -4,8 +4,10 @@
 // force and the torque that the particles exert on them.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "demfit/dem_core/parameters.hpp"
 #include "demfit/dem_core/triangle_mesh.hpp"
@@ -125,6 +127,13 @@ bool wall_distances_rigid(const Wall& wall);
 /// Contacts of a sphere with a mesh wall (world frame), deepest first, at most `capacity`.
 int mesh_wall_contacts(const MeshGeometry& geometry, const Vec3& center, double radius, WallProximity* out,
                        int capacity);
+/// The same contacts, testing only the candidate triangles listed for the particle at the last
+/// slot build (mesh_wall_candidates), which hold every triangle it can touch until the next one.
+int mesh_wall_contacts(const MeshGeometry& geometry, const Vec3& center, double radius,
+                       std::span<const std::uint32_t> candidates, WallProximity* out, int capacity);
+/// Appends to `found` the mesh wall's triangles closer than `reach` [m] to the point (world frame).
+void mesh_wall_candidates(const MeshGeometry& geometry, const Vec3& center, double reach,
+                          std::vector<std::uint32_t>& found);
 /// For a rotating mesh wall: the largest distance [m] of its vertices from the rotation axis
 /// (its surface moves by at most that times the angle turned); 0 for every other wall.
 double wall_sweep_radius(const Wall& wall);
