@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -86,37 +87,62 @@ inline std::string detail_scatter(const TargetScatter& s, bool whitened) {
   return text;
 }
 
+inline Outcome diagnose_and_report(const std::string& label, const identify::StudySpec& study, const identify::Model& model,
+                            const std::vector<EffectCandidate>& candidates, std::vector<double> sigma,
+                            bool noise_given);
+
+// `study` with the scenario's variables, each measured curve of the model run at the truth (its
+// defaults, then the scenario's truth) plus seeded noise as a target; the noise levels into `sigma`.
+inline void add_synthetic_targets(identify::StudySpec& study, const identify::Model& model,
+                                  const identify::ParameterSet& truth_values, const std::vector<std::string>& names,
+                                  double noise, std::uint64_t seed, std::vector<double>& sigma) {
+  identify::ParameterSet truth = model.default_parameters();
+  for (const auto& [name, value] : truth_values) truth[name] = value;
+  const identify::CurveSet curves = model.evaluate(truth, {});
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    identify::TargetSpec target;
+    target.name = target.curve = names[k];
+    target.data = curves.at(names[k]);
+    double scale = 0.0;
+    for (double y : target.data.y) scale = std::max(scale, std::abs(y));
+    target.data.y = cases::add_relative_noise(target.data.y, noise, seed + k);
+    sigma.push_back(noise * scale);
+    study.targets.push_back(target);
+  }
+}
+
 inline Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
   use_test_cache();
   const auto model = cases::make_model(s.case_name, s.overrides, DEMFIT_SOURCE_DIR);
-  identify::ParameterSet truth = model->default_parameters();
-  for (const auto& [name, value] : s.truth) truth[name] = value;
-  const identify::CurveSet curves = model->evaluate(truth, {});
   identify::StudySpec study;
   study.name = s.label;
   study.model_reference = s.case_name;
   study.base_dir = DEMFIT_SOURCE_DIR;  // a case file named by path resolves against the source tree
   study.model_overrides = s.overrides;
   study.variables = s.variables;
+  std::vector<double> sigma;
+  add_synthetic_targets(study, *model, s.truth, s.curves, s.noise, s.seed, sigma);
+  return diagnose_and_report(s.label, study, *model, candidates, sigma, s.noise_given);
+}
+
+// The diagnosis of `study` (its targets made by add_synthetic_targets, true noise levels `sigma`)
+// and the figures of the closing note; `noise_given`: diagnose with the true noise level (single-
+// target studies only) instead of estimating it.
+inline Outcome diagnose_and_report(const std::string& label, const identify::StudySpec& study,
+                                   const identify::Model& model, const std::vector<EffectCandidate>& candidates,
+                                   std::vector<double> sigma, bool noise_given) {
+  use_test_cache();
   Outcome out;
-  for (std::size_t k = 0; k < s.curves.size(); ++k) {
-    identify::TargetSpec target;
-    target.name = target.curve = s.curves[k];
-    target.data = curves.at(s.curves[k]);
-    double scale = 0.0;
-    for (double y : target.data.y) scale = std::max(scale, std::abs(y));
-    target.data.y = cases::add_relative_noise(target.data.y, s.noise, s.seed + k);
-    out.sigma.push_back(s.noise * scale);
-    study.targets.push_back(target);
-  }
+  out.sigma = std::move(sigma);
   DiagnoseOptions options = expensive_model_options();
   options.fit.jobs = 2;
-  if (s.noise_given) options.noise_sigma = out.sigma.front();  // single-target scenarios only
+  if (const char* jobs = std::getenv("DEMFIT_DIAGNOSE_JOBS")) options.fit.jobs = std::atoi(jobs);
+  if (noise_given) options.noise_sigma = out.sigma.front();
   if (const char* starts = std::getenv("DEMFIT_DIAGNOSE_REFIT_STARTS")) options.refit_starts = std::atoi(starts);
-  out.diagnosis = run_diagnosis(study, *model, candidates, options);
+  out.diagnosis = run_diagnosis(study, model, candidates, options);
   // The figures of the closing note.
   const Diagnosis& d = out.diagnosis;
-  std::printf("\n[%s] verdict: %s%s\n", s.label.c_str(), verdict_text(d.verdict),
+  std::printf("\n[%s] verdict: %s%s\n", label.c_str(), verdict_text(d.verdict),
               d.chosen >= 0 ? (" -> " + d.refits[d.chosen].effect).c_str() : "");
   for (std::size_t t = 0; t < d.targets.size(); ++t)
     std::printf("  target %s: noise sigma true %.4g, used %.4g%s\n", d.targets[t].name.c_str(), out.sigma[t],
