@@ -76,8 +76,14 @@ class StudyLoop {
   bool budget_reached();
   MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
                   std::vector<std::string>& kinds) const;
+  // The iteration's record; `predicted_at_previous` = the new surrogate's objective at
+  // `previous_optimum` (NaN when there is none or no surrogate could be fitted).
   IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
-                           std::uint64_t seed) const;
+                           std::uint64_t seed, const VectorXd& previous_optimum, double& predicted_at_previous) const;
+  // The objective of the latest decision run at `unit` (NaN when none succeeded there).
+  double objective_at(const VectorXd& unit) const;
+  // The stop text when stopping.verification_tolerance decided or was missed (empty otherwise).
+  std::string stable_answer_note(bool converged) const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
   // The study's answer by its final_selection method.
@@ -122,6 +128,9 @@ class StudyLoop {
   std::string first_error_;
   std::string budget_stop_;                   // the budget that ended the loop, empty when none did
   std::optional<StopKind> budget_stop_kind_;  // its kind
+  // The last verification's relative gap to its prediction (stable-answer rule; NaN before one).
+  double verification_gap_ = std::numeric_limits<double>::quiet_NaN();
+  double gap_floor_ = std::numeric_limits<double>::min();  // 1e-6 of iteration 0's best objective
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

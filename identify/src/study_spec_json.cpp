@@ -92,6 +92,7 @@ nlohmann::json to_json(const StudySpec& spec) {
                       {"objective_tolerance", spec.objective_tolerance}};
   if (spec.max_runs > 0) json["stopping"]["max_runs"] = spec.max_runs;  // written only when set
   if (spec.max_wall_seconds > 0.0) json["stopping"]["max_wall_seconds"] = spec.max_wall_seconds;
+  if (spec.verification_tolerance > 0.0) json["stopping"]["verification_tolerance"] = spec.verification_tolerance;
   if (spec.interval_check.max_steps > 0)  // written only when on: older resolved studies stay unchanged
     json["interval_check"] = {{"max_steps", spec.interval_check.max_steps},
                               {"replicates", spec.interval_check.replicates},
