@@ -141,3 +141,13 @@ TEST_CASE("The run budget ends a study under the stable-answer rule before it is
   CHECK(result.stop_reason.rfind("run budget reached", 0) == 0);
   CHECK(result.runs <= cap + 1);  // the verification comes after the cap, as always
 }
+
+TEST_CASE("stopping.verification_tolerance is kept in the resolved study and refused outside 0 to 10, naming it",
+          "[identify][stopping]") {
+  const auto spec = stable_study(5);
+  CHECK(parse_study(to_json(spec), ".").verification_tolerance == kTolerance);
+  CHECK_FALSE(to_json(parse_study(test::analytic_study(), ".")).at("stopping").contains("verification_tolerance"));
+  auto json = test::analytic_study();
+  json["stopping"]["verification_tolerance"] = -0.1;
+  CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("verification_tolerance") && Catch::Contains("must be 0"));
+}
