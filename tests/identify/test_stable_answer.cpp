@@ -151,3 +151,11 @@ TEST_CASE("stopping.verification_tolerance is kept in the resolved study and ref
   json["stopping"]["verification_tolerance"] = -0.1;
   CHECK_THROWS_WITH(parse_study(json, "."), Catch::Contains("verification_tolerance") && Catch::Contains("must be 0"));
 }
+
+TEST_CASE("A study store keeps its verification tolerance but may be resumed with more iterations",
+          "[identify][stopping]") {
+  const auto plain = parse_study(test::analytic_study(0.01, 5), ".");
+  CHECK(study_hash(stable_study(5)) == study_hash(stable_study(20)));
+  CHECK(study_hash(stable_study(5)) != study_hash(plain));
+  CHECK(study_hash(plain) == study_hash(parse_study(test::analytic_study(0.01, 20), ".")));
+}
