@@ -239,7 +239,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
   if (budget_stop_kind_) stopped = with_budget_stop(stopped, *budget_stop_kind_, budget_stop_);
   // The stable-answer rule says what it measured: the verification's gap to its prediction.
-  if (const std::string note = stable_answer_note(stopped.converged); !note.empty())
+  if (const std::string note = stable_answer_note(); !note.empty())
     stopped.text = stopped.converged ? "converged (" + note + ")" : stopped.text + "; " + note;
   result.converged = stopped.converged;
   result.stop_reason = stopped.text;

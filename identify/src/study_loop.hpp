@@ -82,8 +82,15 @@ class StudyLoop {
                            std::uint64_t seed, const VectorXd& previous_optimum, double& predicted_at_previous) const;
   // The objective of the latest decision run at `unit` (NaN when none succeeded there).
   double objective_at(const VectorXd& unit) const;
-  // The stop text when stopping.verification_tolerance decided or was missed (empty otherwise).
-  std::string stable_answer_note(bool converged) const;
+  // The stable-answer rule (study_loop_stopping.hpp): whether the verification run at `optimum`
+  // agrees with its prediction (records the gap in verification_gap_), and whether an iteration's
+  // answer is stable (the run at the previous prediction agreed, the optimum stopped moving).
+  bool verification_agrees(int iteration, const VectorXd& optimum, double predicted);
+  bool answer_stable(const IterationRecord& record, const VectorXd& previous_optimum, double previous_predicted,
+                     double predicted_at_previous) const;
+  // The last verification's gap against stopping.verification_tolerance, for the stop text
+  // (empty without the rule or without a successful verification run).
+  std::string stable_answer_note() const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
   // The study's answer by its final_selection method.

@@ -15,14 +15,36 @@ double StudyLoop::objective_at(const VectorXd& unit) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-std::string StudyLoop::stable_answer_note(bool converged) const {
+std::string StudyLoop::stable_answer_note() const {
   if (spec_.verification_tolerance <= 0.0 || std::isnan(verification_gap_)) return {};
   char text[240];
   std::snprintf(text, sizeof text,
                 "the verification run's objective is %.3g %% from the surrogate's prediction, %s "
                 "stopping.verification_tolerance %.3g %%",
-                100.0 * verification_gap_, converged ? "within" : "outside", 100.0 * spec_.verification_tolerance);
+                100.0 * verification_gap_, verification_gap_ <= spec_.verification_tolerance ? "within" : "outside",
+                100.0 * spec_.verification_tolerance);
   return text;
+}
+
+bool StudyLoop::verification_agrees(int iteration, const VectorXd& optimum, double predicted) {
+  const double evaluated = objective_at(optimum);
+  verification_gap_ = std::isfinite(evaluated) ? relative_gap(evaluated, predicted, gap_floor_)
+                                               : std::numeric_limits<double>::infinity();
+  const bool agrees = agrees_with_prediction(evaluated, predicted, gap_floor_, spec_.verification_tolerance);
+  if (options_.progress)
+    std::fprintf(stderr, "demfit: iteration %d: the verification run %s its prediction (gap %.3g %%, tolerance %.3g %%)\n",
+                 iteration, agrees ? "agrees with" : "is far from", 100.0 * verification_gap_,
+                 100.0 * spec_.verification_tolerance);
+  return agrees;
+}
+
+bool StudyLoop::answer_stable(const IterationRecord& record, const VectorXd& previous_optimum,
+                              double previous_predicted, double predicted_at_previous) const {
+  const double tolerance = spec_.verification_tolerance;
+  // The run at the previous prediction agreed with it, and the optimum stopped moving.
+  return agrees_with_prediction(objective_at(previous_optimum), previous_predicted, gap_floor_, tolerance) &&
+         optimum_settled(record.design_change, spec_.design_tolerance, predicted_at_previous,
+                         record.predicted_objective, gap_floor_, tolerance);
 }
 
 StudyResult StudyLoop::run() {
@@ -30,7 +52,6 @@ StudyResult StudyLoop::run() {
   const rbf_surrogate::SrsmSettings srsm{spec_.gamma_pan, spec_.gamma_osc, spec_.eta};
   rbf_surrogate::SrsmState state = rbf_surrogate::srsm_start(detail::initial_region(spec_, variables_));
   const bool stable_rule = spec_.verification_tolerance > 0.0;
-  const double tolerance = spec_.verification_tolerance;
   VectorXd previous_optimum;
   double previous_predicted = std::numeric_limits<double>::quiet_NaN();
   double objective_floor = std::numeric_limits<double>::min();
@@ -57,20 +78,14 @@ StudyResult StudyLoop::run() {
     const bool verified = verify_now;
     if (verify_now) {  // the stable-answer rule's last check
       verify_now = false;
-      const double evaluated = objective_at(previous_optimum);
-      verification_gap_ = std::isfinite(evaluated) ? relative_gap(evaluated, previous_predicted, gap_floor_)
-                                                   : std::numeric_limits<double>::infinity();
-      converged = agrees_with_prediction(evaluated, previous_predicted, gap_floor_, tolerance);
-      if (options_.progress)
-        std::fprintf(stderr, "demfit: iteration %d: verification %s (gap %.3g %%, tolerance %.3g %%)%s\n", iteration,
-                     converged ? "agrees with the prediction" : "is far from the prediction",
-                     100.0 * verification_gap_, 100.0 * tolerance,
-                     converged ? "" : "; it joins the data and the loop goes on while the budget lasts");
+      converged = verification_agrees(iteration, previous_optimum, previous_predicted);
       // Out of iterations or runs: the disagreeing verification ends the loop as the last run.
       if (converged || iteration + 1 >= spec_.max_iterations || budget_reached()) {
         verification_iteration = iteration;
         break;
       }
+      if (options_.progress)
+        std::fprintf(stderr, "demfit: iteration %d: the verification run joins the data; the loop goes on\n", iteration);
     }
     double predicted_at_previous = std::numeric_limits<double>::quiet_NaN();
     IterationRecord record = optimise(iteration, region, state, seed, previous_optimum, predicted_at_previous);
@@ -83,11 +98,8 @@ StudyResult StudyLoop::run() {
     store_.put_iteration(record);
     progress_iteration(iteration, record, region);
     if (stable_rule) {
-      // Stable: the run at the previous prediction agreed with it, and the optimum stopped moving.
       verify_now = iteration > 0 && !verified &&
-                   agrees_with_prediction(objective_at(previous_optimum), previous_predicted, gap_floor_, tolerance) &&
-                   optimum_settled(record.design_change, spec_.design_tolerance, predicted_at_previous,
-                                   record.predicted_objective, gap_floor_, tolerance);
+                   answer_stable(record, previous_optimum, previous_predicted, predicted_at_previous);
     } else {  // docs/spec.md 3 stopping rule: design change and objective change both below tolerance.
       converged = iteration > 0 && record.design_change < spec_.design_tolerance &&
                   record.objective_change < spec_.objective_tolerance;
