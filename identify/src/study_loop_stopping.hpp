@@ -9,7 +9,7 @@
 // objective is a mean of N squared residuals; at the optimum they are the data's noise, so the
 // objective is sigma^2 chi^2_N / N with relative standard deviation sqrt(2/N). A gap below that
 // is smaller than what another draw of the same measurement would change, which is why
-// docs/study_format.md recommends sqrt(2/N) (0.18 for the 63-point pellet curve). A move of the
+// docs/study_format.md recommends sqrt(2/N) (0.18 for the 60-point pellet curve). A move of the
 // optimum whose predicted gain is below the same fraction cannot be told apart by runs either: it
 // counts as no move, so a variable the targets pin only weakly (a flat valley) does not keep the
 // loop going.
