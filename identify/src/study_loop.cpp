@@ -15,7 +15,6 @@
 #include "demfit/rbf_surrogate/adaptive_infill.hpp"
 #include "demfit/rbf_surrogate/design.hpp"
 #include "study_loop.hpp"
-#include "demfit/identify/stop_reason.hpp"
 
 namespace demfit::identify {
 namespace detail {
@@ -239,6 +238,9 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   // The tolerance rule alone does not make a study converged (stop_reason.hpp).
   StopReason stopped = stop_reason(converged, spec_.max_iterations, store_.evaluations(), dims_);
   if (budget_stop_kind_) stopped = with_budget_stop(stopped, *budget_stop_kind_, budget_stop_);
+  // The stable-answer rule says what it measured: the verification's gap to its prediction.
+  if (const std::string note = stable_answer_note(); !note.empty())
+    stopped.text = stopped.converged ? "converged (" + note + ")" : stopped.text + "; " + note;
   result.converged = stopped.converged;
   result.stop_reason = stopped.text;
   nlohmann::json uncertainty = nullptr;
@@ -325,7 +327,9 @@ MatrixXd StudyLoop::design(int iteration, const Box& region, const VectorXd& pre
 }
 
 IterationRecord StudyLoop::optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
-                                    std::uint64_t seed) const {
+                                    std::uint64_t seed, const VectorXd& previous_optimum,
+                                    double& predicted_at_previous) const {
+  predicted_at_previous = std::numeric_limits<double>::quiet_NaN();
   IterationRecord record;
   record.iteration = iteration;
   record.region_center = detail::to_std(state.region.center);
@@ -335,6 +339,7 @@ IterationRecord StudyLoop::optimise(int iteration, const Box& region, const rbf_
     const auto result = detail::minimize_prediction(*surrogate, objective_, region, seed);
     optimum = result.x;
     record.predicted_objective = result.value;
+    if (previous_optimum.size() == dims_) predicted_at_previous = surrogate->predicted_objective(previous_optimum, objective_);
   } else {  // too few successful runs to fit: stay at the best run
     optimum = best_run()->unit;
     record.predicted_objective = best_run()->objective;
@@ -344,47 +349,6 @@ IterationRecord StudyLoop::optimise(int iteration, const Box& region, const rbf_
   record.best_objective = best_run()->objective;
   record.runs_done = total_runs_;
   return record;
-}
-
-StudyResult StudyLoop::run() {
-  const Box unit_box = Box::unit(dims_);
-  const rbf_surrogate::SrsmSettings srsm{spec_.gamma_pan, spec_.gamma_osc, spec_.eta};
-  rbf_surrogate::SrsmState state = rbf_surrogate::srsm_start(detail::initial_region(spec_, variables_));
-  VectorXd previous_optimum;
-  double previous_predicted = std::numeric_limits<double>::quiet_NaN();
-  double objective_floor = std::numeric_limits<double>::min();
-  bool converged = false;
-  int iteration = 0;
-  for (;; ++iteration) {
-    const Box region = spec_.strategy == SamplingStrategy::srsm || iteration == 0 ? state.region.box() : unit_box;
-    const std::uint64_t seed = detail::iteration_seed(spec_.seed, iteration);
-    std::vector<std::string> kinds;
-    evaluate_points(iteration, design(iteration, region, previous_optimum, seed, kinds), kinds);
-    // Relative objective changes are measured against at least 1e-12 of the best objective of
-    // iteration 0: a noiseless synthetic target drives the objective towards round-off, where
-    // relative changes are meaningless.
-    if (iteration == 0) objective_floor = std::max(1e-12 * best_run()->objective, objective_floor);
-    IterationRecord record = optimise(iteration, region, state, seed);
-    const VectorXd optimum = Eigen::Map<const VectorXd>(record.predicted_optimum.data(), dims_);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    record.design_change = iteration == 0 ? nan : (optimum - previous_optimum).cwiseAbs().maxCoeff();
-    record.objective_change = iteration == 0 ? nan
-                                             : std::abs(record.predicted_objective - previous_predicted) /
-                                                   std::max(std::abs(previous_predicted), objective_floor);
-    store_.put_iteration(record);
-    progress_iteration(iteration, record, region);
-    previous_optimum = optimum;
-    previous_predicted = record.predicted_objective;
-    // docs/spec.md 3 stopping rule: design change and objective change both below tolerance.
-    converged = iteration > 0 && record.design_change < spec_.design_tolerance &&
-                record.objective_change < spec_.objective_tolerance;
-    if (converged || iteration + 1 >= spec_.max_iterations) break;
-    if (budget_reached()) break;
-    if (spec_.strategy == SamplingStrategy::srsm) state = rbf_surrogate::srsm_update(state, optimum, srsm, unit_box);
-  }
-  // Verification run at the final predicted optimum: the answer is always an evaluated point.
-  evaluate_points(iteration + 1, previous_optimum.transpose(), {"verification"});
-  return finish(iteration + 1, converged, state.region.box());
 }
 
 }  // namespace detail

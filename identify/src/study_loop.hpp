@@ -76,8 +76,21 @@ class StudyLoop {
   bool budget_reached();
   MatrixXd design(int iteration, const Box& region, const VectorXd& previous_optimum, std::uint64_t seed,
                   std::vector<std::string>& kinds) const;
+  // The iteration's record; `predicted_at_previous` = the new surrogate's objective at
+  // `previous_optimum` (NaN when there is none or no surrogate could be fitted).
   IterationRecord optimise(int iteration, const Box& region, const rbf_surrogate::SrsmState& state,
-                           std::uint64_t seed) const;
+                           std::uint64_t seed, const VectorXd& previous_optimum, double& predicted_at_previous) const;
+  // The objective of the latest decision run at `unit` (NaN when none succeeded there).
+  double objective_at(const VectorXd& unit) const;
+  // The stable-answer rule (study_loop_stopping.hpp): whether the verification run at `optimum`
+  // agrees with its prediction (records the gap in verification_gap_), and whether an iteration's
+  // answer is stable (the run at the previous prediction agreed, the optimum stopped moving).
+  bool verification_agrees(int iteration, const VectorXd& optimum, double predicted);
+  bool answer_stable(const IterationRecord& record, const VectorXd& previous_optimum, double previous_predicted,
+                     double predicted_at_previous) const;
+  // The last verification's gap against stopping.verification_tolerance, for the stop text
+  // (empty without the rule or without a successful verification run).
+  std::string stable_answer_note() const;
   MatrixXd infill(const VectorXd& optimum, int count, const Box& region, std::uint64_t seed, int iteration) const;
   StudyResult finish(int verification_iteration, bool converged, const Box& final_region);
   // The study's answer by its final_selection method.
@@ -122,6 +135,9 @@ class StudyLoop {
   std::string first_error_;
   std::string budget_stop_;                   // the budget that ended the loop, empty when none did
   std::optional<StopKind> budget_stop_kind_;  // its kind
+  // The last verification's relative gap to its prediction (stable-answer rule; NaN before one).
+  double verification_gap_ = std::numeric_limits<double>::quiet_NaN();
+  double gap_floor_ = std::numeric_limits<double>::min();  // 1e-6 of iteration 0's best objective
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

@@ -276,7 +276,11 @@ void parse_stopping(JsonReader in, StudySpec& spec) {
   spec.objective_tolerance = in.number_or("objective_tolerance", spec.objective_tolerance);
   spec.max_runs = in.integer_or("max_runs", spec.max_runs);
   spec.max_wall_seconds = in.number_or("max_wall_seconds", spec.max_wall_seconds);
+  spec.verification_tolerance = in.number_or("verification_tolerance", spec.verification_tolerance);
   in.finish();
+  if (!(spec.verification_tolerance >= 0.0) || !(spec.verification_tolerance <= 10.0))
+    in.fail("verification_tolerance",
+            "must be 0 (off) to 10 (a relative objective gap; sqrt(2/N) for N target points is the noise)");
   if (spec.max_runs < 0 || spec.max_runs > 1000000)
     in.fail("max_runs", "must be 0 (no cap) to 1000000 runs");
   if (!(spec.max_wall_seconds >= 0.0) || !std::isfinite(spec.max_wall_seconds))

@@ -92,6 +92,7 @@ nlohmann::json to_json(const StudySpec& spec) {
                       {"objective_tolerance", spec.objective_tolerance}};
   if (spec.max_runs > 0) json["stopping"]["max_runs"] = spec.max_runs;  // written only when set
   if (spec.max_wall_seconds > 0.0) json["stopping"]["max_wall_seconds"] = spec.max_wall_seconds;
+  if (spec.verification_tolerance > 0.0) json["stopping"]["verification_tolerance"] = spec.verification_tolerance;
   if (spec.interval_check.max_steps > 0)  // written only when on: older resolved studies stay unchanged
     json["interval_check"] = {{"max_steps", spec.interval_check.max_steps},
                               {"replicates", spec.interval_check.replicates},
@@ -121,6 +122,10 @@ std::uint64_t study_hash(const StudySpec& spec) {
   // interval check runs after the loop, so a finished study can be resumed to add it.
   nlohmann::json json = to_json(spec);
   json.erase("stopping");
+  // The stable-answer rule decides what an iteration runs (a verification alone), so a store
+  // keeps the tolerance it was run with; only a study with the rule on hashes it, so the stores
+  // of studies without it open as before.
+  if (spec.verification_tolerance > 0.0) json["verification_tolerance"] = spec.verification_tolerance;
   json.erase("interval_check");
   // An external run's time limit bounds how long it may take, not what it computes.
   if (json.contains("model") && json["model"].contains("external")) json["model"]["external"].erase("time_limit_s");

@@ -156,6 +156,15 @@ struct StudySpec {
   // says so in the stop reason (the verification, selection and interval-check runs come after).
   int max_runs = 0;
   double max_wall_seconds = 0.0;
+  // The stable-answer rule (0 = off: the tolerance rule above alone decides). Largest relative gap
+  // |f(run) - f_predicted| / f_predicted at which a run at the surrogate's predicted optimum agrees
+  // with the prediction, and largest relative objective gain for which a move of the optimum counts
+  // as no move. With it the loop stops once the run at the previous prediction agrees and the
+  // optimum has stopped moving, and only when the verification run then agrees too; a verification
+  // run outside it joins the data and the loop goes on while the iteration and run budgets last
+  // (study_loop_stopping.hpp). sqrt(2/N) for N target points is the objective's own relative
+  // noise (docs/study_format.md, "The loop").
+  double verification_tolerance = 0.0;
   IntervalCheckSpec interval_check;
   FinalSelectionSpec final_selection;
   std::uint64_t seed = 1;
