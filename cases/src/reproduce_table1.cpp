@@ -80,8 +80,7 @@ std::string reproduce_table1(const ReproduceOptions& o) {
        "; percentages are\nthe error against the generating values.\n";
   t += "Runs used: " + std::to_string(r.runs - r.interval_check_runs) + " to the answer, " +
        std::to_string(r.interval_check_runs) + " more to check the intervals (" + std::to_string(r.failed_runs) +
-       " failed), " + std::to_string(r.iterations) + " iterations, " + (r.converged ? "converged" : "iteration limit") +
-       ", the answer's objective " + fmt("%.3g", r.best_objective) + ", wall time of this run " +
+       " failed), " + std::to_string(r.iterations) + " iterations, stopped: " + r.stop_reason + "; the answer's objective " + fmt("%.3g", r.best_objective) + ", wall time of this run " +
        fmt("%.0f", r.wall_seconds) + " s with " + std::to_string(o.jobs) + " parallel runs.\n";
   return t;
 }
