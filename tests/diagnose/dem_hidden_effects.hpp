@@ -87,15 +87,12 @@ inline std::string detail_scatter(const TargetScatter& s, bool whitened) {
   return text;
 }
 
-inline Outcome diagnose_and_report(const std::string& label, const identify::StudySpec& study, const identify::Model& model,
-                            const std::vector<EffectCandidate>& candidates, std::vector<double> sigma,
-                            bool noise_given);
-
 // `study` with the scenario's variables, each measured curve of the model run at the truth (its
 // defaults, then the scenario's truth) plus seeded noise as a target; the noise levels into `sigma`.
 inline void add_synthetic_targets(identify::StudySpec& study, const identify::Model& model,
                                   const identify::ParameterSet& truth_values, const std::vector<std::string>& names,
                                   double noise, std::uint64_t seed, std::vector<double>& sigma) {
+  use_test_cache();  // the truth run's fill too
   identify::ParameterSet truth = model.default_parameters();
   for (const auto& [name, value] : truth_values) truth[name] = value;
   const identify::CurveSet curves = model.evaluate(truth, {});
@@ -109,20 +106,6 @@ inline void add_synthetic_targets(identify::StudySpec& study, const identify::Mo
     sigma.push_back(noise * scale);
     study.targets.push_back(target);
   }
-}
-
-inline Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
-  use_test_cache();
-  const auto model = cases::make_model(s.case_name, s.overrides, DEMFIT_SOURCE_DIR);
-  identify::StudySpec study;
-  study.name = s.label;
-  study.model_reference = s.case_name;
-  study.base_dir = DEMFIT_SOURCE_DIR;  // a case file named by path resolves against the source tree
-  study.model_overrides = s.overrides;
-  study.variables = s.variables;
-  std::vector<double> sigma;
-  add_synthetic_targets(study, *model, s.truth, s.curves, s.noise, s.seed, sigma);
-  return diagnose_and_report(s.label, study, *model, candidates, sigma, s.noise_given);
 }
 
 // The diagnosis of `study` (its targets made by add_synthetic_targets, true noise levels `sigma`)
@@ -188,6 +171,20 @@ inline Outcome diagnose_and_report(const std::string& label, const identify::Stu
   std::printf("  evaluations %d (base %d, screening %d, re-fits %d), wall time %.1f s\n", d.evaluations,
               d.base_evaluations, d.screening_evaluations, d.refit_evaluations, d.wall_seconds);
   return out;
+}
+
+// The scenario as a study of its one case: synthetic targets, then the diagnosis and its figures.
+inline Outcome run(const Scenario& s, const std::vector<EffectCandidate>& candidates) {
+  const auto model = cases::make_model(s.case_name, s.overrides, DEMFIT_SOURCE_DIR);
+  identify::StudySpec study;
+  study.name = s.label;
+  study.model_reference = s.case_name;
+  study.base_dir = DEMFIT_SOURCE_DIR;  // a case file named by path resolves against the source tree
+  study.model_overrides = s.overrides;
+  study.variables = s.variables;
+  std::vector<double> sigma;
+  add_synthetic_targets(study, *model, s.truth, s.curves, s.noise, s.seed, sigma);
+  return diagnose_and_report(s.label, study, *model, candidates, sigma, s.noise_given);
 }
 
 }  // namespace demfit::diagnose::hidden_effect_test
