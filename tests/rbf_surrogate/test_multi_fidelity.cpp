@@ -1,0 +1,128 @@
+// Multi-fidelity kriging on the one-dimensional pair of Forrester, Sóbester & Keane (2007):
+//   f_fine(x) = (6x − 2)² sin(12x − 4),  f_coarse(x) = 0.5 f_fine(x) + 10(x − 0.5) − 5  on [0, 1],
+// so f_fine = 2 f_coarse − 20(x − 0.5) + 10 exactly: the scale is 2 and the correction linear.
+// The fine function's minimum is at x = 0.75725 (f = −6.0207).
+#include "demfit/rbf_surrogate/multi_fidelity.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+using namespace demfit::rbf_surrogate;
+
+namespace {
+
+double fine(double x) { return (6.0 * x - 2.0) * (6.0 * x - 2.0) * std::sin(12.0 * x - 4.0); }
+double coarse(double x) { return 0.5 * fine(x) + 10.0 * (x - 0.5) - 5.0; }
+
+FidelityLevel level_of(const std::vector<double>& xs, double (*f)(double)) {
+  FidelityLevel level;
+  level.points.resize(static_cast<Eigen::Index>(xs.size()), 1);
+  level.values.resize(static_cast<Eigen::Index>(xs.size()));
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    level.points(static_cast<Eigen::Index>(i), 0) = xs[i];
+    level.values(static_cast<Eigen::Index>(i)) = f(xs[i]);
+  }
+  return level;
+}
+
+// 11 coarse runs (a grid) and the 4 fine runs of Forrester et al. (2007, fig. 2).
+const std::vector<double> kCoarseX = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+const std::vector<double> kFineX = {0.0, 0.4, 0.6, 1.0};
+
+VectorXd at(double x) { return VectorXd::Constant(1, x); }
+
+// RMS error against the fine function on 201 points of [0, 1].
+template <class Predict>
+double rms_error(const Predict& predict) {
+  double sum = 0.0;
+  for (int k = 0; k <= 200; ++k) {
+    const double x = k / 200.0;
+    sum += std::pow(predict(x) - fine(x), 2);
+  }
+  return std::sqrt(sum / 201.0);
+}
+
+}  // namespace
+
+TEST_CASE("Eleven coarse and four fine runs predict the fine function five times better than the fine runs alone",
+          "[rbf_surrogate][multi_fidelity]") {
+  const MultiFidelityModel two_levels = MultiFidelityModel::fit({level_of(kCoarseX, coarse), level_of(kFineX, fine)});
+  const FidelityLevel fine_only = level_of(kFineX, fine);
+  const KrigingModel single = KrigingModel::fit(fine_only.points, fine_only.values);
+  const double two_level_error = rms_error([&](double x) { return two_levels.mean(at(x)); });
+  const double single_error = rms_error([&](double x) { return single.mean(at(x)); });
+  INFO("rms error: two levels " << two_level_error << ", fine runs alone " << single_error);
+  CHECK(two_level_error < 0.2 * single_error);
+  // The function spans about 22 (−6 to 16): the two-level model is within 5 % of that.
+  CHECK(two_level_error < 1.1);
+}
+
+TEST_CASE("The scale of the coarse level is estimated as the exact relation's 2", "[rbf_surrogate][multi_fidelity]") {
+  const MultiFidelityModel m = MultiFidelityModel::fit({level_of(kCoarseX, coarse), level_of(kFineX, fine)});
+  CHECK(m.levels() == 2);
+  CHECK(m.scale(0) == 1.0);
+  CHECK(m.scale(1) == Approx(2.0).margin(0.15));
+}
+
+TEST_CASE("The two-level model's minimiser is the fine function's, which the fine runs alone miss",
+          "[rbf_surrogate][multi_fidelity]") {
+  const MultiFidelityModel m = MultiFidelityModel::fit({level_of(kCoarseX, coarse), level_of(kFineX, fine)});
+  const FidelityLevel fine_only = level_of(kFineX, fine);
+  const KrigingModel single = KrigingModel::fit(fine_only.points, fine_only.values);
+  double best_x = 0.0, best = INFINITY, single_best_x = 0.0, single_best = INFINITY;
+  for (int k = 0; k <= 2000; ++k) {
+    const double x = k / 2000.0;
+    if (const double v = m.mean(at(x)); v < best) best = v, best_x = x;
+    if (const double v = single.mean(at(x)); v < single_best) single_best = v, single_best_x = x;
+  }
+  INFO("two levels: x = " << best_x << ", fine runs alone: x = " << single_best_x);
+  CHECK(best_x == Approx(0.75725).margin(0.02));
+  CHECK(std::fabs(single_best_x - 0.75725) > 0.05);
+}
+
+TEST_CASE("At a fine run the prediction is the run and its deviation vanishes; between them the deviation is positive",
+          "[rbf_surrogate][multi_fidelity]") {
+  const MultiFidelityModel m = MultiFidelityModel::fit({level_of(kCoarseX, coarse), level_of(kFineX, fine)});
+  for (double x : kFineX) {
+    double mean = 0.0, sd = 0.0;
+    m.predict(at(x), mean, sd);
+    CHECK(mean == Approx(fine(x)).margin(1e-4 * 22.0));
+    CHECK(sd < 0.05);
+  }
+  double mean = 0.0, sd = 0.0;
+  m.predict(at(0.2), mean, sd);
+  CHECK(sd > 0.0);
+  // Level 0 alone is the coarse function's kriging model: exact at its own runs.
+  m.predict_level(0, at(0.3), mean, sd);
+  CHECK(mean == Approx(coarse(0.3)).margin(1e-4 * 22.0));
+}
+
+TEST_CASE("One level is plain kriging of that level's runs", "[rbf_surrogate][multi_fidelity]") {
+  const FidelityLevel only = level_of(kCoarseX, fine);
+  const MultiFidelityModel m = MultiFidelityModel::fit({only});
+  const KrigingModel k = KrigingModel::fit(only.points, only.values);
+  for (double x : {0.05, 0.33, 0.77}) CHECK(m.mean(at(x)) == Approx(k.mean(at(x))).epsilon(1e-12));
+}
+
+TEST_CASE("Levels that cannot be combined are refused with a one-line reason", "[rbf_surrogate][multi_fidelity]") {
+  CHECK_THROWS_WITH(MultiFidelityModel::fit({}), Catch::Contains("no levels"));
+  FidelityLevel one_run = level_of({0.5}, fine);
+  CHECK_THROWS_WITH(MultiFidelityModel::fit({level_of(kCoarseX, coarse), one_run}),
+                    Catch::Contains("level 1 has fewer than 2 points"));
+  FidelityLevel with_nan = level_of(kFineX, fine);
+  with_nan.values(2) = NAN;
+  CHECK_THROWS_WITH(MultiFidelityModel::fit({level_of(kCoarseX, coarse), with_nan}),
+                    Catch::Contains("level 1 has a NaN"));
+  FidelityLevel two_d;
+  two_d.points = MatrixXd::Constant(3, 2, 0.5);
+  two_d.points(1, 0) = 0.1;
+  two_d.points(2, 1) = 0.9;
+  two_d.values = VectorXd::Ones(3);
+  CHECK_THROWS_WITH(MultiFidelityModel::fit({level_of(kCoarseX, coarse), two_d}),
+                    Catch::Contains("dimension 2, level 0 of 1"));
+  FidelityLevel mismatched = level_of(kFineX, fine);
+  mismatched.values.conservativeResize(3);
+  CHECK_THROWS_WITH(MultiFidelityModel::fit({mismatched}), Catch::Contains("4 points but 3 values"));
+}
