@@ -99,6 +99,27 @@ std::string summarise_verdict(const Diagnosis& d) {
   return "";
 }
 
+// Base variables the base fit left within 1 % of their range from a bound. A fit that runs to the
+// end of the range the user allowed is asking for more than the base model gives there: a missing
+// effect the variable stands in for (sliding friction pushed to its limit in place of cohesion),
+// or a range too narrow. Said beside any verdict but a named effect (which then explains it),
+// since the verdict only holds inside the range.
+std::string bound_text(const Diagnosis& d) {
+  std::string names;
+  for (std::size_t j = 0; j < d.base_variables.size() && j < d.base.values.size(); ++j) {
+    const FitVariable& v = d.base_variables[j];
+    const double value = d.base.values[j], near = 0.01 * (v.upper - v.lower);
+    const bool low = value <= v.lower + near, high = value >= v.upper - near;
+    if (!low && !high) continue;
+    names += (names.empty() ? "'" : ", '") + v.name + "'" +
+             format(" at %.4g (its %s bound %.4g)", value, high ? "upper" : "lower", high ? v.upper : v.lower);
+  }
+  if (names.empty()) return "";
+  return " The base fit ran to the end of its range: " + names +
+         ". The data ask for more than the base model gives inside its ranges (an effect that variable stands in "
+         "for, or a range too narrow): this verdict holds only inside the ranges.";
+}
+
 // Opposite levels of the base fit between targets (target_levels.hpp); empty when the base residual
 // is missing (a failed base fit) or the levels do not disagree.
 std::string levels_text(const Diagnosis& d) {
@@ -112,7 +133,8 @@ std::string levels_text(const Diagnosis& d) {
 
 std::string summarise(const Diagnosis& d) {
   const std::string verdict = summarise_verdict(d);
-  return d.verdict == Verdict::effect_identified ? verdict : verdict + levels_text(d) + undetectable_text(d);
+  return d.verdict == Verdict::effect_identified ? verdict
+                                                 : verdict + bound_text(d) + levels_text(d) + undetectable_text(d);
 }
 
 }  // namespace demfit::diagnose::detail

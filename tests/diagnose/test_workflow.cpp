@@ -94,6 +94,26 @@ TEST_CASE("Without a hidden effect the workflow reports no missing effect") {
   }
 }
 
+TEST_CASE("A base fit held at the end of a variable's range says so beside the verdict, and only then") {
+  // Truth amplitude 1.0 just beyond the range's end 0.999: the fit stays at 0.999, 0.1 % off, far
+  // below the noise, so the verdict is "no missing effect" and the note must qualify it.
+  identify::StudySpec study = synthetic_study(base_truth(), 31);
+  REQUIRE(study.variables[0].name == "amplitude");
+  study.variables[0].upper = 0.999;
+  study.variables[0].initial = 0.9;
+  const AnalyticEffectsModel model(101);
+  const Diagnosis d = run_diagnosis(study, model, analytic_effect_candidates(), DiagnoseOptions{});
+  INFO(d.summary);
+  CHECK(d.verdict == Verdict::no_missing_effect);
+  CHECK(d.summary.find("ran to the end of its range: 'amplitude' at 0.99") != std::string::npos);
+  CHECK(d.summary.find("(its upper bound 0.999)") != std::string::npos);
+  CHECK(d.summary.find("'rate'") == std::string::npos);
+  // The same data with the shipped range (0.5 to 2): no note.
+  const Diagnosis free = diagnose_hidden("", 0.0, 31);
+  INFO(free.summary);
+  CHECK(free.summary.find("ran to the end of its range") == std::string::npos);
+}
+
 TEST_CASE("A hidden effect outside the candidate list is reported as an unexplained structural residual") {
   // The ripple is not a candidate: no candidate may be named for it.
   const Diagnosis d = diagnose_hidden("ripple_amplitude", 0.03, 41);
