@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -26,8 +27,9 @@ class KrigingSchedule {
   explicit KrigingSchedule(const ExpensiveOptions& options) : options_(options.kriging) {
     options_.estimate_noise = options.kriging.estimate_noise || options.rbf.smoothing;
   }
-  KrigingModel fit(const MatrixXd& x, const VectorXd& y) {
+  KrigingModel fit(const MatrixXd& x, const VectorXd& y, const KrigingTrend& trend) {
     KrigingOptions o = options_;
+    o.trend = trend;
     const auto n = static_cast<int>(x.rows());
     if (length_.size() > 0) {
       o.length_hint = length_;
@@ -74,11 +76,21 @@ VectorXd log_warp(const VectorXd& y, double& log_jacobian_sum) {
 // Jacobian-corrected −log L of the raw values is used.
 class ModelSelector {
  public:
-  explicit ModelSelector(const ExpensiveOptions& options) {
+  explicit ModelSelector(const ExpensiveOptions& options) : multi_fidelity_(options.lower_fidelity.values.size() >= 2) {
     std::vector<KrigingKernel> kernels{options.kriging.kernel};
     if (options.select_kernel) kernels = {KrigingKernel::matern52, KrigingKernel::gaussian};
+    if (multi_fidelity_) {
+      KrigingOptions cheap = options.kriging;
+      cheap.estimate_noise = options.kriging.estimate_noise || options.rbf.smoothing;
+      cheap_model_ = std::make_shared<const KrigingModel>(
+          KrigingModel::fit(options.lower_fidelity.points, options.lower_fidelity.values, cheap));
+      scale_options_.kriging = cheap;
+    }
     for (bool warp : {false, true}) {
-      if ((warp && options.output_warp == OutputWarp::none) || (!warp && options.output_warp == OutputWarp::log))
+      // A cheaper level's trend is on the values' own scale: no warp then.
+      if (multi_fidelity_ && warp) continue;
+      if (!multi_fidelity_ &&
+          ((warp && options.output_warp == OutputWarp::none) || (!warp && options.output_warp == OutputWarp::log)))
         continue;
       for (KrigingKernel k : kernels) {
         ExpensiveOptions o = options;
@@ -90,10 +102,11 @@ class ModelSelector {
   WarpedModel fit(const MatrixXd& x, const VectorXd& y) {
     double log_jacobian = 0.0;
     const VectorXd w = log_warp(y, log_jacobian);
+    const KrigingTrend trend = cheap_trend(x, y);
     std::optional<WarpedModel> best;
     double best_nll = std::numeric_limits<double>::infinity();
     for (auto& [warp, schedule] : candidates_) {
-      KrigingModel m = schedule.fit(x, warp ? w : y);
+      KrigingModel m = schedule.fit(x, warp ? w : y, trend);
       const double nll = m.data_negative_log_likelihood() - (warp ? log_jacobian : 0.0);
       if (!best || nll < best_nll) {
         best_nll = nll;
@@ -105,6 +118,19 @@ class ModelSelector {
   bool noisy() const { return candidates_.front().second.noisy(); }
 
  private:
+  // The cheaper level as the trend of the expensive runs (x, y), ρ by maximum likelihood; none
+  // without a cheaper level.
+  KrigingTrend cheap_trend(const MatrixXd& x, const VectorXd& y) const {
+    if (!multi_fidelity_) return {};
+    FidelityLevel expensive{x, y};
+    VectorXd cheap(x.rows());
+    for (Eigen::Index i = 0; i < x.rows(); ++i) cheap(i) = cheap_model_->mean(x.row(i).transpose());
+    return {cheap_model_, autoregressive_scale(expensive, cheap, scale_options_)};
+  }
+
+  bool multi_fidelity_ = false;
+  std::shared_ptr<const KrigingModel> cheap_model_;
+  MultiFidelityOptions scale_options_;
   std::vector<std::pair<bool, KrigingSchedule>> candidates_;
 };
 
@@ -288,6 +314,7 @@ MatrixXd ExpectedImprovementStrategy::believer_batch(const WarpedModel& warped, 
   fixed.length_hint = model.length_scales();
   fixed.nugget_hint = model.nugget();
   fixed.fixed_hyperparameters = true;
+  fixed.trend = model.trend();
   for (int k = 1; static_cast<int>(rows.rows()) < batch && k < 2 * batch; ++k) {
     for (Eigen::Index r = x.rows() - history_.successes(); r < rows.rows(); ++r) {
       const VectorXd p = rows.row(r).transpose();

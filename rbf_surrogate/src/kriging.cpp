@@ -137,11 +137,19 @@ void validate_inputs(const MatrixXd& points, const VectorXd& values, const Krigi
 
 }  // namespace
 
-KrigingModel KrigingModel::fit(const MatrixXd& points, const VectorXd& values, const KrigingOptions& options) {
-  validate_inputs(points, values, options);
+KrigingModel KrigingModel::fit(const MatrixXd& points, const VectorXd& observed, const KrigingOptions& options) {
+  validate_inputs(points, observed, options);
   KrigingModel m;
   m.x_ = points;
   m.kernel_ = options.kernel;
+  m.trend_ = options.trend;
+  VectorXd values = observed;
+  if (m.trend_.base) {
+    if (m.trend_.base->dims() != points.cols())
+      throw std::invalid_argument("KrigingModel::fit: the trend's model has another dimension than the points");
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+      values[i] -= m.trend_.scale * m.trend_.base->mean(points.row(i).transpose());
+  }
   m.y_shift_ = values.mean();
   const double spread = std::sqrt((values.array() - m.y_shift_).square().mean());
   m.y_scale_ = spread > 0.0 ? spread : 1.0;
@@ -209,7 +217,13 @@ double KrigingModel::mean(const VectorXd& x, VectorXd* gradient) const {
     if (gradient) *gradient += weights_[i] * correlation_derivative_over_r(kernel_, r) * diff.cwiseProduct(inv_len2);
   }
   if (gradient) *gradient *= y_scale_;
-  return y_shift_ + y_scale_ * value;
+  double trend = 0.0;
+  if (trend_.base) {
+    VectorXd trend_gradient;
+    trend = trend_.scale * trend_.base->mean(x, gradient ? &trend_gradient : nullptr);
+    if (gradient) *gradient += trend_.scale * trend_gradient;
+  }
+  return y_shift_ + y_scale_ * value + trend;
 }
 
 void KrigingModel::predict(const VectorXd& x, double& mean_value, double& sd) const {
@@ -220,6 +234,12 @@ void KrigingModel::predict(const VectorXd& x, double& mean_value, double& sd) co
   const double u = 1.0 - inverse_ones_.dot(r);
   const double s2 = sigma2_ * (1.0 - v.squaredNorm() + u * u / ones_inverse_ones_);
   sd = y_scale_ * std::sqrt(std::max(s2, 0.0));
+  if (trend_.base) {
+    double base_mean = 0.0, base_sd = 0.0;
+    trend_.base->predict(x, base_mean, base_sd);
+    mean_value += trend_.scale * base_mean;
+    sd = std::sqrt(sd * sd + trend_.scale * trend_.scale * base_sd * base_sd);
+  }
 }
 
 double KrigingModel::standard_deviation(const VectorXd& x) const {

@@ -2,6 +2,7 @@
 #include "demfit/rbf_surrogate/multi_fidelity.hpp"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -49,7 +50,7 @@ ScaledCorrection correction_at(const FidelityLevel& level, const VectorXd& coars
 
 // ρ of highest correction likelihood: a scan of [−max, max] (the likelihood in ρ can have several
 // minima) and the least-squares slope, then a golden-section refinement around the best of them.
-double best_scale(const FidelityLevel& level, const VectorXd& coarser, const MultiFidelityOptions& options) {
+double best_scale_of(const FidelityLevel& level, const VectorXd& coarser, const MultiFidelityOptions& options) {
   constexpr int kScan = 40;
   const double step = 2.0 * options.max_scale / kScan;
   ScaledCorrection best = correction_at(level, coarser, 0.0, options.kriging);
@@ -83,44 +84,39 @@ double best_scale(const FidelityLevel& level, const VectorXd& coarser, const Mul
 
 }  // namespace
 
+double autoregressive_scale(const FidelityLevel& level, const VectorXd& coarser, const MultiFidelityOptions& options) {
+  if (coarser.size() != level.values.size())
+    throw std::invalid_argument("multi-fidelity scale: one coarser value per point is needed");
+  return best_scale_of(level, coarser, options);
+}
+
 MultiFidelityModel MultiFidelityModel::fit(const std::vector<FidelityLevel>& levels,
                                            const MultiFidelityOptions& options) {
   validate_levels(levels, options);
   MultiFidelityModel model;
-  model.models_.push_back(KrigingModel::fit(levels[0].points, levels[0].values, options.kriging));
+  model.models_.push_back(
+      std::make_shared<const KrigingModel>(KrigingModel::fit(levels[0].points, levels[0].values, options.kriging)));
   model.scales_.push_back(1.0);
   for (std::size_t t = 1; t < levels.size(); ++t) {
     const FidelityLevel& level = levels[t];
+    const std::shared_ptr<const KrigingModel>& coarser_model = model.models_.back();
     VectorXd coarser(level.points.rows());
-    for (Eigen::Index i = 0; i < level.points.rows(); ++i) {
-      double s = 0.0;
-      model.predict_level(static_cast<int>(t) - 1, level.points.row(i).transpose(), coarser(i), s);
-    }
-    const double scale = best_scale(level, coarser, options);
-    model.models_.push_back(KrigingModel::fit(level.points, level.values - scale * coarser, options.kriging));
-    model.scales_.push_back(scale);
+    for (Eigen::Index i = 0; i < level.points.rows(); ++i)
+      coarser(i) = coarser_model->mean(level.points.row(i).transpose());
+    KrigingOptions level_options = options.kriging;
+    level_options.trend = {coarser_model, best_scale_of(level, coarser, options)};
+    model.models_.push_back(
+        std::make_shared<const KrigingModel>(KrigingModel::fit(level.points, level.values, level_options)));
+    model.scales_.push_back(level_options.trend.scale);
   }
   return model;
 }
 
 void MultiFidelityModel::predict_level(int level, const VectorXd& x, double& mean, double& standard_deviation) const {
   if (level < 0 || level >= levels()) throw std::out_of_range("multi-fidelity model: no such level");
-  models_[0].predict(x, mean, standard_deviation);
-  double variance = standard_deviation * standard_deviation;
-  for (int t = 1; t <= level; ++t) {
-    double delta_mean = 0.0, delta_sd = 0.0;
-    models_[static_cast<std::size_t>(t)].predict(x, delta_mean, delta_sd);
-    const double rho = scales_[static_cast<std::size_t>(t)];
-    mean = rho * mean + delta_mean;
-    variance = rho * rho * variance + delta_sd * delta_sd;
-  }
-  standard_deviation = std::sqrt(variance);
+  models_[static_cast<std::size_t>(level)]->predict(x, mean, standard_deviation);
 }
 
-double MultiFidelityModel::mean(const VectorXd& x) const {
-  double m = 0.0, s = 0.0;
-  predict(x, m, s);
-  return m;
-}
+double MultiFidelityModel::mean(const VectorXd& x) const { return models_.back()->mean(x); }
 
 }  // namespace demfit::rbf_surrogate

@@ -2,11 +2,13 @@
 //   f_fine(x) = (6x − 2)² sin(12x − 4),  f_coarse(x) = 0.5 f_fine(x) + 10(x − 0.5) − 5  on [0, 1],
 // so f_fine = 2 f_coarse − 20(x − 0.5) + 10 exactly: the scale is 2 and the correction linear.
 // The fine function's minimum is at x = 0.75725 (f = −6.0207).
+#include "demfit/rbf_surrogate/expensive.hpp"
 #include "demfit/rbf_surrogate/multi_fidelity.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 using namespace demfit::rbf_surrogate;
@@ -125,4 +127,53 @@ TEST_CASE("Levels that cannot be combined are refused with a one-line reason", "
   FidelityLevel mismatched = level_of(kFineX, fine);
   mismatched.values.conservativeResize(3);
   CHECK_THROWS_WITH(MultiFidelityModel::fit({mismatched}), Catch::Contains("4 points but 3 values"));
+}
+
+TEST_CASE("A kriging model with a cheaper level as its trend predicts as the two-level model",
+          "[rbf_surrogate][multi_fidelity]") {
+  const FidelityLevel cheap = level_of(kCoarseX, coarse), expensive = level_of(kFineX, fine);
+  const MultiFidelityModel two = MultiFidelityModel::fit({cheap, expensive});
+  KrigingOptions o;
+  o.trend = {std::make_shared<const KrigingModel>(KrigingModel::fit(cheap.points, cheap.values)), two.scale(1)};
+  const KrigingModel trended = KrigingModel::fit(expensive.points, expensive.values, o);
+  for (double x : {0.05, 0.33, 0.77}) {
+    double m1 = 0.0, s1 = 0.0, m2 = 0.0, s2 = 0.0;
+    two.predict(at(x), m1, s1);
+    trended.predict(at(x), m2, s2);
+    CHECK(m2 == Approx(m1).epsilon(1e-12));
+    CHECK(s2 == Approx(s1).epsilon(1e-12));
+    // The mean's gradient includes the trend's: central difference of the mean, step 1e-6.
+    VectorXd g;
+    trended.mean(at(x), &g);
+    const double slope = (trended.mean(at(x + 1e-6)) - trended.mean(at(x - 1e-6))) / 2e-6;
+    CHECK(g[0] == Approx(slope).margin(1e-4));  // the function spans 22
+  }
+}
+
+TEST_CASE(
+    "Expected improvement given eleven cheap runs reaches the Forrester minimum in at most two thirds of the expensive "
+    "runs",
+    "[rbf_surrogate][multi_fidelity]") {
+  // Expensive runs until one lies within 0.002 of the minimum value (1e-4 of the function's range;
+  // f(0.75) = -5.993 is not), 20 at most, over 8 seeds of a 3-point initial design.
+  const auto runs_to_minimum = [](bool with_cheap_runs, std::uint64_t seed) {
+    ExpensiveOptions o;
+    o.strategy = InfillStrategy::expected_improvement;
+    o.max_evaluations = 20;
+    o.target = -6.0207 + 0.002;
+    o.initial_points = 3;
+    o.seed = seed;
+    if (with_cheap_runs) o.lower_fidelity = level_of(kCoarseX, coarse);
+    const ExpensiveResult r = minimise_expensive([](const VectorXd& x) { return fine(x[0]); }, {{"x", 0.0, 1.0}}, o);
+    return r.evaluations;
+  };
+  int with_cheap = 0, without = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const int a = runs_to_minimum(true, seed), b = runs_to_minimum(false, seed);
+    UNSCOPED_INFO("seed " << seed << ": with cheap runs " << a << ", without " << b);
+    with_cheap += a;
+    without += b;
+  }
+  INFO("expensive runs over 8 seeds: with cheap runs " << with_cheap << ", without " << without);
+  CHECK(3 * with_cheap <= 2 * without);
 }

@@ -5,6 +5,7 @@
 // identify's study loop drives). Used by tests and bench.
 #include "demfit/rbf_surrogate/expected_improvement.hpp"
 #include "demfit/rbf_surrogate/kriging.hpp"
+#include "demfit/rbf_surrogate/multi_fidelity.hpp"
 #include "demfit/rbf_surrogate/optimize.hpp"
 #include "demfit/rbf_surrogate/rbf_network.hpp"
 #include "demfit/rbf_surrogate/srsm.hpp"
@@ -52,6 +53,11 @@ struct ExpensiveOptions {
   // (pure exploitation); 0: EI only (k = 2, 3, 4 measured no better on Hartmann-6).
   int exploit_every = 0;
   OutputWarp output_warp = OutputWarp::automatic;
+  // Runs of a cheaper level of the same response (unit points, values; ≥ 2 runs, else ignored):
+  // the expected_improvement strategy then models the values as ρ·m_cheap(x) + a kriging
+  // correction (multi_fidelity.hpp; ρ by maximum likelihood at every fit, no output warp) and
+  // proposes points by EI on that model. Told points are of the expensive level only.
+  FidelityLevel lower_fidelity;
   // Fit both kriging kernels (Matérn-5/2 and Gaussian) and use the more likely one at each fit.
   bool select_kernel = true;
   // After stall_evaluations points without a 0.1 % improvement the incumbent's basin (a ball of

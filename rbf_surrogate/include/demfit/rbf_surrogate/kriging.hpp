@@ -12,8 +12,20 @@
 #include "demfit/rbf_surrogate/bounds.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace demfit::rbf_surrogate {
+
+class KrigingModel;
+
+// A known part of the response that the kriging model corrects (a cheaper level's model in the
+// autoregressive multi-fidelity form, multi_fidelity.hpp): y(x) = scale · m_base(x) + Z(x). The
+// model is fitted to y_i − scale · m_base(x_i); its mean adds scale · m_base(x) (and its gradient),
+// its variance scale² s_base²(x). No base: no trend.
+struct KrigingTrend {
+  std::shared_ptr<const KrigingModel> base;
+  double scale = 1.0;
+};
 
 // Correlation m(r) of the scaled distance: Matérn-5/2 (twice differentiable sample paths) or
 // Gaussian e^{−r²/2} (infinitely smooth; the DACE default, Sacks et al. 1989).
@@ -35,6 +47,7 @@ struct KrigingOptions {
   int likelihood_evaluations = 0;  // BOBYQA budget per start; 0: 40·(parameters + 1)
   // Skip the likelihood search and use exactly these hyperparameters (length_hint required).
   bool fixed_hyperparameters = false;
+  KrigingTrend trend;  // a cheaper level's model this one corrects (none by default)
 };
 
 class KrigingModel {
@@ -49,6 +62,7 @@ class KrigingModel {
 
   const VectorXd& length_scales() const { return length_; }
   KrigingKernel kernel() const { return kernel_; }
+  const KrigingTrend& trend() const { return trend_; }
   double nugget() const { return nugget_; }  // relative to the process variance
   double process_variance() const { return sigma2_ * y_scale_ * y_scale_; }
   // Concentrated −log L of the values as given (normalisation Jacobian n·log(scale) included,
@@ -63,6 +77,7 @@ class KrigingModel {
 
   MatrixXd x_;
   KrigingKernel kernel_ = KrigingKernel::matern52;
+  KrigingTrend trend_;
   VectorXd length_;
   double nugget_ = 0.0;
   double mu_ = 0.0, sigma2_ = 1.0, nll_ = 0.0;  // in normalised units
