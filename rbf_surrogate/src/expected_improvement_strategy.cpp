@@ -123,9 +123,7 @@ class ModelSelector {
   KrigingTrend cheap_trend(const MatrixXd& x, const VectorXd& y) const {
     if (!multi_fidelity_) return {};
     FidelityLevel expensive{x, y};
-    VectorXd cheap(x.rows());
-    for (Eigen::Index i = 0; i < x.rows(); ++i) cheap(i) = cheap_model_->mean(x.row(i).transpose());
-    return {cheap_model_, autoregressive_scale(expensive, cheap, scale_options_)};
+    return {cheap_model_, autoregressive_scale(expensive, cheap_model_->means(x), scale_options_)};
   }
 
   bool multi_fidelity_ = false;

@@ -147,8 +147,7 @@ KrigingModel KrigingModel::fit(const MatrixXd& points, const VectorXd& observed,
   if (m.trend_.base) {
     if (m.trend_.base->dims() != points.cols())
       throw std::invalid_argument("KrigingModel::fit: the trend's model has another dimension than the points");
-    for (Eigen::Index i = 0; i < points.rows(); ++i)
-      values[i] -= m.trend_.scale * m.trend_.base->mean(points.row(i).transpose());
+    values -= m.trend_.scale * m.trend_.base->means(points);
   }
   m.y_shift_ = values.mean();
   const double spread = std::sqrt((values.array() - m.y_shift_).square().mean());
@@ -224,6 +223,12 @@ double KrigingModel::mean(const VectorXd& x, VectorXd* gradient) const {
     if (gradient) *gradient += trend_.scale * trend_gradient;
   }
   return y_shift_ + y_scale_ * value + trend;
+}
+
+VectorXd KrigingModel::means(const MatrixXd& points) const {
+  VectorXd out(points.rows());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) out[i] = mean(points.row(i).transpose());
+  return out;
 }
 
 void KrigingModel::predict(const VectorXd& x, double& mean_value, double& sd) const {

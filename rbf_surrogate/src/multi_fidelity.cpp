@@ -96,18 +96,14 @@ MultiFidelityModel MultiFidelityModel::fit(const std::vector<FidelityLevel>& lev
   MultiFidelityModel model;
   model.models_.push_back(
       std::make_shared<const KrigingModel>(KrigingModel::fit(levels[0].points, levels[0].values, options.kriging)));
-  model.scales_.push_back(1.0);
   for (std::size_t t = 1; t < levels.size(); ++t) {
     const FidelityLevel& level = levels[t];
     const std::shared_ptr<const KrigingModel>& coarser_model = model.models_.back();
-    VectorXd coarser(level.points.rows());
-    for (Eigen::Index i = 0; i < level.points.rows(); ++i)
-      coarser(i) = coarser_model->mean(level.points.row(i).transpose());
+    const VectorXd coarser = coarser_model->means(level.points);
     KrigingOptions level_options = options.kriging;
     level_options.trend = {coarser_model, best_scale_of(level, coarser, options)};
     model.models_.push_back(
         std::make_shared<const KrigingModel>(KrigingModel::fit(level.points, level.values, level_options)));
-    model.scales_.push_back(level_options.trend.scale);
   }
   return model;
 }

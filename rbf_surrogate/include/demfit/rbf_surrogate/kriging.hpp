@@ -57,6 +57,7 @@ class KrigingModel {
   static KrigingModel fit(const MatrixXd& points, const VectorXd& values, const KrigingOptions& options = {});
 
   double mean(const VectorXd& x, VectorXd* gradient = nullptr) const;  // predicted value (and ∇)
+  VectorXd means(const MatrixXd& points) const;                        // mean at each row
   double standard_deviation(const VectorXd& x) const;                  // of the latent function
   void predict(const VectorXd& x, double& mean, double& standard_deviation) const;
 

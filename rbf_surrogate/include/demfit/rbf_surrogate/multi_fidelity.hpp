@@ -54,14 +54,15 @@ class MultiFidelityModel {
 
   [[nodiscard]] int levels() const { return static_cast<int>(models_.size()); }
   /// ρ_t of level t ≥ 1 (the scale of level t − 1 in level t); 1 for level 0.
-  [[nodiscard]] double scale(int level) const { return scales_.at(static_cast<std::size_t>(level)); }
+  [[nodiscard]] double scale(int level) const {
+    return level == 0 ? 1.0 : models_.at(static_cast<std::size_t>(level))->trend().scale;
+  }
   /// The model of level t: Z_0 for level 0; for t ≥ 1 the correction δ_t with level t − 1 as its
   /// trend (its mean and deviation are those of level t).
   [[nodiscard]] const KrigingModel& model(int level) const { return *models_.at(static_cast<std::size_t>(level)); }
 
  private:
   std::vector<std::shared_ptr<const KrigingModel>> models_;
-  std::vector<double> scales_;
 };
 
 }  // namespace demfit::rbf_surrogate
