@@ -102,6 +102,10 @@ void run_identify_mpi(const IdentifyOptions& o, identify::RunOptions options) {
   try {
     // Every rank reads the same study: a bad study fails on every rank alike, before any message.
     const identify::StudySpec parsed = identify::load_study_file(o.study_file);
+    if (parsed.cheap_level)
+      throw std::runtime_error(
+          "study: cheap_level: a cheap level runs in one process; run the study without --mpi (with --jobs), or "
+          "remove cheap_level");
     const auto model = cases::make_identify_model(parsed, options.output_dir);
     if (session.rank() != 0)
       scaleout::run_worker(*model, o.threads_per_job, parsed.seed);

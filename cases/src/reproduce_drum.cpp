@@ -11,6 +11,7 @@
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/cases/reproduce.hpp"
 #include "demfit/cases/result_cache.hpp"
 #include "demfit/identify/objective.hpp"
@@ -247,7 +248,9 @@ std::string reproduce_table3(const ReproduceOptions& o) {
   context.threads = o.threads_per_job;
   const identify::CurveSet initial_curves = model->evaluate({}, context);
   const double error_before = rms_surface_error(target, initial_curves.at("free_surface"));
-  const identify::RunOptions run = detail::study_run_options(o, dir / "study");
+  const auto cheap_model = make_cheap_level_model(spec, dir / "study");  // a study with a cheap level
+  identify::RunOptions run = detail::study_run_options(o, dir / "study");
+  run.cheap_model = cheap_model.get();
   const identify::StudyResult r = identify::run_study(spec, *model, run);
   const double error_after = rms_surface_error(target, r.best_curves.at("free_surface"));
   std::string t =

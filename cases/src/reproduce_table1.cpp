@@ -6,6 +6,7 @@
 
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/cases/reproduce.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
@@ -55,7 +56,9 @@ std::string reproduce_table1(const ReproduceOptions& o) {
   const identify::StudySpec spec =
       identify::load_study_file(o.cases_dir / (o.quick ? "table1_study_quick.json" : "table1_study.json"));
   const auto model = make_model(spec.model_reference, spec.model_overrides, spec.base_dir);
-  const identify::RunOptions run = detail::study_run_options(o, o.out_dir / "table1");
+  const auto cheap_model = make_cheap_level_model(spec, o.out_dir / "table1");  // a study with a cheap level
+  identify::RunOptions run = detail::study_run_options(o, o.out_dir / "table1");
+  run.cheap_model = cheap_model.get();
   const identify::StudyResult r = identify::run_study(spec, *model, run);
 
   const CaseSpec pellet = parse_case(nlohmann::json::parse(detail::kBuiltinPelletCompression));

@@ -35,6 +35,12 @@ std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& 
   return std::make_unique<identify::RelativeAxisModel>(std::move(model), std::move(relative));
 }
 
+std::unique_ptr<identify::Model> make_cheap_level_model(const identify::StudySpec& spec,
+                                                        const std::filesystem::path& output_dir) {
+  if (!spec.cheap_level) return nullptr;
+  return make_identify_model(identify::cheap_level_study(spec), output_dir / "cheap_level");
+}
+
 namespace {
 // The content of a case, not its path, so that a resumed study refuses any change to what is simulated.
 nlohmann::json resolved_one_model(const std::string& reference, const nlohmann::json& overrides,
@@ -72,6 +78,8 @@ identify::StudyResult run_study_file(const identify::StudySpec& parsed, const st
   std::optional<identify::StoreLock> lock;
   identify::claim_study_folder(options, request, lock, resume_hint);
   const auto model = make_identify_model(parsed, options.output_dir);
+  const auto cheap_model = make_cheap_level_model(parsed, options.output_dir);
+  options.cheap_model = cheap_model.get();
   options.resolved_model = resolved_study_model(parsed);
   // One pool for the initial-point check and the loop: the check's experiments run side by side
   // over the jobs, and the run it hands over is the loop's own.

@@ -81,8 +81,16 @@ void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std
 void StudyLoop::record_evaluation(const EvaluationRecord& record, int point, int points, const char* note) {
   store_.add_evaluation(record);
   ++evaluated_here_;
-  evaluated_wall_ += record.wall_seconds;
-  if (options_.progress)
+  if (record.iteration != kCheapLevelIteration) {
+    ++study_runs_here_;
+    evaluated_wall_ += record.wall_seconds;
+  }
+  if (options_.progress && record.iteration == kCheapLevelIteration)
+    std::fprintf(stderr, "demfit: cheap level run %d/%d %s%s (%.2f s%s; %d runs in this process)\n", point + 1,
+                 points, record.ok ? "objective " : "FAILED: ",
+                 record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
+                 record.wall_seconds, note, evaluated_here_);
+  else if (options_.progress)
     std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s%s; %d runs in this process)\n",
                  record.iteration, point + 1, points, record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
                  record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
@@ -184,7 +192,7 @@ const Run* StudyLoop::best_run() const {
 
 void StudyLoop::progress_iteration(int iteration, const IterationRecord& record, const Box& region) const {
   if (!options_.progress) return;
-  const double mean_here = evaluated_here_ ? evaluated_wall_ / evaluated_here_ : 0.0;
+  const double mean_here = study_runs_here_ ? evaluated_wall_ / study_runs_here_ : 0.0;
   const int remaining = (spec_.max_iterations - iteration - 1) * spec_.points_per_iteration + 1;
   const double eta = mean_here * remaining / std::max(1, evaluator_.concurrency());
   std::fprintf(stderr,
@@ -275,6 +283,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   }
   result.runs = total_runs_;  // the interval check's runs included
   result.failed_runs = failed_runs_;
+  result.cheap_runs = cheap_runs_;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   store_.put_result({{"best_iteration", best.iteration},
                      {"best_point", best.point},
@@ -289,6 +298,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
                      {"stop_kind", to_string(stopped.kind)},
                      {"final_selection", answer.record},
                      {"wall_seconds", result.wall_seconds},
+                     {"cheap_level", cheap_level_summary()},
                      {"uncertainty", uncertainty}});
   const ReportSummary report = write_report(store_, options_.output_dir, options_.plots);
   if (options_.progress) {

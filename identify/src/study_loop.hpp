@@ -57,12 +57,17 @@ class StudyLoop {
         dims_(static_cast<int>(spec.variables.size())),
         pool_(model, options.jobs, options.threads_per_job, static_cast<unsigned long>(spec.seed)),
         evaluator_(options.evaluator ? *options.evaluator : static_cast<Evaluator&>(pool_)),
-        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)),
-        ask_tell_(detail::make_study_strategy(spec)) {}
+        store_(StudyStore::open_for_run(options.output_dir / "study.db", spec, options.resume, options.resolved_model)) {}
 
   StudyResult run();
 
  private:
+  // The cheap level's runs (study_loop_cheap_level.cpp), before iteration 0: a maximin Latin
+  // hypercube over the whole box, each run looked up in the store first like every other run.
+  // Their successful runs for the expected-improvement strategy (none without a cheap level).
+  rbf_surrogate::FidelityLevel run_cheap_level();
+  // The cheap level's runs, failures and wall time for the stored result (null without one).
+  nlohmann::json cheap_level_summary() const;
   void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
   void collect(int iteration, const MatrixXd& points);
   // Stores one finished run, prints its progress line, calls the test hook.
@@ -124,14 +129,18 @@ class StudyLoop {
   ThreadPoolEvaluator pool_;
   Evaluator& evaluator_;
   StudyStore store_;
-  std::unique_ptr<detail::StudyStrategy> ask_tell_;  // expected_improvement only (study_strategy.hpp)
+  // expected_improvement only (study_strategy.hpp); made by run() after the cheap level's runs
+  std::unique_ptr<detail::StudyStrategy> ask_tell_;
   std::vector<Run> runs_;                            // successful runs, in (iteration, point) order
   // The first runs_ that decide the answer and its posterior; the interval check's runs come after
   // and only measure the interval.
   std::size_t decision_runs_ = std::numeric_limits<std::size_t>::max();
   std::vector<VectorXd> all_points_;  // every run (failed ones too), in order
   int total_runs_ = 0, failed_runs_ = 0, evaluated_here_ = 0;
+  // The study model's runs evaluated in this process and their wall time (the ETA's mean run).
+  int study_runs_here_ = 0;
   double evaluated_wall_ = 0.0;
+  int cheap_runs_ = 0;  // the cheap level's runs, failed ones included
   std::string first_error_;
   std::string budget_stop_;                   // the budget that ended the loop, empty when none did
   std::optional<StopKind> budget_stop_kind_;  // its kind

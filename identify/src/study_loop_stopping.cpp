@@ -48,6 +48,8 @@ bool StudyLoop::answer_stable(const IterationRecord& record, const VectorXd& pre
 }
 
 StudyResult StudyLoop::run() {
+  // The cheap level's runs first: the expected-improvement strategy starts from their landscape.
+  ask_tell_ = detail::make_study_strategy(spec_, run_cheap_level());
   const Box unit_box = Box::unit(dims_);
   const rbf_surrogate::SrsmSettings srsm{spec_.gamma_pan, spec_.gamma_osc, spec_.eta};
   rbf_surrogate::SrsmState state = rbf_surrogate::srsm_start(detail::initial_region(spec_, variables_));

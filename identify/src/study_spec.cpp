@@ -13,6 +13,7 @@
 #include "image_target.hpp"
 #include "demfit/identify/json_document.hpp"
 #include "demfit/identify/safe_output.hpp"
+#include "cheap_level.hpp"
 #include "json_reader.hpp"
 
 namespace demfit::identify {
@@ -380,6 +381,7 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
   if (in.has("stopping")) parse_stopping(in.object("stopping"), spec);
   if (in.has("interval_check")) parse_interval_check(in.object("interval_check"), spec);
   if (in.has("final_selection")) parse_final_selection(in.object("final_selection"), spec);
+  if (in.has("cheap_level")) detail::parse_cheap_level(in.object("cheap_level"), spec);
   if (in.has("seed")) {
     const auto& seed = in.raw("seed");
     if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
@@ -390,6 +392,7 @@ StudySpec parse_study(const nlohmann::json& study, const std::filesystem::path& 
   if (spec.points_per_iteration == 0)
     spec.points_per_iteration = default_points_per_iteration(static_cast<int>(spec.variables.size()));
   if (spec.points_per_iteration < 2) in.fail("sampling", "points_per_iteration must be >= 2");
+  detail::check_cheap_level(in, spec);
   return spec;
 }
 

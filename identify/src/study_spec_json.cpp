@@ -111,6 +111,8 @@ nlohmann::json to_json(const StudySpec& spec) {
         }
       },
       spec.final_selection);
+  if (spec.cheap_level)  // written only when declared: one-level studies keep their hashes
+    json["cheap_level"] = {{"overrides", spec.cheap_level->overrides}, {"runs", spec.cheap_level->runs}};
   json["seed"] = spec.seed;
   return json;
 }

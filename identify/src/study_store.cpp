@@ -355,7 +355,15 @@ const EvaluationRecord* StudyStore::find_evaluation(int iteration, int point) co
 
 std::vector<EvaluationRecord> StudyStore::evaluations() const {
   std::vector<EvaluationRecord> out;
-  for (const auto& [key, record] : evaluations_) out.push_back(record);
+  for (const auto& [key, record] : evaluations_)
+    if (key.first >= 0) out.push_back(record);
+  return out;
+}
+
+std::vector<EvaluationRecord> StudyStore::cheap_evaluations() const {
+  std::vector<EvaluationRecord> out;
+  for (const auto& [key, record] : evaluations_)
+    if (key.first == kCheapLevelIteration) out.push_back(record);
   return out;
 }
 

@@ -8,7 +8,7 @@ namespace demfit::identify::detail {
 
 namespace {
 
-rbf_surrogate::ExpensiveOptions study_options(const StudySpec& spec) {
+rbf_surrogate::ExpensiveOptions study_options(const StudySpec& spec, const rbf_surrogate::FidelityLevel& cheap_level) {
   rbf_surrogate::ExpensiveOptions o;
   o.strategy = rbf_surrogate::InfillStrategy::expected_improvement;
   o.seed = spec.seed;
@@ -16,13 +16,14 @@ rbf_surrogate::ExpensiveOptions study_options(const StudySpec& spec) {
   // the nugget is estimated, and the incumbent is the lowest predicted mean at a run, not the
   // luckiest run. On noise-free models the likelihood drives the nugget to its floor.
   o.kriging.estimate_noise = true;
+  o.lower_fidelity = cheap_level;
   return o;
 }
 
 }  // namespace
 
-StudyStrategy::StudyStrategy(const StudySpec& spec, int dims)
-    : strategy_(rbf_surrogate::make_strategy(dims, study_options(spec))), dims_(dims) {}
+StudyStrategy::StudyStrategy(const StudySpec& spec, int dims, const rbf_surrogate::FidelityLevel& cheap_level)
+    : strategy_(rbf_surrogate::make_strategy(dims, study_options(spec, cheap_level))), dims_(dims) {}
 
 void StudyStrategy::tell(const Eigen::MatrixXd& unit_points, const Eigen::VectorXd& objectives) {
   strategy_->tell(unit_points, objectives);
@@ -54,9 +55,10 @@ Eigen::MatrixXd StudyStrategy::ask(int count, const Eigen::MatrixXd& planned, st
   return out;
 }
 
-std::unique_ptr<StudyStrategy> make_study_strategy(const StudySpec& spec) {
+std::unique_ptr<StudyStrategy> make_study_strategy(const StudySpec& spec,
+                                                   const rbf_surrogate::FidelityLevel& cheap_level) {
   if (spec.strategy != SamplingStrategy::expected_improvement) return nullptr;
-  return std::make_unique<StudyStrategy>(spec, static_cast<int>(spec.variables.size()));
+  return std::make_unique<StudyStrategy>(spec, static_cast<int>(spec.variables.size()), cheap_level);
 }
 
 }  // namespace demfit::identify::detail

@@ -13,13 +13,16 @@
 
 #include "demfit/identify/study_spec.hpp"
 #include "demfit/identify/uncertainty.hpp"
+#include "demfit/rbf_surrogate/multi_fidelity.hpp"
 #include "demfit/rbf_surrogate/strategy.hpp"
 
 namespace demfit::identify::detail {
 
 class StudyStrategy {
  public:
-  StudyStrategy(const StudySpec& spec, int dims);
+  // `cheap_level`: the cheap level's successful runs (unit coordinates, composite objectives), or
+  // none; with them the expensive runs are modelled as rho x cheap + a correction.
+  StudyStrategy(const StudySpec& spec, int dims, const rbf_surrogate::FidelityLevel& cheap_level);
   // Results of one iteration (unit coordinates, rows) in point order; NaN = failed run.
   void tell(const Eigen::MatrixXd& unit_points, const Eigen::VectorXd& objectives);
   // Exactly `count` new points (unit coordinates). `planned` rows (e.g. the iteration's predicted
@@ -33,7 +36,8 @@ class StudyStrategy {
 
 // The ask/tell strategy of a study, or nullptr when the study samples by SRSM or adaptive infill
 // (those keep the loop's own iteration).
-std::unique_ptr<StudyStrategy> make_study_strategy(const StudySpec& spec);
+std::unique_ptr<StudyStrategy> make_study_strategy(const StudySpec& spec,
+                                                   const rbf_surrogate::FidelityLevel& cheap_level = {});
 
 }  // namespace demfit::identify::detail
 

@@ -23,6 +23,11 @@ namespace demfit::cases {
 std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& spec,
                                                      const std::filesystem::path& output_dir);
 
+// The model of a study's cheap level (identify::cheap_level_study; identify::RunOptions::cheap_model),
+// an external program's runs in output_dir/cheap_level; nullptr when the study declares none.
+std::unique_ptr<identify::Model> make_cheap_level_model(const identify::StudySpec& spec,
+                                                        const std::filesystem::path& output_dir);
+
 // The resolved model of a study (identify::RunOptions::resolved_model): {"analytic": overrides}
 // for the analytic model, the case with every default filled in for a DEM case, the external
 // program's fingerprint (template, command, outputs, files) for an external model, and for an

@@ -45,6 +45,10 @@ struct RunOptions {
   // The initial point's run when the caller has already evaluated it (preflight_study): stored as
   // run 0/0 instead of evaluating it again, if its parameters are exactly those of that run.
   std::optional<InitialRun> initial_run;
+  // The model of the study's cheap level (study_spec.hpp CheapLevelSpec; the caller builds it from
+  // cheap_level_study(spec)), run on a pool of `jobs` threads of this process. Required when the
+  // study declares a cheap level, ignored otherwise; must outlive the call.
+  const Model* cheap_model = nullptr;
 };
 
 struct StudyResult {
@@ -53,6 +57,7 @@ struct StudyResult {
   int runs = 0;  // evaluations in the store (finished + failed), the interval check's included
   int failed_runs = 0;
   int interval_check_runs = 0;  // of `runs`: replicates and interval-end checks after the loop
+  int cheap_runs = 0;           // runs of the cheap level (not in `runs`; failed ones included)
   int iterations = 0;
   // The interval every output reports (reported_interval.hpp: posterior marginal, else linearised).
   std::map<std::string, ReportedInterval> intervals;

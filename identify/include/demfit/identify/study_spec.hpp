@@ -122,6 +122,19 @@ struct PredictedOptimumSelection {  // the verification run at the final predict
 };
 using FinalSelectionSpec = std::variant<LowestRunSelection, ReplicateSelection, PredictedOptimumSelection>;
 
+// A cheaper level of the study's own model ("cheap_level" in a study file; multi-fidelity): the
+// same case with some settings changed (e.g. a drum at a larger coarse-graining factor with its
+// time step), run `runs` times on a space-filling design over the whole box before iteration 0.
+// The expected-improvement strategy then models the study's runs as rho x (kriging of the cheap
+// runs) + a kriging correction (Kennedy & O'Hagan 2000; rbf_surrogate/multi_fidelity.hpp), so the
+// cheap runs map the landscape and the study's runs correct it. The cheap runs never enter the
+// answer, its posterior, its intervals or the warnings: those are the study model's alone.
+struct CheapLevelSpec {
+  // Merged (JSON merge patch, RFC 7386) into the model's overrides, or into every experiment's.
+  nlohmann::json overrides = nlohmann::json::object();
+  int runs = 0;  // runs of the cheap level (at least variables + 2)
+};
+
 struct StudySpec {
   int version = kStudyFormatVersion;
   std::string name;
@@ -167,6 +180,7 @@ struct StudySpec {
   double verification_tolerance = 0.0;
   IntervalCheckSpec interval_check;
   FinalSelectionSpec final_selection;
+  std::optional<CheapLevelSpec> cheap_level;  // none: one level (expected_improvement only)
   std::uint64_t seed = 1;
   std::filesystem::path base_dir;  // for relative paths (CSV files, case files)
 };
@@ -181,6 +195,10 @@ StudySpec load_study_file(const std::filesystem::path& path);
 nlohmann::json to_json(const StudySpec& spec);
 // Stable 64-bit hash (FNV-1a of the resolved JSON text) identifying a study in its store.
 std::uint64_t study_hash(const StudySpec& spec);
+
+// The study of the cheap level: `spec` with cheap_level.overrides merged into its model overrides
+// (every experiment's) and without a cheap level. Requires spec.cheap_level.
+StudySpec cheap_level_study(const StudySpec& spec);
 
 // Default points per iteration: 1.5(n+1)+1 rounded up (docs/spec.md 3; 16 for n = 9).
 int default_points_per_iteration(int variables);

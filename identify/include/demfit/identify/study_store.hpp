@@ -26,6 +26,9 @@ struct sqlite3;
 namespace demfit::identify {
 
 inline constexpr int kStoreSchemaVersion = 2;
+// The iteration number under which the runs of a study's cheap level are stored (study_spec.hpp
+// CheapLevelSpec): before iteration 0, and apart from the study's own runs.
+inline constexpr int kCheapLevelIteration = -1;
 
 struct EvaluationRecord {
   int iteration = 0;
@@ -77,7 +80,10 @@ class StudyStore {
   // Commits one evaluation (replacing a row with the same iteration and point).
   void add_evaluation(const EvaluationRecord& record);
   const EvaluationRecord* find_evaluation(int iteration, int point) const;
-  std::vector<EvaluationRecord> evaluations() const;  // ordered by (iteration, point)
+  // The study model's runs, ordered by (iteration, point); the cheap level's are not among them.
+  std::vector<EvaluationRecord> evaluations() const;
+  // The cheap level's runs (iteration kCheapLevelIteration), ordered by point.
+  std::vector<EvaluationRecord> cheap_evaluations() const;
   void put_iteration(const IterationRecord& record);
   std::vector<IterationRecord> iterations() const;  // ordered by iteration
   void put_result(const nlohmann::json& result);
