@@ -229,9 +229,10 @@ namespace {
 // the checked ends) and every output reads it.
 ReportedInterval reported_after_check(const IntervalCheckOutcome& out, int j, double answer) {
   nlohmann::json uncertainty;
-  uncertainty["posterior"]["variables"]["a"] = {{"lower_95", out.lower[j].end},
-                                                {"upper_95", out.upper[j].end},
-                                                {"widened_by_interval_check", out.lower[j].widened || out.upper[j].widened}};
+  uncertainty["posterior"]["variables"]["a"] = {
+      {"lower_95", out.lower[j].end},
+      {"upper_95", out.upper[j].end},
+      {"widened_by_interval_check", out.lower[j].widened || out.upper[j].widened}};
   return reported_interval(uncertainty, "a", answer);
 }
 
