@@ -23,7 +23,7 @@
 // 0.30, while runs along the valley fit as well), and a confident wrong interval costs more than a
 // wide one. The price, measured on the analytic coverage problem (tests/identify/test_posterior.cpp,
 // 60 seeds): checking every end raises coverage to 0.98 (posterior alone 0.93) but makes the
-// well-determined intervals 4.6x wider (3.4x of it without the answer rule below), because a single run's scalar
+// well-determined intervals 4.6x wider (3.4x without the answer rule below), because a single run's scalar
 // objective resolves less than the posterior's regression of whole residual curves over many runs. The end is then
 // moved to the first point that fits worse (the bound if none does). An end whose first check already fits worse is
 // kept: the check only ever widens. Except when that first check lay beyond the end (the end closer to the best point
