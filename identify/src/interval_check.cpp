@@ -38,10 +38,15 @@ constexpr double kSamePoint = 1e-3;  // unit: a retry this close to the rejected
 // distance lay beyond the end (the end closer to the best point than first_step): the end itself
 // has not been run, so the walk reopens once to run it, and decide() extends the interval to `unit`
 // if it fits (Table 1 set-up, seed 6: NORMK end 0.886 "confirmed" by runs at 0.813, the generating
-// 0.875 between them).
+// 0.875 between them). An end at or beyond the answer (interval_check.hpp) needs no such run: the
+// answer itself is that end's run and fits, so the interval reaches to `unit` at once.
 void close_rejected(EndWalk& walk, double unit, const VariableSpec& v) {
-  if (walk.step == 0 && walk.rejected_unit < 0.0 && walk.end_distance >= kSamePoint &&
-      walk.end_distance < walk.distance - 1e-12) {
+  if (walk.step == 0 && walk.rejected_unit < 0.0 && walk.end_distance < walk.distance - 1e-12) {
+    if (walk.end_distance < kSamePoint) {
+      walk.active = false;
+      walk.record->end = to_model(v, unit);
+      return;
+    }
     walk.rejected_unit = unit;
     walk.distance = walk.end_distance;
     walk.retrying = false;
@@ -106,16 +111,17 @@ IntervalCheckOutcome check_interval_ends(const std::vector<VariableSpec>& variab
     const bool extrapolated = settings.all_variables || input.fitted_runs.rows() == 0 ||
                               to_unit(variables[j], lower[j]) < input.fitted_runs.col(j).minCoeff() - 1e-12 ||
                               to_unit(variables[j], upper[j]) > input.fitted_runs.col(j).maxCoeff() + 1e-12;
-    out.lower[j].checked = out.upper[j].checked = extrapolated;
-    if (!extrapolated) continue;
     for (double direction : {-1.0, 1.0}) {
       IntervalEndCheck& record = direction < 0 ? out.lower[j] : out.upper[j];
       record.end = direction < 0 ? lower[j] : upper[j];
       const double end_unit = std::clamp(to_unit(variables[j], record.end), 0.0, 1.0);
+      const double end_offset = direction * (end_unit - best_unit(j));  // < kSamePoint: at or beyond the answer
+      record.checked = extrapolated || end_offset < kSamePoint;
+      if (!record.checked) continue;
       EndWalk walk;
       walk.variable = j;
       walk.direction = direction;
-      walk.end_distance = std::max(direction * (end_unit - best_unit(j)), 0.0);
+      walk.end_distance = std::max(end_offset, 0.0);
       walk.distance = std::max(walk.end_distance, settings.first_step);
       walk.last_fit = best_unit;
       walk.record = &record;

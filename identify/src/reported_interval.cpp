@@ -30,8 +30,11 @@ ReportedInterval reported_interval(const nlohmann::json& uncertainty, const std:
       out.identifiable = !v.value("unidentifiable", false);
       if (value < out.lower || value > out.upper) {
         // The answer can sit in the tail of a wide, bound-truncated marginal (GranuDrum quick study:
-        // fricr 0.0570 against [0.0578, 0.567]); a report must not print a value outside its own
-        // interval, so the interval is widened to it (covering more than 95 %) and says so.
+        // fricr 0.0570 against [0.0578, 0.567]), or off the posterior's centre after a final
+        // selection. An interval check steps that side outward from the answer (interval_check.hpp);
+        // without one (the check off, or a result stored before) a report must still not print a
+        // value outside its own interval, so the interval is widened to it (covering more than 95 %,
+        // with no room on that side) and says so.
         out.lower = std::min(out.lower, value);
         out.upper = std::max(out.upper, value);
         out.method += ", widened to the answer";

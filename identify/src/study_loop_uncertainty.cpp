@@ -108,8 +108,9 @@ void StudyLoop::check_intervals(const Answer& answer, const RunSample& sample, n
       std::fprintf(stderr, "demfit: interval check: %s [%s, %s] -> [%s, %s] (%s)\n", spec_.variables[j].name.c_str(),
                    format_number(lower[j]).c_str(), format_number(upper[j]).c_str(),
                    format_number(outcome.lower[j].end).c_str(), format_number(outcome.upper[j].end).c_str(),
-                   outcome.lower[j].checked ? ("spread threshold " + format_number(outcome.threshold)).c_str()
-                                            : "not checked: within the runs the posterior was fitted to");
+                   outcome.lower[j].checked || outcome.upper[j].checked
+                       ? ("spread threshold " + format_number(outcome.threshold)).c_str()
+                       : "not checked: within the runs the posterior was fitted to");
 }
 
 }  // namespace demfit::identify::detail

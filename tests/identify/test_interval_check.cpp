@@ -6,6 +6,7 @@
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/interval_check.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_store.hpp"
 #include "test_helpers.hpp"
@@ -222,6 +223,75 @@ TEST_CASE("The study's runs next to the best one set the spread threshold", "[id
   CHECK(out.upper[0].end == Approx(0.54).margin(1e-12));
 }
 
+namespace {
+
+// The reported interval of variable `j` as the study stores it after the check (lower_95/upper_95
+// the checked ends) and every output reads it.
+ReportedInterval reported_after_check(const IntervalCheckOutcome& out, int j, double answer) {
+  nlohmann::json uncertainty;
+  uncertainty["posterior"]["variables"]["a"] = {
+      {"lower_95", out.lower[j].end},
+      {"upper_95", out.upper[j].end},
+      {"widened_by_interval_check", out.lower[j].widened || out.upper[j].widened}};
+  return reported_interval(uncertainty, "a", answer);
+}
+
+// An objective with its minimum at a = 0.492 (the generating value) and slope 10 either side; b
+// does not matter. The answer 0.5 (a final selection's choice) fits it to 1.08.
+double v_at_0492(const Eigen::VectorXd& u) { return 1.0 + 10.0 * std::abs(u(0) - 0.492); }
+
+}  // namespace
+
+TEST_CASE("An answer below the posterior's interval is checked outward from the answer, with room on both sides",
+          "[identify][interval_check]") {
+  // The posterior claims a in [0.51, 0.55], above the answer 0.5 (the posterior's centre is its
+  // regression's, the answer a selection's); the generating 0.492 lies below the answer. The
+  // first step down from the answer, 0.48, fits worse (1.12 against the spread 1.09): the data
+  // exclude 0.48 but not the answer, so the lower end is 0.48, not the answer (no room) nor the
+  // posterior's 0.51 (excluding the answer).
+  Recorder r;
+  r.objective = v_at_0492;
+  r.replicate_value = 1.09;
+  const auto out =
+      check_interval_ends(kTwo, input(1.08, {}, {0.51, 0.45}, {0.55, 0.55}), settings(6), flat_profile(), r.evaluate());
+  CHECK(out.lower[0].end == Approx(0.48).margin(1e-12));
+  CHECK(out.lower[0].widened);
+  REQUIRE(out.lower[0].values.size() == 1);  // the retry would repeat the run: one run decides it
+  CHECK_FALSE(out.lower[0].fits[0]);
+  CHECK(out.upper[0].end == 0.55);  // its check at 0.55 fits worse: kept
+  const ReportedInterval reported = reported_after_check(out, 0, 0.5);
+  CHECK(reported.lower < 0.5 - 0.01);  // room below the answer
+  CHECK(reported.upper > 0.5 + 0.01);  // and above it
+  CHECK(reported.lower < 0.492);       // the generating value inside
+  CHECK(reported.upper > 0.492);
+  CHECK(reported.method.find("widened to the answer") == std::string::npos);
+}
+
+TEST_CASE("An interval end at the answer is checked even when all_variables is off", "[identify][interval_check]") {
+  // The posterior's [0.5, 0.54] lies within the runs it was fitted to (so all_variables false would
+  // not check a) but its lower end is the answer itself, which says nothing below it. Only that
+  // side is run: with a spread up to 1.15 the first step down (0.48, 1.12) fits, the second (0.46,
+  // 1.32) fits worse.
+  Recorder r;
+  r.objective = v_at_0492;
+  r.replicate_value = 1.15;
+  IntervalCheckInput in = input(1.08, {}, {0.5, 0.45}, {0.54, 0.55});
+  in.fitted_runs.resize(4, 2);
+  in.fitted_runs << 0.44, 0.44, 0.56, 0.56, 0.44, 0.56, 0.56, 0.44;
+  IntervalCheckSpec within_runs = settings(6);
+  within_runs.all_variables = false;
+  const auto out = check_interval_ends(kTwo, in, within_runs, flat_profile(), r.evaluate());
+  CHECK(out.lower[0].checked);
+  CHECK_FALSE(out.upper[0].checked);
+  CHECK_FALSE(out.lower[1].checked);
+  CHECK(out.lower[0].end == Approx(0.46).margin(1e-12));
+  CHECK(out.upper[0].end == 0.54);
+  for (const auto& point : r.checked) CHECK(point(0) < 0.5);
+  const ReportedInterval reported = reported_after_check(out, 0, 0.5);
+  CHECK(reported.lower < 0.492);
+  CHECK(reported.upper > 0.5);
+}
+
 TEST_CASE("A study with interval checks stores them after the verification run and a resume repeats none",
           "[identify][interval_check]") {
   auto json = test::analytic_study(0.2, 6);
@@ -248,10 +318,12 @@ TEST_CASE("A study with interval checks stores them after the verification run a
   const auto stored = store.result();
   REQUIRE(stored);
   REQUIRE((*stored)["uncertainty"]["posterior"].contains("interval_check"));
-  // Every reported interval still contains the answer.
+  // Every reported interval contains the answer with room on both sides (none lies at a bound here).
   for (const auto& [name, interval] : result.intervals) {
-    CHECK(interval.lower <= result.best.at(name));
-    CHECK(interval.upper >= result.best.at(name));
+    INFO(name << " " << result.best.at(name) << " in [" << interval.lower << ", " << interval.upper << "] ("
+              << interval.method << ")");
+    CHECK(interval.lower < result.best.at(name));
+    CHECK(interval.upper > result.best.at(name));
   }
   RunOptions resume = options;
   resume.resume = true;

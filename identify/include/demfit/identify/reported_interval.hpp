@@ -24,7 +24,8 @@ struct ReportedInterval {
   bool identifiable = true;  // false: the data cannot pin the variable down
   // "posterior", "posterior, widened by interval-end runs" (interval_check.hpp), either with
   // ", widened to the answer" (the answer, the best run or a final selection's choice, lay outside the posterior's
-  // 95 % interval, which is then stretched to it) or "linearised"
+  // 95 % interval and no interval check stepped outward from it, so the interval is stretched to it) or
+  // "linearised"
   std::string method;
 };
 
