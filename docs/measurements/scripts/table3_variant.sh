@@ -4,7 +4,8 @@
 # (study seeds, friction scale, final selection, budgets, NORMK bound, sampling strategy). The copy lives in WORK/cases with
 # WORK/data linked to the repository's data/, because reproduce reads its studies from --data's
 # sibling cases/. Prints the report's Surface RMS and How sure lines.
-# Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [replicates=N] [iterations=N] [normk_lower=X] [strategy=S] [points=N] [smoothing=X] [quick]
+# Usage: table3_variant.sh DEMFIT WORK SEED [frics_log_scale=true|false] [candidates=N] [replicates=N] [iterations=N] [normk_lower=X] [strategy=S] [points=N] [smoothing=X] [cheap=JSON cheap_runs=N] [quick]
+#   cheap=JSON: a cheap level whose case overrides are JSON (e.g. '{"drum":{"duration":1.0}}'), with cheap_runs=N runs
 #   e.g. table3_variant.sh build/apps/demfit /tmp/t3v/lin2 2 frics_log_scale=false
 set -eu
 demfit=$1 work=$2 seed=$3
@@ -44,8 +45,12 @@ for edit in edits:
         study["sampling"]["points_per_iteration"] = int(value)
     elif key == "smoothing":
         study.setdefault("surrogate", {})["smoothing"] = float(value)
+    elif key == "cheap":
+        study.setdefault("cheap_level", {})["overrides"] = json.loads(value)
+    elif key == "cheap_runs":
+        study.setdefault("cheap_level", {})["runs"] = int(value)
     else:
-        sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=, replicates=, iterations=, normk_lower=, strategy=, points=, smoothing=)" % key)
+        sys.exit("table3_variant.sh: unknown edit '%s' (frics_log_scale=, candidates=, replicates=, iterations=, normk_lower=, strategy=, points=, smoothing=, cheap=, cheap_runs=)" % key)
 json.dump(study, open(path, "w"), indent=1)
 PY
 "$demfit" reproduce table3 "${quick[@]}" --jobs 2 --data "$work/data" --out "$work/out" > "$work/log" 2>&1 ||
