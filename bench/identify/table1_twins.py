@@ -17,6 +17,9 @@ Usage: bench/identify/table1_twins.py [--demfit PATH] [--study FILE] [--set tune
            [--seeds 1,2] [--points K] [--particles N] [--jobs 2] [--work DIR]
   --particles N: a coarse variant (pellet.particle_count = N in both the target and the model)
   --points K: only the first K points of the set (a smoke run)
+  --resume: continue the studies already in --work (target reused, `demfit identify --resume`):
+            stored runs are not repeated, so a newer demfit re-decides the answer, its interval
+            checks and its report from the same runs (plus any run the newer rules add)
 """
 import argparse
 import json
@@ -50,6 +53,8 @@ def run(argv, log):
 
 def make_target(args, work, normk, sheark, seed):
     out = work / "target"
+    if args.resume and (out / "pressure_volume.csv").exists():
+        return out / "pressure_volume.csv"
     sets = ["normk=%r" % normk, "sheark=%r" % sheark, "pellet.max_travel=0.0045"]
     if args.particles:
         sets.append("pellet.particle_count=%d" % args.particles)
@@ -93,10 +98,10 @@ def twin(args, index, normk, sheark, seed):
     out = work / "out"
     start = time.time()
     code = run([args.demfit, "identify", str(make_study(args, work, target, seed)), "--jobs", str(args.jobs), "--out",
-                str(out)], work / "identify.log")
+                str(out)] + (["--resume"] if args.resume else []), work / ("resume.log" if args.resume else "identify.log"))
     wall = time.time() - start
     if code != 0:
-        return "identify failed (exit %d): see %s" % (code, work / "identify.log"), None
+        return "identify failed (exit %d): see %s" % (code, work / ("resume.log" if args.resume else "identify.log")), None
     best = json.loads((out / "best_parameters.json").read_text())
     result = read_result(out)
     row = {"runs": result.get("runs"), "wall": wall, "stop": result.get("stop_kind", result.get("stop_reason", "?")),
@@ -118,6 +123,7 @@ def main():
     parser.add_argument("--particles", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--work", type=pathlib.Path, default=None)
+    parser.add_argument("--resume", action="store_true")
     args = parser.parse_args()
     args.work = args.work or pathlib.Path(tempfile.mkdtemp(prefix="table1_twins_"))
     seeds = [int(s) for s in args.seeds.split(",")]

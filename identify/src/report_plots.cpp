@@ -289,6 +289,17 @@ std::string study_status(const std::optional<nlohmann::json>& result) {
                                            : "finished, iteration limit reached";
 }
 
+// The cheap level (study_spec.hpp CheapLevelSpec): what it changed and what its runs cost.
+std::string cheap_level_line(const StudySpec& spec, const std::optional<nlohmann::json>& result) {
+  std::string line = "- cheap level (mapped the landscape for expected improvement; not part of the answer): " +
+                     spec.cheap_level->overrides.dump() + ", " + std::to_string(spec.cheap_level->runs) + " runs";
+  const nlohmann::json summary = result ? result->value("cheap_level", nlohmann::json()) : nlohmann::json();
+  if (summary.is_object())
+    line += " (" + std::to_string(summary.value("failed_runs", 0)) + " failed), " +
+            format_number(summary.value("run_wall_seconds", 0.0)) + " s of run time";
+  return line + "\n";
+}
+
 std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
                             const std::vector<IterationRecord>& iterations, const EvaluationRecord* best,
                             const std::optional<nlohmann::json>& result, const std::vector<std::string>& images) {
@@ -305,6 +316,7 @@ std::string report_markdown(const StudySpec& spec, const std::vector<EvaluationR
      << ", surrogate: RBF " << spec.basis << " ("
      << (spec.responses == ResponseMode::curve_points ? "one output per curve point" : "principal-component scores")
      << "), seed " << spec.seed << "\n";
+  if (spec.cheap_level) md << cheap_level_line(spec, result);
   if (!best) {
     md << "\nNo successful run yet.\n";
     return md.str();

@@ -5,6 +5,8 @@
 
 #include <atomic>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include "demfit/identify/analytic_model.hpp"
 #include "demfit/identify/objective.hpp"
@@ -108,6 +110,9 @@ TEST_CASE("A study with a cheap level runs it first, stores it apart and never a
   const auto stored = store.result().value();
   CHECK(stored["best_iteration"].get<int>() >= 0);
   CHECK(stored["cheap_level"]["runs"] == 12);
+  std::ifstream report(dir / "report.md");
+  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  CHECK_THAT(text, Catch::Contains("cheap level") && Catch::Contains("12 runs (0 failed)"));
   // The answer is one of the exact model's runs: its objective is that model's at its parameters.
   const CompositeObjective objective(spec.targets);
   CHECK(result.best_objective == objective.objective(objective.responses(model.evaluate(result.best, {}))));
