@@ -38,7 +38,11 @@ std::unique_ptr<identify::Model> make_identify_model(const identify::StudySpec& 
 std::unique_ptr<identify::Model> make_cheap_level_model(const identify::StudySpec& spec,
                                                         const std::filesystem::path& output_dir) {
   if (!spec.cheap_level) return nullptr;
-  return make_identify_model(identify::cheap_level_study(spec), output_dir / "cheap_level");
+  try {
+    return make_identify_model(identify::cheap_level_study(spec), output_dir / "cheap_level");
+  } catch (const std::exception& e) {  // the case's own message, said to come from the cheap level
+    throw std::runtime_error(std::string("study: cheap_level.overrides: ") + e.what());
+  }
 }
 
 namespace {

@@ -220,3 +220,31 @@ TEST_CASE("report of a study into its own folder keeps the folder identify's") {
   trust::write_text(other.study_store, "another store\n");
   CHECK_THROWS_WITH(id::prepare_output_folder(s.work / "b", other), Catch::Contains("report of another study"));
 }
+
+TEST_CASE("a cheap level that cannot run is refused naming its field, before anything is written") {
+  auto with_cheap_level = [](json cheap_level, std::string strategy) {
+    return study_with([cheap_level, strategy](json& study) {
+      study["sampling"] = {{"strategy", strategy}, {"points_per_iteration", 4}};
+      study["cheap_level"] = cheap_level;
+    });
+  };
+  const std::vector<std::string> identify{"identify", "study.json", "--out", "out", "--no-plots"};
+  check_all({
+      {"cheap level with SRSM sampling",
+       with_cheap_level({{"overrides", {{"points", 9}}}, {"runs", 12}}, "srsm"),
+       identify,
+       "cheap_level"},
+      {"cheap level overriding an unknown case field",
+       with_cheap_level({{"overrides", {{"bogus", 9}}}, {"runs", 12}}, "expected_improvement"),
+       identify,
+       "cheap_level.overrides"},
+      {"cheap level without runs",
+       with_cheap_level({{"overrides", {{"points", 9}}}}, "expected_improvement"),
+       identify,
+       "cheap_level.runs"},
+      {"cheap level of a billion runs",
+       with_cheap_level({{"overrides", {{"points", 9}}}, {"runs", 1000000000}}, "expected_improvement"),
+       identify,
+       "cheap_level.runs"},
+  });
+}
