@@ -1,5 +1,15 @@
-import sqlite3, json, math, sys
-# Table 3 study store -> cheap.csv and fine.csv for bench_rbf_multi_fidelity (log-scaled variables as log10).
+#!/usr/bin/env python3
+"""A study store with a cheap level -> OUT/cheap.csv and OUT/fine.csv for bench_rbf_multi_fidelity.
+
+Usage: table3_levels_to_csv.py STUDY.db OUT
+Log-scaled variables are written as log10 of their values; the bounds to pass to the benchmark
+(VAR:LOWER:UPPER, log10 for those) are printed. Replicates are left out of fine.csv.
+"""
+import json
+import math
+import sqlite3
+import sys
+
 db, out = sys.argv[1], sys.argv[2]
 con = sqlite3.connect(db)
 study = json.loads(con.execute("select value from meta where key='study_json'").fetchone()[0])
