@@ -11,10 +11,13 @@
 
 namespace demfit::diagnose {
 
-bool at_bound(const FitVariable& variable, double value) {
-  const double margin = 1e-6 * (variable.upper - variable.lower);
-  return value <= variable.lower + margin || value >= variable.upper - margin;
+int near_bound(const FitVariable& variable, double value, double fraction) {
+  const double margin = fraction * (variable.upper - variable.lower);
+  if (value >= variable.upper - margin) return 1;
+  return value <= variable.lower + margin ? -1 : 0;
 }
+
+bool at_bound(const FitVariable& variable, double value) { return near_bound(variable, value, 1e-6) != 0; }
 
 std::vector<std::size_t> monotone_branches(const std::vector<double>& x) {
   std::vector<std::size_t> starts{0};

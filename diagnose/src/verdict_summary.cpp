@@ -108,9 +108,10 @@ std::string bound_text(const Diagnosis& d) {
   std::string names;
   for (std::size_t j = 0; j < d.base_variables.size() && j < d.base.values.size(); ++j) {
     const FitVariable& v = d.base_variables[j];
-    const double value = d.base.values[j], near = 0.01 * (v.upper - v.lower);
-    const bool low = value <= v.lower + near, high = value >= v.upper - near;
-    if (!low && !high) continue;
+    const double value = d.base.values[j];
+    const int side = near_bound(v, value, 0.01);
+    if (side == 0) continue;
+    const bool high = side > 0;
     names += (names.empty() ? "'" : ", '") + v.name + "'" +
              format(" at %.4g (its %s bound %.4g)", value, high ? "upper" : "lower", high ? v.upper : v.lower);
   }

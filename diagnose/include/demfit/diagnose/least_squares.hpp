@@ -22,6 +22,9 @@ struct FitVariable {
   double start = 0.5;
 };
 
+// Which bound `value` lies within `fraction` of the variable's range of: -1 the lower, +1 the upper,
+// 0 neither. One rule for both uses below and the diagnosis summary's note (1 % of the range).
+int near_bound(const FitVariable& variable, double value, double fraction);
 // True when `value` lies within 1e-6 of the range of one of the variable's bounds (a fitted value
 // held there by the bound).
 bool at_bound(const FitVariable& variable, double value);
