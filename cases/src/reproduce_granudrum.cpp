@@ -18,6 +18,7 @@
 #include "demfit/cases/case_runner.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/model_factory.hpp"
+#include "demfit/cases/study_model.hpp"
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/overlay.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
@@ -364,7 +365,9 @@ std::string reproduce_granudrum(const GranudrumOptions& options) {
                                                                                    : "granudrum_calibration.json");
   const identify::StudySpec spec = identify::load_study_file(study_file);
   const auto model = make_study_model(spec);
-  const identify::RunOptions run = detail::study_run_options(o, o.out_dir / "study");
+  const auto cheap_model = make_cheap_level_model(spec, o.out_dir / "study");  // a study with a cheap level
+  identify::RunOptions run = detail::study_run_options(o, o.out_dir / "study");
+  run.cheap_model = cheap_model.get();
   const identify::StudyResult result = identify::run_study(spec, *model, run);
   const auto calibrated = surface_errors(spec, result.best_curves);
   const auto pictures = write_surface_pictures(spec, result.best_curves, o.out_dir);
