@@ -68,3 +68,18 @@ run(1 export ${OUT}/experiments/study.db --lsdyna ${OUT}/experiments.k)
 if(NOT last_err MATCHES "several experiments; export needs a single-model study" OR EXISTS ${OUT}/experiments.k)
   message(FATAL_ERROR "export of an experiments study: ${last_err}")
 endif()
+
+# A study with a cheap level: its runs first (the cheap model is the analytic curve at 9 points),
+# named in the report; a resume repeats none of them.
+run(0 identify ${DATA}/cheap_level_study.json --out ${OUT}/cheap --jobs 2 --no-plots)
+if(NOT last_err MATCHES "cheap level run 12/12")
+  message(FATAL_ERROR "identify with a cheap level did not run it:\n${last_err}")
+endif()
+file(READ ${OUT}/cheap/report.md report)
+if(NOT report MATCHES "cheap level [^\n]*12 runs \\(0 failed\\)")
+  message(FATAL_ERROR "report.md does not name the cheap level:\n${report}")
+endif()
+run(0 identify ${DATA}/cheap_level_study.json --out ${OUT}/cheap --resume --no-plots)
+if(last_err MATCHES "cheap level run|run [0-9]+/[0-9]+ ")
+  message(FATAL_ERROR "--resume of a study with a cheap level repeated runs:\n${last_err}")
+endif()
