@@ -82,15 +82,15 @@ class ModelSelector {
     if (multi_fidelity_) {
       KrigingOptions cheap = options.kriging;
       cheap.estimate_noise = options.kriging.estimate_noise || options.rbf.smoothing;
-      cheap_model_ = std::make_shared<const KrigingModel>(
-          KrigingModel::fit(options.lower_fidelity.points, options.lower_fidelity.values, cheap));
+      const FidelityLevel& level = options.lower_fidelity;
+      cheap_model_ = std::make_shared<const KrigingModel>(KrigingModel::fit(level.points, level.values, cheap));
+      if (level.values.minCoeff() > 0.0)
+        cheap_log_model_ = std::make_shared<const KrigingModel>(
+            KrigingModel::fit(level.points, level.values.array().log().matrix(), cheap));
       scale_options_.kriging = cheap;
     }
     for (bool warp : {false, true}) {
-      // A cheaper level's trend is on the values' own scale: no warp then.
-      if (multi_fidelity_ && warp) continue;
-      if (!multi_fidelity_ &&
-          ((warp && options.output_warp == OutputWarp::none) || (!warp && options.output_warp == OutputWarp::log)))
+      if ((warp && options.output_warp == OutputWarp::none) || (!warp && options.output_warp == OutputWarp::log))
         continue;
       for (KrigingKernel k : kernels) {
         ExpensiveOptions o = options;
@@ -101,11 +101,22 @@ class ModelSelector {
   }
   WarpedModel fit(const MatrixXd& x, const VectorXd& y) {
     double log_jacobian = 0.0;
-    const VectorXd w = log_warp(y, log_jacobian);
-    const KrigingTrend trend = cheap_trend(x, y);
+    // With a cheaper level both levels share one warp, w(y) = log y (positive values only; the
+    // data-dependent shift of log_warp would differ between the levels): ρ and the correction are
+    // then fitted on the log scale, where an objective spanning decades is resolved near its minimum.
+    const bool log_levels = cheap_log_model_ && y.minCoeff() > 0.0;
+    VectorXd w;
+    if (!multi_fidelity_) {
+      w = log_warp(y, log_jacobian);
+    } else if (log_levels) {
+      w = y.array().log().matrix();
+      log_jacobian = -w.sum();  // Σ log w'(y_i), w'(y) = 1 / y
+    }
     std::optional<WarpedModel> best;
     double best_nll = std::numeric_limits<double>::infinity();
     for (auto& [warp, schedule] : candidates_) {
+      if (warp && multi_fidelity_ && !log_levels) continue;
+      const KrigingTrend trend = cheap_trend(x, warp ? w : y, warp);
       KrigingModel m = schedule.fit(x, warp ? w : y, trend);
       const double nll = m.data_negative_log_likelihood() - (warp ? log_jacobian : 0.0);
       if (!best || nll < best_nll) {
@@ -120,14 +131,17 @@ class ModelSelector {
  private:
   // The cheaper level as the trend of the expensive runs (x, y), ρ by maximum likelihood; none
   // without a cheaper level.
-  KrigingTrend cheap_trend(const MatrixXd& x, const VectorXd& y) const {
+  // `log_scale`: y and the cheaper level both as log values.
+  KrigingTrend cheap_trend(const MatrixXd& x, const VectorXd& y, bool log_scale) const {
     if (!multi_fidelity_) return {};
+    const std::shared_ptr<const KrigingModel>& cheap = log_scale ? cheap_log_model_ : cheap_model_;
     FidelityLevel expensive{x, y};
-    return {cheap_model_, autoregressive_scale(expensive, cheap_model_->means(x), scale_options_)};
+    return {cheap, autoregressive_scale(expensive, cheap->means(x), scale_options_)};
   }
 
   bool multi_fidelity_ = false;
   std::shared_ptr<const KrigingModel> cheap_model_;
+  std::shared_ptr<const KrigingModel> cheap_log_model_;  // of log(values); null unless all are positive
   MultiFidelityOptions scale_options_;
   std::vector<std::pair<bool, KrigingSchedule>> candidates_;
 };

@@ -55,8 +55,10 @@ struct ExpensiveOptions {
   OutputWarp output_warp = OutputWarp::automatic;
   // Runs of a cheaper level of the same response (unit points, values; ≥ 2 runs, else ignored):
   // the expected_improvement strategy then models the values as ρ·m_cheap(x) + a kriging
-  // correction (multi_fidelity.hpp; ρ by maximum likelihood at every fit, no output warp) and
-  // proposes points by EI on that model. Told points are of the expensive level only.
+  // correction (multi_fidelity.hpp; ρ by maximum likelihood at every fit) and proposes points by
+  // EI on that model. The output warp, when allowed, is log y on both levels (all values
+  // positive; otherwise none), chosen by likelihood as for one level. Told points are of the
+  // expensive level only.
   FidelityLevel lower_fidelity;
   // Fit both kriging kernels (Matérn-5/2 and Gaussian) and use the more likely one at each fit.
   bool select_kernel = true;
