@@ -157,7 +157,8 @@ identify::StudySpec two_speed_study(std::uint64_t seed) {
 
 }  // namespace
 
-// Measured 2026-12-06 (docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md); run it by name,
+// Measured 2026-12-06 with 1.5 s at 15 rpm (docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md:
+// 2 of 5 seeds) and 2026-12-07 with 3 s (2026-12-07-hertz-twin-two-speed-same-turns.md: 3 of 5); run it by name,
 // seeds as the one-speed test (DEMFIT_HERTZ_TWIN_SEEDS), ~2x its cost per seed.
 TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin seen at 15 and 45 rpm is named or called "
           "ambiguous on every seed",
