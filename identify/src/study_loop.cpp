@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "demfit/identify/report.hpp"
 #include "demfit/identify/safe_output.hpp"
@@ -85,16 +86,17 @@ void StudyLoop::record_evaluation(const EvaluationRecord& record, int point, int
     ++study_runs_here_;
     evaluated_wall_ += record.wall_seconds;
   }
-  if (options_.progress && record.iteration == kCheapLevelIteration)
-    std::fprintf(stderr, "demfit: cheap level run %d/%d %s%s (%.2f s%s; %d runs in this process)\n", point + 1,
-                 points, record.ok ? "objective " : "FAILED: ",
+  if (options_.progress) {
+    // The cheap level's runs are numbered within it; the study's within their iteration.
+    const std::string where = record.iteration == kCheapLevelIteration
+                                  ? "cheap level run " + std::to_string(point + 1) + "/" + std::to_string(points)
+                                  : "iteration " + std::to_string(record.iteration) + " run " +
+                                        std::to_string(point + 1) + "/" + std::to_string(points) + " " + record.kind;
+    std::fprintf(stderr, "demfit: %s %s%s (%.2f s%s; %d runs in this process)\n", where.c_str(),
+                 record.ok ? "objective " : "FAILED: ",
                  record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
                  record.wall_seconds, note, evaluated_here_);
-  else if (options_.progress)
-    std::fprintf(stderr, "demfit: iteration %d run %d/%d %s %s%s (%.2f s%s; %d runs in this process)\n",
-                 record.iteration, point + 1, points, record.kind.c_str(), record.ok ? "objective " : "FAILED: ",
-                 record.ok ? detail::format_number(record.objective).c_str() : record.error.c_str(),
-                 record.wall_seconds, note, evaluated_here_);
+  }
   if (options_.after_evaluation) options_.after_evaluation(evaluated_here_);
 }
 
@@ -283,7 +285,7 @@ StudyResult StudyLoop::finish(int verification_iteration, bool converged, const 
   }
   result.runs = total_runs_;  // the interval check's runs included
   result.failed_runs = failed_runs_;
-  result.cheap_runs = cheap_runs_;
+  result.cheap_runs = spec_.cheap_level ? spec_.cheap_level->runs : 0;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   store_.put_result({{"best_iteration", best.iteration},
                      {"best_point", best.point},

@@ -140,7 +140,6 @@ class StudyLoop {
   // The study model's runs evaluated in this process and their wall time (the ETA's mean run).
   int study_runs_here_ = 0;
   double evaluated_wall_ = 0.0;
-  int cheap_runs_ = 0;  // the cheap level's runs, failed ones included
   std::string first_error_;
   std::string budget_stop_;                   // the budget that ended the loop, empty when none did
   std::optional<StopKind> budget_stop_kind_;  // its kind

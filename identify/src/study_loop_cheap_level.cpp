@@ -55,7 +55,6 @@ rbf_surrogate::FidelityLevel StudyLoop::run_cheap_level() {
     else if (first_error.empty())
       first_error = r->error;
   }
-  cheap_runs_ = count;
   if (static_cast<int>(succeeded.size()) < dims_ + 2)
     throw std::runtime_error("study: cheap_level: only " + std::to_string(succeeded.size()) + " of " +
                              std::to_string(count) + " cheap runs succeeded (at least " + std::to_string(dims_ + 2) +
@@ -76,7 +75,7 @@ nlohmann::json StudyLoop::cheap_level_summary() const {
     failed += r.ok ? 0 : 1;
     wall += r.wall_seconds;
   }
-  return {{"runs", cheap_runs_}, {"failed_runs", failed}, {"run_wall_seconds", wall}};
+  return {{"runs", spec_.cheap_level->runs}, {"failed_runs", failed}, {"run_wall_seconds", wall}};
 }
 
 }  // namespace demfit::identify::detail
