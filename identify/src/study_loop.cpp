@@ -47,36 +47,47 @@ EvaluationRecord StudyLoop::make_record(int iteration, int point, const std::str
 }
 
 void StudyLoop::evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds) {
+  evaluate_missing(iteration, points, kinds, model_, evaluator_);
+  collect(iteration, points);
+}
+
+void StudyLoop::evaluate_missing(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds,
+                                 const Model& model, Evaluator& evaluator) {
+  const int count = static_cast<int>(points.rows());
   std::vector<ParameterSet> pending;
   std::vector<int> pending_point;
-  for (int i = 0; i < points.rows(); ++i) {
+  for (int i = 0; i < count; ++i) {
     const VectorXd unit = points.row(i).transpose();
     if (const EvaluationRecord* stored = store_.find_evaluation(iteration, i)) {
       if (stored->unit_x != std::vector<double>(unit.data(), unit.data() + unit.size()))
-        throw std::runtime_error("study store: run " + std::to_string(iteration) + "/" + std::to_string(i) +
+        throw std::runtime_error("study store: " + run_name(iteration, i) +
                                  " differs from the regenerated design; the store was written by another "
                                  "demfit build, start the study in a new --out folder");
       continue;  // finished (or failed) before: never repeated
     }
-    ParameterSet parameters = detail::model_parameters(spec_, model_, variables_, unit);
+    ParameterSet parameters = detail::model_parameters(spec_, model, variables_, unit);
     if (iteration == 0 && kinds[i] == "initial" && options_.initial_run &&
         options_.initial_run->parameters == parameters) {
       record_evaluation(make_record(iteration, i, kinds[i], unit, parameters, options_.initial_run->outcome), i,
-                        static_cast<int>(points.rows()), " (the initial-point check's run)");
+                        count, " (the initial-point check's run)");
       continue;  // evaluated by preflight_study with exactly these parameters
     }
     pending.push_back(std::move(parameters));
     pending_point.push_back(i);
   }
-  if (pending.empty()) return collect(iteration, points);
+  if (pending.empty()) return;
   // One job per (point, experiment): the experiments of a point run in parallel too. A point is
   // recorded when its last experiment finishes.
-  evaluator_.evaluate_points(model_, pending, [&](std::size_t p, const EvaluationOutcome& outcome) {
+  evaluator.evaluate_points(model, pending, [&](std::size_t p, const EvaluationOutcome& outcome) {
     const int i = pending_point[p];
-    record_evaluation(make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome), i,
-                      static_cast<int>(points.rows()), "");
+    record_evaluation(make_record(iteration, i, kinds[i], points.row(i).transpose(), pending[p], outcome), i, count,
+                      "");
   });
-  collect(iteration, points);
+}
+
+std::string StudyLoop::run_name(int iteration, int point) {
+  if (iteration == kCheapLevelIteration) return "cheap level run " + std::to_string(point);
+  return "run " + std::to_string(iteration) + "/" + std::to_string(point);
 }
 
 void StudyLoop::record_evaluation(const EvaluationRecord& record, int point, int points, const char* note) {

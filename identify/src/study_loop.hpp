@@ -68,7 +68,16 @@ class StudyLoop {
   rbf_surrogate::FidelityLevel run_cheap_level();
   // The cheap level's runs, failures and wall time for the stored result (null without one).
   nlohmann::json cheap_level_summary() const;
+  // Runs `points` of `iteration` (their kinds in `kinds`) and collects them into runs_.
   void evaluate_points(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds);
+  // The runs of `points` not yet in the store, evaluated on `model` through `evaluator` and stored
+  // as each finishes; a stored run is never repeated, and one whose point differs from `points`
+  // means another build wrote the store (an error). Iteration 0's initial point takes the
+  // initial-point check's run (RunOptions::initial_run) when its parameters are exactly these.
+  void evaluate_missing(int iteration, const MatrixXd& points, const std::vector<std::string>& kinds,
+                        const Model& model, Evaluator& evaluator);
+  // "run 3/2", "cheap level run 4": a stored run in messages.
+  static std::string run_name(int iteration, int point);
   void collect(int iteration, const MatrixXd& points);
   // Stores one finished run, prints its progress line, calls the test hook.
   void record_evaluation(const EvaluationRecord& record, int point, int points, const char* note);

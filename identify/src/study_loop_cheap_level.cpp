@@ -23,29 +23,9 @@ rbf_surrogate::FidelityLevel StudyLoop::run_cheap_level() {
   // Over the whole box: the expected improvement may look anywhere, so the cheap level maps it all.
   const MatrixXd points = rbf_surrogate::latin_hypercube_maximin(
       count, dims_, detail::iteration_seed(spec_.seed, kCheapLevelIteration), Box::unit(dims_));
-  std::vector<ParameterSet> pending;
-  std::vector<int> pending_point;
-  for (int i = 0; i < count; ++i) {
-    const VectorXd unit = points.row(i).transpose();
-    if (const EvaluationRecord* stored = store_.find_evaluation(kCheapLevelIteration, i)) {
-      if (stored->unit_x != std::vector<double>(unit.data(), unit.data() + unit.size()))
-        throw std::runtime_error("study store: cheap level run " + std::to_string(i) +
-                                 " differs from the regenerated design; the store was written by another "
-                                 "demfit build, start the study in a new --out folder");
-      continue;
-    }
-    pending.push_back(detail::model_parameters(spec_, cheap, variables_, unit));
-    pending_point.push_back(i);
-  }
-  if (!pending.empty()) {
-    // Its own pool: a thread pool evaluates the model it was built for (evaluator.hpp).
-    ThreadPoolEvaluator pool(cheap, options_.jobs, options_.threads_per_job, static_cast<unsigned long>(spec_.seed));
-    pool.evaluate_points(cheap, pending, [&](std::size_t p, const EvaluationOutcome& outcome) {
-      const int i = pending_point[p];
-      record_evaluation(make_record(kCheapLevelIteration, i, "cheap", points.row(i).transpose(), pending[p], outcome),
-                        i, count, "");
-    });
-  }
+  // Its own pool: a thread pool evaluates the model it was built for (evaluator.hpp).
+  ThreadPoolEvaluator pool(cheap, options_.jobs, options_.threads_per_job, static_cast<unsigned long>(spec_.seed));
+  evaluate_missing(kCheapLevelIteration, points, std::vector<std::string>(count, "cheap"), cheap, pool);
   std::vector<int> succeeded;
   std::string first_error;
   for (int i = 0; i < count; ++i) {
