@@ -83,7 +83,7 @@ void run_identify_rank0(const IdentifyOptions& o, identify::RunOptions options, 
   std::optional<identify::StoreLock> lock;
   identify::claim_study_folder(options, request, lock, "--resume");
   options.resolved_model = cases::resolved_study_model(parsed);
-  const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator, &options.initial_run);
+  const identify::StudySpec spec = identify::preflight_study(parsed, model, evaluator, options);
   request.lock_held = lock.has_value();
   identify::prepare_output_folder(options.output_dir, request);
   if (!lock) lock.emplace(options.output_dir);

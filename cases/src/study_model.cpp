@@ -86,10 +86,11 @@ identify::StudyResult run_study_file(const identify::StudySpec& parsed, const st
   options.cheap_model = cheap_model.get();
   options.resolved_model = resolved_study_model(parsed);
   // One pool for the initial-point check and the loop: the check's experiments run side by side
-  // over the jobs, and the run it hands over is the loop's own.
+  // over the jobs, and the run it hands over is the loop's own (on --resume, the stored run 0/0
+  // when the store holds it: no evaluation at all).
   identify::ThreadPoolEvaluator pool(*model, options.jobs, options.threads_per_job,
                                      static_cast<unsigned long>(parsed.seed));
-  const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, &options.initial_run);
+  const identify::StudySpec spec = identify::preflight_study(parsed, *model, pool, options);
   request.lock_held = lock.has_value();
   identify::prepare_output_folder(options.output_dir, request);
   if (!lock) lock.emplace(options.output_dir);

@@ -1,11 +1,16 @@
 #include "demfit/identify/study_preflight.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <stdexcept>
 
+#include "demfit/identify/model_fingerprint.hpp"
+#include "demfit/identify/study_store.hpp"
 #include "demfit/identify/units.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
 #include "study_support.hpp"
@@ -101,6 +106,36 @@ StudySpec checked_against(const StudySpec& spec, const Model& model,
   return out;
 }
 
+// Bit for bit: ParameterSet's operator== takes -0.0 for 0.0.
+bool same_bits(const ParameterSet& a, const ParameterSet& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
+    return x.first == y.first && std::bit_cast<std::uint64_t>(x.second) == std::bit_cast<std::uint64_t>(y.second);
+  });
+}
+
+// On --resume, the store's run 0/0 when it is a successful initial-point run of the same simulation:
+// the resolved model (case, overrides, external program) and the seed every evaluation receives
+// (EvaluationContext::seed) as recorded in the store. nullopt otherwise; a store that cannot be read
+// is left to the loop, whose opening of it says what is wrong.
+std::optional<EvaluationRecord> stored_initial_run(const StudySpec& spec, const RunOptions& options) {
+  const std::filesystem::path path = options.output_dir / "study.db";
+  std::error_code error;
+  if (!options.resume || options.resolved_model.is_null() || !std::filesystem::is_regular_file(path, error))
+    return std::nullopt;
+  try {
+    const StudyStore store = StudyStore::open_existing(path);
+    const EvaluationRecord* run = store.find_evaluation(0, 0);
+    if (!run || !run->ok || run->kind != "initial") return std::nullopt;  // a failed run is evaluated again
+    const std::optional<nlohmann::json> model = store.resolved_model();
+    if (!model || !first_difference(*model, options.resolved_model).empty()) return std::nullopt;
+    const nlohmann::json study = store.study_json();
+    if (!study.contains("seed") || study.at("seed") != nlohmann::json(spec.seed)) return std::nullopt;
+    return *run;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 StudySpec preflight_study(const StudySpec& spec, const Model& model, const EvaluationContext& context,
@@ -123,6 +158,25 @@ StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& 
   return checked_against(
       spec, model, [&](const ParameterSet& p) { return evaluator.evaluate_points(model, {p}, nullptr).at(0); },
       initial);
+}
+
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator, RunOptions& options) {
+  const std::optional<EvaluationRecord> stored = stored_initial_run(spec, options);
+  bool reused = false;
+  const StudySpec checked = checked_against(
+      spec, model,
+      [&](const ParameterSet& p) {
+        if (!stored || !same_bits(stored->parameters, p)) return evaluator.evaluate_points(model, {p}, nullptr).at(0);
+        reused = true;  // the model is deterministic: these are the curves it gives at p
+        EvaluationOutcome outcome;
+        outcome.ok = true;
+        outcome.curves = stored->curves;
+        outcome.wall_seconds = stored->wall_seconds;
+        return outcome;
+      },
+      &options.initial_run);
+  if (reused) options.initial_run.reset();  // the loop replays run 0/0 from the store
+  return checked;
 }
 
 }  // namespace demfit::identify

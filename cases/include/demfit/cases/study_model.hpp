@@ -41,7 +41,8 @@ std::vector<std::filesystem::path> study_input_files(const identify::StudySpec& 
 // A study file run on this machine's threads (identify::ThreadPoolEvaluator, options.jobs x
 // options.threads_per_job), every configuration error before anything is created: the study,
 // the output-folder rules and the lock (identify::claim_study_folder with `resume_hint`), the
-// model, one evaluation at the initial point (identify::preflight_study), then the loop.
+// model, one evaluation at the initial point (identify::preflight_study; on a resume whose store
+// holds that run, its stored curves instead), then the loop.
 // `out_option` names the output option in errors ("--out", "out"). options.output_dir must be set.
 // `parsed` is identify::load_study_file(study_file), read once by the caller.
 identify::StudyResult run_study_file(const identify::StudySpec& parsed, const std::filesystem::path& study_file,

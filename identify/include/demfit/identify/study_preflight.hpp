@@ -1,5 +1,5 @@
 #pragma once
-// Checks a study against what its model produces, before any store or output exists:
+// Checks a study against what its model produces, before any store or output is written:
 // one evaluation at the initial point (initial values of the variables, fixed parameters, model
 // defaults) and then, for every target,
 //   - the curve exists (else the error lists the model's curves),
@@ -25,5 +25,15 @@ StudySpec preflight_study(const StudySpec& spec, const Model& model, const Evalu
 // only schedules and the run uses the workers' settings).
 StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator,
                           std::optional<InitialRun>* initial = nullptr);
+
+// The check of a study about to run with `options` (options.resolved_model set, as the front ends
+// set it): the same, except that on options.resume, when the store in options.output_dir already
+// holds run 0/0 as a successful run of the same resolved model and seed with the initial point's
+// parameters bit for bit, its stored curves stand for the evaluation. The loop takes that stored
+// run anyway, and the initial point of a DEM study costs a whole simulation. Otherwise `evaluator`
+// evaluates the initial point and options.initial_run receives the run (a stored run that failed
+// is evaluated again, as the check needs curves). The result is the same either way: the model is
+// deterministic in its parameters, resolved model and seed.
+StudySpec preflight_study(const StudySpec& spec, const Model& model, Evaluator& evaluator, RunOptions& options);
 
 }  // namespace demfit::identify
