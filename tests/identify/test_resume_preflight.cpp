@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "demfit/identify/analytic_model.hpp"
