@@ -11,7 +11,10 @@ compared with the other photo (`demfit target compare`, RMS gap in mm). The base
 photo lookup: the calibration speed's own photo profile taken as the prediction of the other.
 --extra adds a variable to the calibration (e.g. cohesion_energy_density:0:100000:0 for SJKR
 cohesion [J/m^3], restitution:0.05:0.95:0.3 for the released restitution), so a candidate effect's
-transfer is measured beside the base model's.
+transfer is measured beside the base model's. --set-answer NAME=VALUE replaces one of the answer's
+values before the runs at both speeds (e.g. cohesion_energy_density=0: the same calibration with the
+effect switched off, to see whether the effect or the rest of the answer carries the prediction).
+A calibration already in OUT is resumed (`identify --resume`), not repeated.
 Prints one table; every file stays in OUT. Runs only demfit (argument vectors, no shell).
 """
 import argparse, copy, json, os, re, statistics, subprocess, sys
@@ -49,6 +52,7 @@ def main():
     p.add_argument('--extra', action='append', default=[])
     p.add_argument('--fills', default='1,2,3')
     p.add_argument('--jobs', default='2')
+    p.add_argument('--set-answer', action='append', default=[])
     a = p.parse_args()
     demfit, out = os.path.abspath(a.demfit), os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
@@ -80,9 +84,16 @@ def main():
         study_file = os.path.join(out, one['name'] + '.json')
         json.dump(one, open(study_file, 'w'), indent=2)
         fit_dir = os.path.join(out, 'fit_' + one['name'])
-        run([demfit, 'identify', study_file, '--out', fit_dir, '--jobs', a.jobs, '--no-plots'])
+        resume = ['--resume'] if os.path.isdir(fit_dir) else []
+        run([demfit, 'identify', study_file, '--out', fit_dir, '--jobs', a.jobs, '--no-plots'] + resume)
         best = json.load(open(os.path.join(fit_dir, 'best_parameters.json')))
         values = {k: v['value'] for k, v in best['variables'].items()}
+        for assignment in a.set_answer:
+            name, value = assignment.split('=')
+            if name not in values:
+                sys.exit('--set-answer: %s is not a variable of the answer (%s)' % (name, ', '.join(values)))
+            values[name] = float(value)
+        tag = ''.join('_' + x.replace('=', '') for x in a.set_answer)
         target = experiments[predict]
         case = deep_merge(json.load(open(os.path.join(study_dir, target['model']['case']))),
                           target['model'].get('overrides', {}))
@@ -91,9 +102,9 @@ def main():
             for speed, model in ((fit_on, experiments[fit_on]['model']), (predict, target['model'])):
                 c = deep_merge(json.load(open(os.path.join(study_dir, model['case']))), model.get('overrides', {}))
                 c['drum']['fill_seed'] = fill
-                case_file = os.path.join(out, 'case_%s_%s_fill%d.json' % (one['name'], speed, fill))
+                case_file = os.path.join(out, 'case_%s%s_%s_fill%d.json' % (one['name'], tag, speed, fill))
                 json.dump(c, open(case_file, 'w'), indent=2)
-                sim_dir = os.path.join(out, 'sim_%s_%s_fill%d' % (one['name'], speed, fill))
+                sim_dir = os.path.join(out, 'sim_%s%s_%s_fill%d' % (one['name'], tag, speed, fill))
                 args = [demfit, 'simulate', case_file, '--out', sim_dir, '--threads', a.jobs]
                 for k, v in values.items():
                     args += ['--set', '%s=%r' % (k, v)]
