@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "demfit/identify/objective.hpp"
+#include "demfit/identify/reported_interval.hpp"
 #include "demfit/identify/stop_reason.hpp"
 #include "demfit/identify/study_answer.hpp"
 
@@ -135,6 +136,29 @@ void stop_warning(const StudySpec& spec, const nlohmann::json& result, std::vect
   }
 }
 
+// Variables the data cannot pin down (reported_interval.hpp: a 95 % interval wider than half the
+// bounds, or an effect on the curves below the noise): other values fit as well, so the answer is
+// one point of a set. Such an answer can fit and still not transfer to another condition (a drum
+// calibrated at one speed and run at another), which is why the warning says what pins it.
+void identifiability_warning(const StudySpec& spec, const nlohmann::json& result, const EvaluationRecord& best,
+                             std::vector<std::string>& warnings) {
+  const nlohmann::json uncertainty = result.value("uncertainty", nlohmann::json());
+  if (!uncertainty.is_object()) return;
+  std::string names;
+  int count = 0;
+  for (const auto& v : spec.variables) {
+    const auto found = best.parameters.find(v.name);
+    if (found == best.parameters.end() || reported_interval(uncertainty, v.name, found->second).identifiable) continue;
+    names += (count++ ? ", '" : "'") + v.name + "'";
+  }
+  if (count == 0) return;
+  warnings.push_back(std::string(count == 1 ? "variable " : "variables ") + names + (count == 1 ? " is" : " are") +
+                     " not identifiable from these data (95 % interval wider than half the bounds, or an effect "
+                     "below the noise): other values fit as well, so the answer may not hold at another condition; "
+                     "fix " + (count == 1 ? "it" : "them") + " or add an experiment that moves " +
+                     (count == 1 ? "it" : "them") + " (another speed, fill or load path)");
+}
+
 }  // namespace
 
 StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<EvaluationRecord>& runs,
@@ -145,6 +169,7 @@ StudyDiagnostics study_diagnostics(const StudySpec& spec, const std::vector<Eval
   bound_warnings(spec, *best, d.warnings);
   quasi_static_warnings(runs, *best, d.warnings);
   if (result) stop_warning(spec, *result, d.warnings);
+  if (result) identifiability_warning(spec, *result, *best, d.warnings);
   const EvaluationRecord* verification = nullptr;
   for (const auto& r : runs)
     if (r.kind == "verification" && r.ok) verification = &r;

@@ -79,3 +79,37 @@ TEST_CASE("an answer missing the data when no stored run fits better blames the 
   CHECK(w.find("no stored run fits it clearly better: the model, the units or the fill") != std::string::npos);
   CHECK(w.find("has not converged") == std::string::npos);
 }
+
+namespace {
+
+// A result whose posterior pins k and leaves w free (an interval over most of its bounds).
+nlohmann::json result_with_posterior(bool w_unidentifiable) {
+  nlohmann::json variables;
+  variables["k"] = {{"lower_95", 1.45}, {"upper_95", 1.55}, {"unidentifiable", false}};
+  variables["w"] = {{"lower_95", 0.1}, {"upper_95", w_unidentifiable ? 0.9 : 0.3}, {"unidentifiable", w_unidentifiable}};
+  return {{"converged", true}, {"uncertainty", {{"posterior", {{"variables", variables}}}}}};
+}
+
+std::string identifiability_warning(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings)
+    if (w.find("not identifiable") != std::string::npos) return w;
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a variable the data cannot pin is named in a warning that says what would pin it") {
+  auto spec = spec_with_target();
+  spec.variables.push_back({"w", 0.0, 1.0, 0.5, false, 1.0});
+  auto answer = run(0, noisy_line());
+  answer.parameters["w"] = 0.2;
+  const std::vector<id::EvaluationRecord> runs{answer};
+  const auto flagged = id::study_diagnostics(spec, runs, {}, &runs[0], result_with_posterior(true));
+  const std::string w = identifiability_warning(flagged.warnings);
+  INFO(w);
+  CHECK(w.find("variable 'w' is not identifiable") != std::string::npos);
+  CHECK(w.find("'k'") == std::string::npos);
+  CHECK(w.find("another speed, fill or load path") != std::string::npos);
+  const auto pinned = id::study_diagnostics(spec, runs, {}, &runs[0], result_with_posterior(false));
+  CHECK(identifiability_warning(pinned.warnings).empty());
+}
