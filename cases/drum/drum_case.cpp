@@ -28,6 +28,7 @@
 #include "demfit/imaging/occupancy.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
 #include "demfit/imaging/surface.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases::detail {
 namespace {
@@ -35,11 +36,6 @@ namespace {
 using dem_core::Vec3;
 using Clock = std::chrono::steady_clock;
 
-std::string fmt(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 SurfaceProfile surface_now(const dem_core::Simulation& sim, const CaseSpec& spec) {
   std::vector<std::array<double, 3>> positions;
   for (const Vec3& p : sim.positions()) positions.push_back({p.x, p.y, p.z});

@@ -17,6 +17,7 @@
 #include "run_budget.hpp"
 #include "demfit/cases/case_registry.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases::detail {
 namespace {
@@ -25,12 +26,6 @@ using dem_core::Vec3;
 using Clock = std::chrono::steady_clock;
 constexpr double kGravity = 9.81;    // [m/s^2], along -z
 constexpr double kLatticeGap = 0.1;  // site spacing 2 r_max (1 + gap)
-
-std::string fmt(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 double omega_of(const MeshPartSpec& part) { return part.rpm * 2.0 * std::numbers::pi / 60.0; }

@@ -18,6 +18,7 @@
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "demfit/identify/study_warnings.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases::detail {
 namespace {
@@ -26,12 +27,6 @@ using dem_core::Vec3;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-std::string fmt(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 double container_radius(const CaseSpec& spec) { return 0.5 * spec.pellet.container_diameter; }
 

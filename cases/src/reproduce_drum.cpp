@@ -23,18 +23,13 @@
 #include "demfit/identify/study.hpp"
 #include "demfit/identify/study_spec.hpp"
 #include "reproduce_study.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string fmt(const char* pattern, double value) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 // The drum of a reproduction is the model of the shipped Table 3 study (cases/table3_study.json;
 // the quick one is a cheaper drum of the same cross-section and fill fraction, docs/reproduce.md):

@@ -23,17 +23,12 @@
 #include "demfit/imaging/overlay.hpp"
 #include "demfit/imaging/profile_metrics.hpp"
 #include "reproduce_study.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string fmt(const char* pattern, double value) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 // A curve x_mm, z_mm (drum frame) as an imaging profile in metres.
 imaging::SurfaceProfile profile_of(const identify::Curve& curve, double compared_radius) {

@@ -12,6 +12,7 @@
 #include "demfit/identify/study_spec.hpp"
 #include "builtin_cases.hpp"
 #include "reproduce_study.hpp"
+#include "number_text.hpp"
 
 namespace demfit::cases {
 namespace {
@@ -19,12 +20,6 @@ namespace {
 // Generating values of the shipped synthetic curve = the paper's identified values (Table 1).
 constexpr double kPaperNormk = 0.875046;
 constexpr double kPaperSheark = 0.299582;
-
-std::string fmt(const char* pattern, double value) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
 
 std::string percent(double value, double truth) { return fmt("%+.2f", 100.0 * (value - truth) / truth) + " %"; }
 

@@ -21,7 +21,7 @@ namespace {
 
 constexpr std::size_t kMaxTemplateBytes = std::size_t{4} << 20;
 constexpr std::size_t kMaxCopiedFileBytes = std::size_t{64} << 20;
-const std::string kField = "study: model.external";
+const std::string kExternalField = "study: model.external";
 
 bool executable_file(const fs::path& path) {
   struct stat info {};
@@ -34,7 +34,7 @@ std::string resolve_program(const std::string& program, const fs::path& base_dir
   if (program.find('/') != std::string::npos) {
     const fs::path path = fs::path(program).is_absolute() ? fs::path(program) : base_dir / program;
     if (executable_file(path)) return fs::absolute(path).lexically_normal().string();
-    throw std::runtime_error(kField + ".command[0]: " + quote_path(path) +
+    throw std::runtime_error(kExternalField + ".command[0]: " + quote_path(path) +
                              " is not an executable file; check the path (relative to the study file) and its "
                              "execute permission");
   }
@@ -44,7 +44,7 @@ std::string resolve_program(const std::string& program, const fs::path& base_dir
     const fs::path candidate = fs::path(folder.empty() ? "." : folder) / program;
     if (executable_file(candidate)) return fs::absolute(candidate).lexically_normal().string();
   }
-  throw std::runtime_error(kField + ".command[0]: program '" + printable(program) +
+  throw std::runtime_error(kExternalField + ".command[0]: program '" + printable(program) +
                            "' is not found in $PATH; install it, or give its path relative to the study file "
                            "(e.g. \"./solver.sh\")");
 }
@@ -53,9 +53,9 @@ std::string resolve_program(const std::string& program, const fs::path& base_dir
 void check_parameters(const ExternalModelSpec& external, const std::string& text, const StudySpec& spec) {
   const std::string what = "template " + quote_path(external.template_file);
   std::set<std::string> used;
-  for (const Placeholder& p : template_placeholders(text, kField + ".template: " + what)) {
+  for (const Placeholder& p : template_placeholders(text, kExternalField + ".template: " + what)) {
     if (!external.units.count(p.name))
-      throw std::runtime_error(kField + ".template: " + what + " line " + std::to_string(p.line) + ": {{" + p.name +
+      throw std::runtime_error(kExternalField + ".template: " + what + " line " + std::to_string(p.line) + ": {{" + p.name +
                                "}} is not a declared parameter; add \"" + p.name +
                                "\" with its unit to model.external.parameters, or correct the name");
     used.insert(p.name);
@@ -67,10 +67,10 @@ void check_parameters(const ExternalModelSpec& external, const std::string& text
   for (const auto& c : external.candidates) candidate_parameters.insert(c.parameter);
   for (const auto& [name, unit] : external.units) {
     if (!used.count(name))
-      throw std::runtime_error(kField + ".parameters." + name + ": the template " + quote_path(external.template_file) +
+      throw std::runtime_error(kExternalField + ".parameters." + name + ": the template " + quote_path(external.template_file) +
                                " never uses {{" + name + "}}; remove the parameter or place it in the template");
     if (!set_by_study.count(name) && !candidate_parameters.count(name))
-      throw std::runtime_error(kField + ".parameters." + name +
+      throw std::runtime_error(kExternalField + ".parameters." + name +
                                ": the study neither varies nor fixes it; add it to \"variables\" or to "
                                "model.fixed_parameters");
   }
@@ -87,7 +87,7 @@ std::string read_study_file(const std::string& file, const fs::path& base_dir, c
   try {
     return read_input_file(path, max_bytes, key + " " + quote_path(path));
   } catch (const std::exception& e) {
-    throw std::runtime_error(kField + "." + key + ": " + e.what());
+    throw std::runtime_error(kExternalField + "." + key + ": " + e.what());
   }
 }
 
@@ -104,7 +104,7 @@ std::vector<std::string> read_files(const ExternalModelSpec& external, const fs:
 }  // namespace
 
 nlohmann::json resolved_external_model(const nlohmann::json& external, const fs::path& base_dir) {
-  const ExternalModelSpec spec = parse_external_spec(external, kField);
+  const ExternalModelSpec spec = parse_external_spec(external, kExternalField);
   return ExternalModel(spec, read_template(spec, base_dir), read_files(spec, base_dir), {}, {}, {}).fingerprint();
 }
 
@@ -113,7 +113,7 @@ std::unique_ptr<ExternalModel> make_external_model(const StudySpec& spec, const 
   if (!spec.experiments.empty())
     throw std::runtime_error("study: experiments: an external model is for a single-model study (\"model\" + "
                              "\"targets\"); give one study per external program");
-  const ExternalModelSpec external = parse_external_spec(spec.model_overrides, kField);
+  const ExternalModelSpec external = parse_external_spec(spec.model_overrides, kExternalField);
   std::string text = read_template(external, spec.base_dir);
   check_parameters(external, text, spec);
   std::string program = resolve_program(external.command[0], spec.base_dir);

@@ -13,7 +13,7 @@
 namespace demfit::identify {
 namespace {
 
-constexpr int kField = 10;
+constexpr int kFieldWidth = 10;
 
 // The fields demfit writes, per card, as "KEYWORD FIELD" (the form of
 // ParameterDescriptor::lsdyna_field); nullptr = left blank (LS-DYNA's default). Which model
@@ -89,7 +89,7 @@ std::string comment_line(const std::string& text) {
   return line + "\n";
 }
 
-std::string blank() { return std::string(kField, ' '); }
+std::string blank() { return std::string(kFieldWidth, ' '); }
 
 std::string card(const std::vector<std::string>& fields) {
   std::string line;
@@ -127,8 +127,8 @@ std::vector<std::string> data_lines_after(const std::string& text, const std::st
 }
 
 double field_value(const std::string& line, int index, double fallback) {
-  if (static_cast<int>(line.size()) <= index * kField) return fallback;
-  const std::string text = line.substr(index * kField, kField);
+  if (static_cast<int>(line.size()) <= index * kFieldWidth) return fallback;
+  const std::string text = line.substr(index * kFieldWidth, kFieldWidth);
   if (text.find_first_not_of(' ') == std::string::npos) return fallback;
   return std::stod(text);
 }
@@ -147,7 +147,7 @@ std::string lsdyna_field(double value) {
     else if (text.rfind("-0.", 0) == 0)
       text.erase(1, 1);
     // One leading blank keeps neighbouring fields apart for the human reader.
-    if (static_cast<int>(text.size()) <= kField - 1) return std::string(kField - text.size(), ' ') + text;
+    if (static_cast<int>(text.size()) <= kFieldWidth - 1) return std::string(kFieldWidth - text.size(), ' ') + text;
   }
   throw std::runtime_error("LS-DYNA export: value " + std::to_string(value) + " does not fit a 10-character field");
 }
