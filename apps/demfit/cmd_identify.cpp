@@ -59,10 +59,9 @@ void print_summary(const identify::StudySpec& spec, const identify::StudyResult&
     std::printf("  %-12s %.9g", v.name.c_str(), result.best.at(v.name));
     if (found != result.intervals.end() && found->second.available)
       std::printf("  95 %% interval %s", identify::interval_text(found->second).c_str());
+    // The study's warnings (stderr, report.md) say why and what would pin it.
+    if (found != result.intervals.end() && !found->second.identifiable) std::printf("  not identifiable");
     std::printf("\n");
-    if (found != result.intervals.end() && !found->second.identifiable)
-      std::printf("  warning: '%s' is not identifiable from these targets (its interval spans most of its bounds)\n",
-                  v.name.c_str());
   }
   std::printf("results: %s\n", identify::printable((out / "report.md").string()).c_str());
 }
