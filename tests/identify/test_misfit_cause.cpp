@@ -51,10 +51,15 @@ id::EvaluationRecord run(int point, const std::vector<double>& y) {
   return r;
 }
 
-std::string misfit_warning(const std::vector<std::string>& warnings) {
+// The first warning containing `text`, or "" when none does.
+std::string warning_with(const std::vector<std::string>& warnings, const std::string& text) {
   for (const auto& w : warnings)
-    if (w.find("x the noise of the data") != std::string::npos) return w;
+    if (w.find(text) != std::string::npos) return w;
   return "";
+}
+
+std::string misfit_warning(const std::vector<std::string>& warnings) {
+  return warning_with(warnings, "x the noise of the data");
 }
 
 }  // namespace
@@ -91,9 +96,7 @@ nlohmann::json result_with_posterior(bool w_unidentifiable) {
 }
 
 std::string identifiability_warning(const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings)
-    if (w.find("not identifiable") != std::string::npos) return w;
-  return "";
+  return warning_with(warnings, "not identifiable");
 }
 
 }  // namespace
