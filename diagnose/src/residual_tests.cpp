@@ -252,4 +252,10 @@ ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments,
   return a;
 }
 
+bool fails_only_autocorrelation(const ResidualAnalysis& a) {
+  const double per_test = a.alpha / 4.0;  // as in analyse_residuals
+  return a.autocorrelation.p_value < per_test && a.runs.p_value >= per_test && a.variance.p_value >= per_test &&
+         a.smooth.p_value >= per_test;
+}
+
 }  // namespace demfit::diagnose

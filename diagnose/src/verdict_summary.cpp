@@ -37,6 +37,19 @@ std::string undetectable_text(const Diagnosis& d) {
              d.bic_threshold);
 }
 
+// A candidate that wins the criterion and fails only the lag-1 test is not named (its residual is
+// not noise), but a right model fails that test alone when the data are one realisation of the
+// scatter too (fails_only_autocorrelation); the user should hear that it is the likely answer.
+std::string lag1_only_text(const CandidateFit& c, double bic_threshold) {
+  if (!(c.delta_bic > bic_threshold) || !fails_only_autocorrelation(c.analysis)) return "";
+  return format(
+             " It wins the criterion (delta BIC %.4g > %.3g) and fails only the lag-1 test (p = %.3g), which a right "
+             "model can fail when the data are one realisation of a flow as chaotic as the model's (docs/diagnose.md): "
+             "'",
+             c.delta_bic, bic_threshold, c.analysis.autocorrelation.p_value) +
+         c.effect + "' is the likely answer, not proven.";
+}
+
 // The verdict alone, without the note on undetectable candidates.
 std::string summarise_verdict(const Diagnosis& d) {
   const ResidualAnalysis& a = d.base_analysis;
@@ -88,7 +101,7 @@ std::string summarise_verdict(const Diagnosis& d) {
                format(": delta BIC %.4g, RMS/sigma after %.3g", it->delta_bic, it->analysis.rms_over_sigma) +
                (it->analysis.structural ? ", residual still structural (" + tests_text(it->analysis) + ")"
                                         : std::string(", below the criterion")) +
-               ".";
+               "." + lag1_only_text(*it, d.bic_threshold);
       } else {
         best = " No candidate effects were given.";
       }

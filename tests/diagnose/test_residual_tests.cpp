@@ -130,3 +130,18 @@ TEST_CASE("Localisation puts the largest excess in the region where a bump was a
   CHECK(b.regions[3].label.find("x-decreasing branch") != std::string::npos);
   CHECK_FALSE(b.structural);
 }
+
+TEST_CASE("Failing only the lag-1 test is told apart from failing any other residual test", "[diagnose][residual]") {
+  ResidualAnalysis a;
+  a.alpha = 0.05;  // each test at 0.0125
+  a.runs.p_value = 0.5;
+  a.variance.p_value = 0.3;
+  a.smooth.p_value = 0.2;
+  a.autocorrelation.p_value = 0.011;
+  CHECK(fails_only_autocorrelation(a));
+  a.autocorrelation.p_value = 0.0125;  // not below the per-test level: nothing fails
+  CHECK_FALSE(fails_only_autocorrelation(a));
+  a.autocorrelation.p_value = 0.011;
+  a.runs.p_value = 0.01;  // two tests fail
+  CHECK_FALSE(fails_only_autocorrelation(a));
+}

@@ -105,4 +105,10 @@ struct ResidualSegment {
 ResidualAnalysis analyse_residuals(const std::vector<ResidualSegment>& segments, int fitted_parameters,
                                    double dof_noise, double alpha);
 
+// True when the lag-1 autocorrelation test is the only one of the four that rejects "residual =
+// noise" at alpha/4. A right model can fail that test alone when the data are one realisation of a
+// flow as chaotic as the model's: the noise model counts one run's scatter, the residual carries two
+// (docs/diagnose.md, "What the noise model leaves out").
+bool fails_only_autocorrelation(const ResidualAnalysis& analysis);
+
 }  // namespace demfit::diagnose
