@@ -31,12 +31,14 @@ struct DiagnoseCliOptions {
   double bic_threshold = 10.0;
   int refit_best = 2;
   int scatter_replicas = -1;  // -1: the model's default (4 for DEM studies, 0 for the analytic model)
+  double data_scatter = 0.0;  // the data's own run-to-run scatter variance / one model run's
   bool no_plots = false;
 };
 
 // Documented upper limits: each replica or re-fit costs whole model runs.
 constexpr int kMaxScatterReplicas = 64;
 constexpr int kMaxRefitBest = 64;
+constexpr double kMaxDataScatter = 16.0;
 
 void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
@@ -51,6 +53,10 @@ void run_diagnose(const DiagnoseCliOptions& o) {
     throw std::runtime_error("--scatter-replicas: must be >= 0 (0 = data noise alone; e.g. 4 replica runs)");
   require_at_most(o.scatter_replicas, kMaxScatterReplicas, "--scatter-replicas",
                   "a few replica runs measure the scatter (default 4 for DEM studies)");
+  require_finite(o.data_scatter, "--data-scatter");
+  if (o.data_scatter < 0.0 || o.data_scatter > kMaxDataScatter)
+    throw std::runtime_error("--data-scatter: must be in [0, 16] (0 = the data's own scatter is negligible, 1 = the "
+                             "data are one run of a model like this one, 1/m = a mean of m such runs)");
   require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
   const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
@@ -69,6 +75,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.bic_threshold = o.bic_threshold;
   options.refit_best = o.refit_best;
   if (o.scatter_replicas >= 0) options.scatter_replicas = o.scatter_replicas;
+  options.data_scatter_ratio = o.data_scatter;
   options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
@@ -132,6 +139,12 @@ void register_diagnose(CLI::App& app) {
                   "scatter (y units, per target); where it exceeds 1/4 of the data noise it joins the noise model as "
                   "correlated noise and residuals are whitened (default 4 for DEM studies, 0 for the analytic model; "
                   "0 = data noise alone; at most 64)");
+  cmd->add_option("--data-scatter", o->data_scatter,
+                  "The data's own run-to-run scatter as a multiple of one model run's scatter variance (a ratio, no "
+                  "units), counted in the noise model beside the model run's: 0 (default) = negligible (data averaged "
+                  "over many realisations, or a material with far more particles than the model); 1 = the data are one "
+                  "run of a model like this one (a synthetic twin from `demfit simulate`); 1/m for a mean of m such "
+                  "runs; at most 16");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

@@ -1,24 +1,15 @@
 // `demfit reproduce table2`: Table 2 with numbers (see reproduce_tables.hpp).
-#include <cstdio>
 #include <string>
 
+#include "number_text.hpp"
 #include "demfit/cases/reproduce_tables.hpp"
 
 namespace demfit::cases {
-namespace {
-
-std::string format(const char* pattern, double a) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, a);
-  return buffer;
-}
-
-}  // namespace
 
 std::string format_table2(const OriginalParticle& original, double phi, const std::vector<double>& scales) {
   std::string out;
-  out += "Table 2: coarse-graining models (r0 = " + format("%.3g", original.radius * 1e3) +
-         " mm, rho0 = " + format("%.0f", original.density) + " kg/m^3, phi = " + format("%.2f", phi) + ")\n\n";
+  out += "Table 2: coarse-graining models (r0 = " + fmt("%.3g", original.radius * 1e3) +
+         " mm, rho0 = " + fmt("%.0f", original.density) + " kg/m^3, phi = " + fmt("%.2f", phi) + ")\n\n";
   out +=
       "| model | s | radius [mm] | paper's printed radius [mm] | particle volume [mm^3] | particle mass [mg] "
       "| true density [kg/m^3] | total mass / M0 | particles per original |\n";
@@ -29,10 +20,10 @@ std::string format_table2(const OriginalParticle& original, double phi, const st
       const double printed =
           model == CoarseGraining::scg ? p.radius : paper_printed_cvf_radius(s, phi, original.radius);
       const double per_original = p.total_mass_factor * original.density * sphere_volume(original.radius) / p.mass;
-      out += "| " + std::string(model == CoarseGraining::scg ? "SCG" : "CVF") + " | " + format("%g", s) + " | " +
-             format("%.4f", p.radius * 1e3) + " | " + format("%.4f", printed * 1e3) + " | " +
-             format("%.4f", p.volume * 1e9) + " | " + format("%.4f", p.mass * 1e6) + " | " + format("%.1f", p.density) +
-             " | " + format("%.2f", p.total_mass_factor) + " | " + format("%.5f", per_original) + " |\n";
+      out += "| " + std::string(model == CoarseGraining::scg ? "SCG" : "CVF") + " | " + fmt("%g", s) + " | " +
+             fmt("%.4f", p.radius * 1e3) + " | " + fmt("%.4f", printed * 1e3) + " | " +
+             fmt("%.4f", p.volume * 1e9) + " | " + fmt("%.4f", p.mass * 1e6) + " | " + fmt("%.1f", p.density) +
+             " | " + fmt("%.2f", p.total_mass_factor) + " | " + fmt("%.5f", per_original) + " |\n";
     }
   }
   out +=

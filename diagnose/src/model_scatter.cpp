@@ -70,13 +70,18 @@ std::vector<identify::ParameterSet> replica_parameter_sets(const identify::Param
 }
 
 std::vector<FitTarget> with_scatter(const std::vector<FitTarget>& targets, const std::vector<TargetScatter>& scatter,
-                                    double threshold, std::vector<bool>& whitened) {
+                                    double threshold, double data_scatter_ratio, std::vector<bool>& whitened) {
+  if (!(data_scatter_ratio >= 0.0 && std::isfinite(data_scatter_ratio)))
+    throw std::invalid_argument("with_scatter: data_scatter_ratio must be finite and >= 0");
   std::vector<FitTarget> out = targets;
   whitened.assign(targets.size(), false);
   for (std::size_t t = 0; t < out.size() && t < scatter.size(); ++t) {
     if (!(scatter[t].sigma > threshold * out[t].sigma)) continue;
-    out[t].noise_factor = scatter_noise_factor(static_cast<int>(out[t].data.x.size()), out[t].sigma, scatter[t]);
-    out[t].sigma = std::hypot(out[t].sigma, scatter[t].sigma);
+    // Independent trajectories add their variances: sigma_total^2 = (1 + k) sigma_scatter^2.
+    TargetScatter in_residual = scatter[t];
+    if (data_scatter_ratio > 0.0) in_residual.sigma *= std::sqrt(1.0 + data_scatter_ratio);
+    out[t].noise_factor = scatter_noise_factor(static_cast<int>(out[t].data.x.size()), out[t].sigma, in_residual);
+    out[t].sigma = std::hypot(out[t].sigma, in_residual.sigma);
     whitened[t] = true;
   }
   return out;

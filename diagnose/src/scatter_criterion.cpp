@@ -65,12 +65,16 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
   }
   d.scatter = estimate_scatter(replicas, d.targets);
   std::vector<bool> whitened;
-  std::vector<FitTarget> targets = with_scatter(d.targets, d.scatter, c.options.scatter_threshold, whitened);
+  std::vector<FitTarget> targets = with_scatter(d.targets, d.scatter, c.options.scatter_threshold,
+                                                   c.options.data_scatter_ratio, whitened);
   for (std::size_t t = 0; t < targets.size(); ++t)
     d.notes.push_back(format(
         "target '%s': model scatter %.4g (lag-1 correlation %.3f, %d runs) against data noise %.4g: %s",
         d.targets[t].name.c_str(), d.scatter[t].sigma, d.scatter[t].lag1, d.scatter[t].replicas, d.targets[t].sigma,
-        whitened[t] ? "added to the noise model (AR(1) along the curve), residuals whitened"
+        whitened[t] ? (c.options.data_scatter_ratio > 0.0
+                           ? "added to the noise model (AR(1) along the curve) for the model run and, as stated, "
+                             "for the data's own run; residuals whitened"
+                           : "added to the noise model (AR(1) along the curve), residuals whitened")
                     : "below the threshold, data noise alone"));
   d.scatter_in_noise_model = std::find(whitened.begin(), whitened.end(), true) != whitened.end();
   progress(c.options, c.started,

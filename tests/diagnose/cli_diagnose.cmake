@@ -41,6 +41,14 @@ execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json 
 if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --scatter-replicas: must be >= 0" OR EXISTS ${OUT}/bad_replicas)
   message(FATAL_ERROR "a negative --scatter-replicas must be refused with a one-line error, nothing written (${rc}): ${err}")
 endif()
+foreach(bad -0.5 nan 17)
+  execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/bad_data_scatter
+                          --data-scatter ${bad}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --data-scatter: " OR EXISTS ${OUT}/bad_data_scatter)
+    message(FATAL_ERROR "--data-scatter ${bad} must be refused with a one-line error, nothing written (${rc}): ${err}")
+  endif()
+endforeach()
 execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/replicas --no-plots
                         --jobs 2 --scatter-replicas 3
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -121,6 +121,9 @@ inline Outcome diagnose_and_report(const std::string& label, const identify::Stu
   options.fit.jobs = 2;
   if (const char* jobs = std::getenv("DEMFIT_DIAGNOSE_JOBS")) options.fit.jobs = std::atoi(jobs);
   if (noise_given) options.noise_sigma = out.sigma.front();
+  // The targets are one run of this very model (plus noise): its scatter is in the data once more
+  // (`demfit diagnose --data-scatter 1`).
+  options.data_scatter_ratio = 1.0;
   if (const char* starts = std::getenv("DEMFIT_DIAGNOSE_REFIT_STARTS")) options.refit_starts = std::atoi(starts);
   out.diagnosis = run_diagnosis(study, model, candidates, options);
   // The figures of the closing note.

@@ -112,3 +112,49 @@ TEST_CASE("Renormalising an old residual gives the residual the whitened targets
   CHECK((mapped - direct).norm() <= 1e-12 * direct.norm());
   CHECK(direct(15) == Approx((std::sin(3.0) + 0.3) / 3.0));  // torque point x = 3, white, sigma 3
 }
+
+TEST_CASE("When the data are themselves a model run the residual holds two realisations of the scatter and is "
+          "whitened only when both are counted",
+          "[diagnose][scatter]") {
+  // Residual = (model run's scatter) - (data's own run's scatter) + white data noise: 2,000 draws of 50
+  // points, scatter 0.7 at rho 0.85 in each run, data noise 0.4. Exact covariance of the residual:
+  // 0.16 I + 2 x 0.49 R. Counting both realisations (data scatter ratio 1): unit variance within 3 % and
+  // lag-1 within 0.02 of 0. Counting one (ratio 0): the whitened residual keeps a variance above 1.25
+  // and a lag-1 correlation above 0.1 (the tests' null hypothesis fails).
+  std::vector<FitTarget> targets{target("surface", 50, 0.4)};
+  const std::vector<TargetScatter> scatter{{"surface", 0.7, 0.85, 5}};
+  std::vector<bool> whitened;
+  const auto one = with_scatter(targets, scatter, 0.25, 0.0, whitened);
+  const auto two = with_scatter(targets, scatter, 0.25, 1.0, whitened);
+  REQUIRE(whitened.front());
+  CHECK(two.front().sigma == Approx(std::sqrt(0.16 + 2.0 * 0.49)).epsilon(1e-12));
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  double squares[2] = {0.0, 0.0}, lagged[2] = {0.0, 0.0};
+  for (int draw = 0; draw < 2000; ++draw) {
+    Eigen::VectorXd r = ar1(50, 0.7, 0.85, rng) - ar1(50, 0.7, 0.85, rng);
+    for (int i = 0; i < 50; ++i) r(i) += 0.4 * normal(rng);
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::MatrixXd& l = (k == 0 ? one : two).front().noise_factor;
+      const Eigen::VectorXd w = l.triangularView<Eigen::Lower>().solve(r);
+      squares[k] += w.squaredNorm();
+      lagged[k] += w.head(49).dot(w.tail(49));
+    }
+  }
+  CHECK(squares[1] / (2000.0 * 50.0) == Approx(1.0).epsilon(0.03));
+  CHECK(lagged[1] / squares[1] == Approx(0.0).margin(0.02));
+  CHECK(squares[0] / (2000.0 * 50.0) > 1.25);
+  CHECK(lagged[0] / squares[0] > 0.1);
+}
+
+TEST_CASE("A scatter below the threshold leaves the target white whatever the data's own scatter, and a negative "
+          "ratio is refused",
+          "[diagnose][scatter]") {
+  std::vector<bool> whitened;
+  const auto out = with_scatter({target("torque", 10, 2.0)}, {{"torque", 0.4, 0.5, 5}}, 0.25, 1.0, whitened);
+  CHECK_FALSE(whitened.front());
+  CHECK(out.front().sigma == 2.0);
+  CHECK(out.front().noise_factor.size() == 0);
+  CHECK_THROWS_AS(with_scatter({target("torque", 10, 2.0)}, {{"torque", 0.4, 0.5, 5}}, 0.25, -1.0, whitened),
+                  std::invalid_argument);
+}

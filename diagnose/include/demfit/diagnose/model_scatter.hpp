@@ -39,10 +39,12 @@ Eigen::MatrixXd scatter_noise_factor(int points, double sigma_data, const Target
 std::vector<identify::ParameterSet> replica_parameter_sets(const identify::ParameterSet& base,
                                                            const std::vector<FitVariable>& variables, int replicas);
 
-// The targets with the scatter in their noise model where it exceeds `threshold` x the data noise
-// (noise_factor set, sigma the total); the others unchanged. `whitened[t]` tells which.
+// The targets with the scatter in their noise model where one run's scatter exceeds `threshold` x
+// the data noise (noise_factor set, sigma the total); the others unchanged. `whitened[t]` tells
+// which. The scatter's variance counts 1 + `data_scatter_ratio` times: the model run's own
+// trajectory, plus the data's own scatter as a multiple of it (1: the data are one such run).
 std::vector<FitTarget> with_scatter(const std::vector<FitTarget>& targets, const std::vector<TargetScatter>& scatter,
-                                    double threshold, std::vector<bool>& whitened);
+                                    double threshold, double data_scatter_ratio, std::vector<bool>& whitened);
 
 // Standard deviation of the replicas' chi-squares after `renormalisation` (r -> A r): how noisy one
 // evaluation's chi-square is at fixed parameters.

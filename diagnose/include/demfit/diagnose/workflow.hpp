@@ -45,6 +45,14 @@ struct DiagnoseOptions {
   // residuals whitened by data noise + AR(1) scatter, and the base fit is refined under that noise.
   int scatter_replicas = 0;
   double scatter_threshold = 0.25;
+  // The data's own run-to-run scatter, as a multiple k of one model run's scatter variance, counted
+  // in the noise model beside the model run's (Sigma_t = sigma_data^2 I + (1 + k) sigma_scatter^2
+  // R(rho)): 0 when it is negligible (data averaged over many realisations, or a material with far
+  // more particles than a coarse model); 1 when the data are one run of a flow as chaotic as the
+  // model's (a synthetic twin made by `demfit simulate`): the residual then holds two independent
+  // trajectories, and counting one left the whitened lag-1 correlation of a correct model at
+  // 0.14-0.28 instead of 0 (docs/diagnose.md, "What Sigma leaves out"); 1/m for a mean of m runs.
+  double data_scatter_ratio = 0.0;
   FitOptions fit;
 };
 
