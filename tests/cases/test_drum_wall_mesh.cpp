@@ -39,7 +39,7 @@ std::string summary_value(const CaseResult& result, const std::string& label) {
   return "(missing)";
 }
 
-std::string parse_error(const json& document, const fs::path& base_dir = {}) {
+std::string case_parse_error(const json& document, const fs::path& base_dir = {}) {
   try {
     parse_case(document, base_dir);
   } catch (const std::exception& e) {
@@ -120,14 +120,14 @@ TEST_CASE("An STL drum in millimetres is read in metres and matches the generate
     for (int c = 0; c < 3; ++c)
       CHECK(dem_core::norm(spec.drum.wall_mesh.stl_triangles[k][c] - triangles[k][c]) < 1e-15);
   // Read in metres, the same file is 1000 times too large for the drum: refused.
-  const std::string error = parse_error(with_mesh({{"stl", "drum_mm.stl"}, {"unit", "m"}}), dir);
+  const std::string error = case_parse_error(with_mesh({{"stl", "drum_mm.stl"}, {"unit", "m"}}), dir);
   CHECK(error.find("'drum.wall_mesh.stl'") != std::string::npos);
   CHECK(error.find("check 'unit'") != std::string::npos);
 }
 
 TEST_CASE("Bad drum.wall_mesh input is refused with one line naming the field", "[drum][mesh][input]") {
   const auto refused = [](const json& wall_mesh, const std::string& field, const std::string& words) {
-    const std::string error = parse_error(with_mesh(wall_mesh));
+    const std::string error = case_parse_error(with_mesh(wall_mesh));
     INFO(error);
     CHECK(error.find(field) != std::string::npos);
     CHECK(error.find(words) != std::string::npos);

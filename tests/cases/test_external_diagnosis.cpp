@@ -98,7 +98,7 @@ diagnose::Diagnosis diagnose_study(double late_gain, const std::string& folder) 
   return d;
 }
 
-std::string parse_error(const nlohmann::json& with_candidates) {
+std::string external_spec_error(const nlohmann::json& with_candidates) {
   try {
     identify::parse_external_spec(external(with_candidates), "model.external");
   } catch (const std::exception& e) {
@@ -147,7 +147,7 @@ TEST_CASE("diagnose names nothing when the external program's curve has no hidde
 TEST_CASE("A candidate whose parameter is not in the template is refused naming the field", "[external][input]") {
   auto c = candidates();
   c[0]["parameter"] = "ced";
-  const std::string error = parse_error(c);
+  const std::string error = external_spec_error(c);
   CHECK(error.find("model.external.candidates[0].parameter") != std::string::npos);
   CHECK(error.find("'ced' is not a parameter of the template") != std::string::npos);
   CHECK(error.find('\n') == std::string::npos);
@@ -156,7 +156,7 @@ TEST_CASE("A candidate whose parameter is not in the template is refused naming 
 TEST_CASE("A candidate whose off value lies outside its range is refused naming the field", "[external][input]") {
   auto c = candidates();
   c[1]["off"] = 0.7;
-  const std::string error = parse_error(c);
+  const std::string error = external_spec_error(c);
   CHECK(error.find("model.external.candidates[1].off") != std::string::npos);
   CHECK(error.find("outside the range") != std::string::npos);
   CHECK(error.find('\n') == std::string::npos);
@@ -165,7 +165,7 @@ TEST_CASE("A candidate whose off value lies outside its range is refused naming 
 TEST_CASE("Two candidates with one name are refused naming the second", "[external][input]") {
   auto c = candidates();
   c[1]["name"] = "late_rise";
-  const std::string error = parse_error(c);
+  const std::string error = external_spec_error(c);
   CHECK(error.find("model.external.candidates[1].name") != std::string::npos);
   CHECK(error.find("names two candidates") != std::string::npos);
 }
@@ -173,7 +173,7 @@ TEST_CASE("Two candidates with one name are refused naming the second", "[extern
 TEST_CASE("A candidate's unit must be its parameter's declared unit", "[external][input]") {
   auto c = candidates();
   c[0]["unit"] = "J/m^3";
-  const std::string error = parse_error(c);
+  const std::string error = external_spec_error(c);
   CHECK(error.find("model.external.candidates[0].unit") != std::string::npos);
   CHECK(error.find("('N')") != std::string::npos);
 }

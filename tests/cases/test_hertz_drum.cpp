@@ -20,19 +20,12 @@ using nlohmann::json;
 
 namespace {
 
-json hertz_drum_document() {
+json elastic_frictionless_hertz_drum() {
   return json{{"case", "rotary_drum"},
               {"particle", {{"radius", 0.001}, {"density", 2500.0}, {"youngs_modulus", 5e6}, {"poisson_ratio", 0.3}}},
               {"contact", {{"law", "hertz_mindlin"}, {"restitution", 1.0}, {"frics", 0.0}, {"fricr", 0.0}}},
               {"wall_contact", {{"youngs_modulus", 5e6}, {"poisson_ratio", 0.3}, {"friction_as_particles", true}}},
               {"drum", {{"diameter", 0.1}, {"length", 0.02}}}};
-}
-
-std::string error_of(const json& document) {
-  try {
-    parse_case(document);
-  } catch (const std::exception& e) { return e.what(); }
-  return "";
 }
 
 dem_core::Simulation simulation_of(const CaseSpec& spec) {
@@ -47,7 +40,7 @@ dem_core::Simulation simulation_of(const CaseSpec& spec) {
 }  // namespace
 
 TEST_CASE("Hertz-Mindlin selected in a case file gives Hertz's elastic contact time for two colliding spheres (1 %)") {
-  json document = hertz_drum_document();
+  json document = elastic_frictionless_hertz_drum();
   document["time_step"]["value"] = 1e-7;
   const CaseSpec spec = parse_case(document);
   REQUIRE(spec.law == dem_core::ContactLawKind::hertz_mindlin);
@@ -74,7 +67,7 @@ TEST_CASE("Hertz-Mindlin selected in a case file gives Hertz's elastic contact t
 }
 
 TEST_CASE("A Hertz case's automatic time step is 0.2 of the Rayleigh time of its particles") {
-  const CaseSpec spec = parse_case(hertz_drum_document());
+  const CaseSpec spec = parse_case(elastic_frictionless_hertz_drum());
   dem_core::Simulation sim = simulation_of(spec);
   sim.add_particle({0, 0, 0}, 0.001);
   const double shear_modulus = 5e6 / (2.0 * 1.3);
@@ -84,8 +77,8 @@ TEST_CASE("A Hertz case's automatic time step is 0.2 of the Rayleigh time of its
 
 TEST_CASE("A sphere resting on an elastic Hertz wall has the overlap of the two-body E*") {
   // m g = 4/3 E* sqrt(R) delta^{3/2}, 1/E* = (1 - nu^2)/E + (1 - nu_w^2)/E_w.
-  const CaseSpec spec = parse_case(hertz_drum_document());
-  json document = hertz_drum_document();
+  const CaseSpec spec = parse_case(elastic_frictionless_hertz_drum());
+  json document = elastic_frictionless_hertz_drum();
   document["contact"]["restitution"] = 0.3;  // damped, so the sphere comes to rest
   const CaseSpec damped = parse_case(document);
   dem_core::SimulationSettings settings = detail::simulation_settings(damped);
@@ -103,19 +96,19 @@ TEST_CASE("A sphere resting on an elastic Hertz wall has the overlap of the two-
 }
 
 TEST_CASE("Hertz case files are parsed strictly and round-trip; LS-DYNA cases keep their old text") {
-  json document = hertz_drum_document();
+  json document = elastic_frictionless_hertz_drum();
   document["contact"]["normk"] = 0.5;
-  CHECK(error_of(document).find("contact.normk") != std::string::npos);
-  document = hertz_drum_document();
+  CHECK(test::case_refusal(document).find("contact.normk") != std::string::npos);
+  document = elastic_frictionless_hertz_drum();
   document["wall_contact"]["frics"] = 0.3;  // contradicts friction_as_particles
-  CHECK(error_of(document).find("friction_as_particles") != std::string::npos);
-  document = hertz_drum_document();
+  CHECK(test::case_refusal(document).find("friction_as_particles") != std::string::npos);
+  document = elastic_frictionless_hertz_drum();
   document["contact"].erase("restitution");
-  CHECK(error_of(document).find("contact.restitution") != std::string::npos);
-  document = hertz_drum_document();
+  CHECK(test::case_refusal(document).find("contact.restitution") != std::string::npos);
+  document = elastic_frictionless_hertz_drum();
   document["contact"]["law"] = "hooke";
-  CHECK(error_of(document).find("contact.law") != std::string::npos);
-  const CaseSpec spec = parse_case(hertz_drum_document());
+  CHECK(test::case_refusal(document).find("contact.law") != std::string::npos);
+  const CaseSpec spec = parse_case(elastic_frictionless_hertz_drum());
   CHECK(to_json(parse_case(to_json(spec))) == to_json(spec));
   CHECK(spec.wall.frics == spec.contact.frics);
   // The shipped LS-DYNA drum: no law key, the old field set.
@@ -128,7 +121,7 @@ TEST_CASE("Hertz case files are parsed strictly and round-trip; LS-DYNA cases ke
 }
 
 TEST_CASE("Hertz parameters override the case, and the tied wall friction follows the particles") {
-  const CaseSpec spec = parse_case(hertz_drum_document());
+  const CaseSpec spec = parse_case(elastic_frictionless_hertz_drum());
   const CaseSpec evaluated = detail::with_parameters(spec, {{"frics", 0.56}, {"fricr", 0.29}, {"restitution", 0.4}});
   CHECK(evaluated.wall.frics == 0.56);
   CHECK(evaluated.wall.fricd == 0.29);  // wall rolling friction
@@ -139,7 +132,7 @@ TEST_CASE("Hertz parameters override the case, and the tied wall friction follow
 }
 
 TEST_CASE("A drum fill given as bulk volume holds phi V / E[v] original particles, and s^3 fewer coarse ones") {
-  json document = hertz_drum_document();
+  json document = elastic_frictionless_hertz_drum();
   document["drum"]["fill_volume_ml"] = 50.0;
   document["drum"]["volume_fraction"] = 0.6;
   const double v0 = 4.0 / 3.0 * std::numbers::pi * 1e-9;
@@ -162,7 +155,7 @@ TEST_CASE("A drum fill given as bulk volume holds phi V / E[v] original particle
   CHECK(drum_fill_amount(parse_case(document)).original_count == Approx(fill.original_count).epsilon(1e-12));
   // Exactly one fill amount.
   document["drum"]["particle_count"] = 100;
-  CHECK(error_of(document).find("exactly one") != std::string::npos);
+  CHECK(test::case_refusal(document).find("exactly one") != std::string::npos);
 }
 
 TEST_CASE("The GranuDrum case's image surface is lifted on the left, as in the photos", "[slow]") {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "../../cases/src/dem_setup.hpp"
+#include "case_test_options.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/parameter_table.hpp"
@@ -33,13 +34,6 @@ json lsdyna_drum_document() {
   document["wall_contact"] = {{"frics", 0.3}};
   document["particle"]["youngs_modulus"] = 5e6;
   return document;
-}
-
-std::string error_of(const json& document) {
-  try {
-    parse_case(document);
-  } catch (const std::exception& e) { return e.what(); }
-  return "";
 }
 
 }  // namespace
@@ -78,25 +72,26 @@ TEST_CASE("A Hertz case at the default options keeps its cache key (no cohesion 
 TEST_CASE("A negative or unknown Hertz option is refused naming its field", "[cases][hertz]") {
   json document = hertz_drum_document();
   document["contact"]["cohesion_energy_density"] = -1.0;
-  CHECK_THAT(error_of(document), Catch::Contains("contact.cohesion_energy_density"));
+  CHECK_THAT(test::case_refusal(document), Catch::Contains("contact.cohesion_energy_density"));
   document = hertz_drum_document();
   document["contact"]["cohesion_model"] = "jkr";
-  CHECK_THAT(error_of(document), Catch::Contains("'contact.cohesion_model' must be \"sjkr\" or \"sjkr2\""));
+  CHECK_THAT(test::case_refusal(document), Catch::Contains("'contact.cohesion_model' must be \"sjkr\" or \"sjkr2\""));
   document = hertz_drum_document();
   document["contact"]["rolling_model"] = "epsd";
-  CHECK_THAT(error_of(document), Catch::Contains("'contact.rolling_model' must be \"cdt\" or \"epsd2\""));
+  CHECK_THAT(test::case_refusal(document), Catch::Contains("'contact.rolling_model' must be \"cdt\" or \"epsd2\""));
 }
 
 TEST_CASE("An LS-DYNA case file with epsd2 or SJKR cohesion is refused with the fix; cdt is accepted",
           "[cases][hertz]") {
   json document = lsdyna_drum_document();
-  REQUIRE(error_of(document).empty());
+  REQUIRE(test::case_refusal(document).empty());
   document["contact"]["rolling_model"] = "epsd2";
-  CHECK_THAT(error_of(document), Catch::Contains("'contact.rolling_model'") && Catch::Contains("hertz_mindlin"));
+  CHECK_THAT(test::case_refusal(document),
+             Catch::Contains("'contact.rolling_model'") && Catch::Contains("hertz_mindlin"));
   document["contact"]["rolling_model"] = "cdt";
-  CHECK(error_of(document).empty());
+  CHECK(test::case_refusal(document).empty());
   document["contact"]["cohesion_energy_density"] = 100.0;
-  CHECK_THAT(error_of(document),
+  CHECK_THAT(test::case_refusal(document),
              Catch::Contains("'contact.cohesion_energy_density'") && Catch::Contains("surface_energy"));
   // And as an identified parameter of an LS-DYNA case.
   const CaseSpec lsdyna = parse_case(lsdyna_drum_document());
@@ -166,7 +161,7 @@ TEST_CASE("A tied wall friction is released by wall_friction_ratio: wall FRICS =
   CHECK(parse_case(written).wall.frics == Approx(0.2).epsilon(1e-15));
   CHECK_FALSE(to_json(tied)["wall_contact"].contains("friction_ratio"));
   document["wall_contact"].erase("friction_as_particles");
-  CHECK_THAT(error_of(document),
+  CHECK_THAT(test::case_refusal(document),
              Catch::Contains("'wall_contact.friction_ratio'") && Catch::Contains("friction_as_particles"));
   // An untied case varies wall_frics itself.
   json untied = hertz_drum_document();

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../../cases/src/dem_setup.hpp"
+#include "case_test_options.hpp"
 #include "demfit/cases/case_spec.hpp"
 #include "demfit/cases/effect_catalogue.hpp"
 #include "demfit/cases/model_factory.hpp"
@@ -67,13 +68,6 @@ double outside_upper(const ParameterRow& r) {
   return r.valid.upper_open ? r.valid.upper : std::nextafter(r.valid.upper, kInf);
 }
 
-std::string parse_error(const json& document) {
-  try {
-    parse_case(document);
-  } catch (const std::exception& e) { return e.what(); }
-  return "";
-}
-
 }  // namespace
 
 TEST_CASE(
@@ -89,9 +83,10 @@ TEST_CASE(
       const CaseSpec spec = parse_case(with_field(base, path, value, is_integer(row)));
       CHECK(row.get(spec) == value);
     }
-    CHECK_THAT(parse_error(with_field(base, path, outside_lower(row), is_integer(row))), Catch::Contains(path));
+    CHECK_THAT(test::case_refusal(with_field(base, path, outside_lower(row), is_integer(row))), Catch::Contains(path));
     if (!std::isinf(row.valid.upper))
-      CHECK_THAT(parse_error(with_field(base, path, outside_upper(row), is_integer(row))), Catch::Contains(path));
+      CHECK_THAT(test::case_refusal(with_field(base, path, outside_upper(row), is_integer(row))),
+                 Catch::Contains(path));
   }
 }
 

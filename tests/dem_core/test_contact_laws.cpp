@@ -10,12 +10,13 @@
 
 #include "demfit/dem_core/contact_laws.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
 
-constexpr double radius = 1.0e-3;
 constexpr double unloading_ratio = 2.0;
 
 struct PlasticRun {
@@ -36,9 +37,9 @@ PlasticRun plastic_collisions(bool force_rebuilds) {
   Simulation sim(settings);
   sim.add_material({1.0e9, 2500.0, 0.3});
   const std::size_t floor = sim.add_wall({PlaneGeometry{{0, 0, 0}, {0, 0, 1}}, FixedMotion{}, {.frics = 0.3}});
-  sim.add_particle({0, 0, radius + 1e-4}, radius, 0, {0.1, 0, -0.5});
-  sim.add_particle({0.02 - 1.5e-3, 0, 0.01}, radius, 0, {0.5, 0, 0});
-  sim.add_particle({0.02 + 1.5e-3, 0.5e-3, 0.01}, radius, 0, {-0.5, 0, 0});
+  sim.add_particle({0, 0, kSphereRadius + 1e-4}, kSphereRadius, 0, {0.1, 0, -0.5});
+  sim.add_particle({0.02 - 1.5e-3, 0, 0.01}, kSphereRadius, 0, {0.5, 0, 0});
+  sim.add_particle({0.02 + 1.5e-3, 0.5e-3, 0.01}, kSphereRadius, 0, {-0.5, 0, 0});
   PlasticRun run;
   sim.run_until(3e-3, [&](Simulation& s) {
     run.floor_rebound = std::max(run.floor_rebound, s.velocities()[0].z);

@@ -12,8 +12,10 @@
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "turning_drum.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
 
@@ -44,10 +46,6 @@ std::vector<Vec3> run_bed(int threads) {
   state.insert(state.end(), sim.angular_velocities().begin(), sim.angular_velocities().end());
   state.push_back({sim.wall_force(4).z, sim.elastic_energy(), static_cast<double>(sim.contact_count())});
   return state;
-}
-
-bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 
 /// n spheres of radius 0.5-1.5 mm at uniformly random places in [0, length] x [0, 0.03] x [0, 0.02] m.

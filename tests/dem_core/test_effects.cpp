@@ -8,18 +8,15 @@
 
 #include "demfit/dem_core/contact_law_linear.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
 
-const Material material{1.0e9, 2500.0, 0.3};
-constexpr double radius = 1.0e-3;
-
-double mass_of(double r) { return material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
-
 /// Pair spring of two equal spheres (series): k_n = NORMK K R / 2.
-double pair_stiffness(const ContactParameters& c) { return c.normk * material.bulk_modulus * radius / 2.0; }
+double pair_stiffness(const ContactParameters& c) { return c.normk * kTestMaterial.bulk_modulus * kSphereRadius / 2.0; }
 
 struct Impact {
   double restitution;  // separation speed / approach speed
@@ -34,9 +31,9 @@ Impact pair_impact(const ContactParameters& contact, double speed, double factor
   settings.contact = contact;
   settings.time_step_factor = factor;
   Simulation sim(settings);
-  sim.add_material(material);
-  sim.add_particle({-radius - 1e-6, 0, 0}, radius, 0, {0.5 * speed, 0, 0});
-  sim.add_particle({radius + 1e-6, 0, 0}, radius, 0, {-0.5 * speed, 0, 0});
+  sim.add_material(kTestMaterial);
+  sim.add_particle({-kSphereRadius - 1e-6, 0, 0}, kSphereRadius, 0, {0.5 * speed, 0, 0});
+  sim.add_particle({kSphereRadius + 1e-6, 0, 0}, kSphereRadius, 0, {-0.5 * speed, 0, 0});
   const double dt = sim.time_step();
   double start = -1.0, end = -1.0;
   for (int s = 0; s < 10000000 && end < 0.0; ++s) {
@@ -44,10 +41,10 @@ Impact pair_impact(const ContactParameters& contact, double speed, double factor
     const double distance = sim.positions()[1].x - sim.positions()[0].x;
     const double closing = sim.velocities()[1].x - sim.velocities()[0].x;
     const double previous = distance - dt * closing;
-    if (distance < 2.0 * radius && start < 0.0)
-      start = sim.time() - dt * (2.0 * radius - distance) / (previous - distance);
-    if (distance >= 2.0 * radius && start >= 0.0)
-      end = sim.time() - dt * (distance - 2.0 * radius) / (distance - previous);
+    if (distance < 2.0 * kSphereRadius && start < 0.0)
+      start = sim.time() - dt * (2.0 * kSphereRadius - distance) / (previous - distance);
+    if (distance >= 2.0 * kSphereRadius && start >= 0.0)
+      end = sim.time() - dt * (distance - 2.0 * kSphereRadius) / (distance - previous);
   }
   return {(sim.velocities()[1].x - sim.velocities()[0].x) / speed, end - start};
 }
@@ -59,10 +56,10 @@ double wall_restitution(const ContactParameters& contact, double speed, double f
   settings.contact = contact;
   settings.time_step_factor = factor;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   sim.add_wall({PlaneGeometry{{0, 0, 0}, {1, 0, 0}}});
-  sim.add_particle({radius + 1e-6, 0, 0}, radius, 0, {-speed, 0, 0});
-  while (sim.velocities()[0].x < 0.0 || sim.positions()[0].x < radius) sim.step();
+  sim.add_particle({kSphereRadius + 1e-6, 0, 0}, kSphereRadius, 0, {-speed, 0, 0});
+  while (sim.velocities()[0].x < 0.0 || sim.positions()[0].x < kSphereRadius) sim.step();
   return sim.velocities()[0].x / speed;
 }
 
@@ -72,13 +69,13 @@ double resting_overlap(const ContactParameters& contact, double gravity) {
   settings.gravity = {0, 0, -gravity};
   settings.contact = contact;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec floor{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   floor.contact.damp = 0.5;
   sim.add_wall(floor);
-  sim.add_particle({0, 0, radius}, radius);
+  sim.add_particle({0, 0, kSphereRadius}, kSphereRadius);
   sim.run_until(0.05);
-  return radius - sim.positions()[0].z;
+  return kSphereRadius - sim.positions()[0].z;
 }
 
 }  // namespace
@@ -149,10 +146,10 @@ TEST_CASE("Cohesion: a sphere resting on a plane sinks to (m g + F_c)/k_wall wit
           "[dem_core][effects]") {
   // Wall contact: R* = R, k_w = NORMK K R. gamma chosen so that F_c = 2 m g. Tolerance 0.2 %.
   ContactParameters c;
-  const double weight = mass_of(radius) * 9.81;
-  c.surface_energy = 2.0 * weight / (1.5 * std::numbers::pi * radius);
-  const double k_wall = c.normk * material.bulk_modulus * radius;
-  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * radius;
+  const double weight = sphere_mass(kSphereRadius) * 9.81;
+  c.surface_energy = 2.0 * weight / (1.5 * std::numbers::pi * kSphereRadius);
+  const double k_wall = c.normk * kTestMaterial.bulk_modulus * kSphereRadius;
+  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * kSphereRadius;
   CHECK(resting_overlap(c, 9.81) == Approx((weight + f_c) / k_wall).epsilon(0.002));
 }
 
@@ -160,27 +157,27 @@ TEST_CASE("Cohesion: a sphere hangs under a ceiling when F_c > m g and drops off
           "[dem_core][effects]") {
   // Ceiling plane z = 0 with normal -z, sphere below it, gravity -z. Hanging equilibrium needs
   // k_w delta = F_c - m g > 0 (overlap (F_c - m g)/k_w, tolerance 0.5 %); otherwise it falls.
-  const double weight = mass_of(radius) * 9.81;
-  const double k_wall = 0.01 * material.bulk_modulus * radius;
+  const double weight = sphere_mass(kSphereRadius) * 9.81;
+  const double k_wall = 0.01 * kTestMaterial.bulk_modulus * kSphereRadius;
   for (double pull_over_weight : {1.0 / 0.9, 1.0 / 1.1}) {
     ContactParameters c;
     const double f_c = pull_over_weight * weight;
-    c.surface_energy = f_c / (1.5 * std::numbers::pi * radius);
+    c.surface_energy = f_c / (1.5 * std::numbers::pi * kSphereRadius);
     SimulationSettings settings;
     settings.contact = c;
     Simulation sim(settings);
-    sim.add_material(material);
+    sim.add_material(kTestMaterial);
     WallSpec ceiling{PlaneGeometry{{0, 0, 0}, {0, 0, -1}}};
     ceiling.contact.damp = 0.5;
     sim.add_wall(ceiling);
-    sim.add_particle({0, 0, -radius + 0.5 * f_c / k_wall}, radius);  // touching, at rest
+    sim.add_particle({0, 0, -kSphereRadius + 0.5 * f_c / k_wall}, kSphereRadius);  // touching, at rest
     sim.run_until(0.05);
-    const double overlap = radius + sim.positions()[0].z;
+    const double overlap = kSphereRadius + sim.positions()[0].z;
     INFO("F_c / m g = " << pull_over_weight);
     if (f_c > weight)
       CHECK(overlap == Approx((f_c - weight) / k_wall).epsilon(0.005));
     else
-      CHECK(overlap < -radius);  // fell more than a radius away
+      CHECK(overlap < -kSphereRadius);  // fell more than a radius away
   }
 }
 
@@ -195,8 +192,8 @@ TEST_CASE("Cohesion: a pair separates only above the speed that pays the pull-of
   ContactParameters c;
   c.surface_energy = 0.05;
   const double k = pair_stiffness(c);
-  const double m_star = 0.5 * mass_of(radius);
-  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * 0.5 * radius;
+  const double m_star = 0.5 * sphere_mass(kSphereRadius);
+  const double f_c = 1.5 * std::numbers::pi * c.surface_energy * 0.5 * kSphereRadius;
   const double v_c = f_c / std::sqrt(k * m_star);
   const double period = 2.0 * std::numbers::pi * std::sqrt(m_star / k);
   for (double v_over_vc : {0.9, 1.1}) {
@@ -205,15 +202,15 @@ TEST_CASE("Cohesion: a pair separates only above the speed that pays the pull-of
     settings.contact = c;
     settings.time_step_factor = 0.001;
     Simulation sim(settings);
-    sim.add_material(material);
-    const double gap = radius - 0.5 * f_c / k;  // centres at 2R - delta_e
+    sim.add_material(kTestMaterial);
+    const double gap = kSphereRadius - 0.5 * f_c / k;  // centres at 2R - delta_e
     const double v = v_over_vc * v_c;
-    sim.add_particle({-gap, 0, 0}, radius, 0, {-0.5 * v, 0, 0});
-    sim.add_particle({gap, 0, 0}, radius, 0, {0.5 * v, 0, 0});
+    sim.add_particle({-gap, 0, 0}, kSphereRadius, 0, {-0.5 * v, 0, 0});
+    sim.add_particle({gap, 0, 0}, kSphereRadius, 0, {0.5 * v, 0, 0});
     bool separated = false;
     while (sim.time() < 10.0 * period) {
       sim.step();
-      separated = separated || sim.positions()[1].x - sim.positions()[0].x > 2.0 * radius;
+      separated = separated || sim.positions()[1].x - sim.positions()[0].x > 2.0 * kSphereRadius;
     }
     INFO("v / v_c = " << v_over_vc);
     if (v_over_vc < 1.0) {
@@ -233,25 +230,25 @@ TEST_CASE("Cohesion presses the surfaces together: a sphere that slides on a til
   // F_c): with tan theta = 1.5 mu it slides without cohesion (acceleration g (sin - mu cos),
   // distance 1/2 a t^2, 2 %) and sticks with F_c = m g cos theta (limit 2 mu m g cos > m g sin).
   const double mu = 0.3, theta = std::atan(1.5 * mu), g = 9.81, t_end = 0.05;
-  const double weight = mass_of(radius) * g;
+  const double weight = sphere_mass(kSphereRadius) * g;
   for (bool cohesive : {false, true}) {
     SimulationSettings settings;
     settings.gravity = {g * std::sin(theta), 0, -g * std::cos(theta)};
-    if (cohesive) settings.contact.surface_energy = weight * std::cos(theta) / (1.5 * std::numbers::pi * radius);
+    if (cohesive) settings.contact.surface_energy = weight * std::cos(theta) / (1.5 * std::numbers::pi * kSphereRadius);
     Simulation sim(settings);
-    sim.add_material(material);
+    sim.add_material(kTestMaterial);
     WallSpec floor{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
     floor.contact.frics = mu;
     floor.contact.damp = 0.5;
     sim.add_wall(floor);
-    const double k_wall = 0.01 * material.bulk_modulus * radius;
+    const double k_wall = 0.01 * kTestMaterial.bulk_modulus * kSphereRadius;
     const double load = weight * std::cos(theta) + (cohesive ? weight * std::cos(theta) : 0.0);
-    sim.add_particle({0, 0, radius - load / k_wall}, radius);  // at its static overlap
+    sim.add_particle({0, 0, kSphereRadius - load / k_wall}, kSphereRadius);  // at its static overlap
     sim.run_until(t_end);
     const double travel = sim.positions()[0].x;
     INFO("cohesion " << cohesive << " travel " << travel);
     if (cohesive)
-      CHECK(std::fabs(travel) < 1e-3 * radius);
+      CHECK(std::fabs(travel) < 1e-3 * kSphereRadius);
     else
       CHECK(travel == Approx(0.5 * g * (std::sin(theta) - mu * std::cos(theta)) * t_end * t_end).epsilon(0.02));
   }
@@ -262,9 +259,9 @@ TEST_CASE("Stiffness exponent: a resting sphere sinks to d_ref (m g/(k d_ref))^(
   // Wall contact (R* = R): F = k d_ref (delta/d_ref)^n balances m g. Gravity 500 m/s^2 puts the
   // overlap well below d_ref, where the exponent matters (linear: m g/k). Tolerance 0.3 %.
   const double gravity = 500.0;
-  const double k = 0.01 * material.bulk_modulus * radius;
-  const double d_ref = 0.01 * radius;
-  const double load = mass_of(radius) * gravity;
+  const double k = 0.01 * kTestMaterial.bulk_modulus * kSphereRadius;
+  const double d_ref = 0.01 * kSphereRadius;
+  const double load = sphere_mass(kSphereRadius) * gravity;
   for (double n : {1.0, 1.5, 2.0}) {
     ContactParameters c;
     c.stiffness_exponent = n;
@@ -282,15 +279,15 @@ TEST_CASE("Stiffness exponent: an elastic impact lasts 2 (delta_max/v) sqrt(pi) 
     ContactParameters c;
     c.stiffness_exponent = n;
     const double k = pair_stiffness(c);
-    const double d_ref = 0.01 * 0.5 * radius;  // R* = R/2
+    const double d_ref = 0.01 * 0.5 * kSphereRadius;  // R* = R/2
     const double big_k = k * std::pow(d_ref, 1.0 - n);
-    const double m_star = 0.5 * mass_of(radius);
+    const double m_star = 0.5 * sphere_mass(kSphereRadius);
     const double v = 0.2, p = n + 1.0;
     const double delta_max = std::pow(p * m_star * v * v / (2.0 * big_k), 1.0 / p);
     const double expected =
         2.0 * delta_max / v * std::sqrt(std::numbers::pi) * std::tgamma(1.0 + 1.0 / p) / std::tgamma(0.5 + 1.0 / p);
     const Impact impact = pair_impact(c, v, 0.01);
-    INFO("exponent " << n << " delta_max/R " << delta_max / radius);
+    INFO("exponent " << n << " delta_max/R " << delta_max / kSphereRadius);
     CHECK(impact.restitution == Approx(1.0).epsilon(0.005));
     CHECK(impact.duration == Approx(expected).epsilon(0.01));
   }
@@ -311,8 +308,8 @@ TEST_CASE(
       SimulationSettings s;
       s.contact = p;
       Simulation sim(s);
-      sim.add_material(material);
-      sim.add_particle({0, 0, 0}, radius);
+      sim.add_material(kTestMaterial);
+      sim.add_particle({0, 0, 0}, kSphereRadius);
       return sim.time_step();
     };
     const double scale = ratio * n * std::pow(10.0, n - 1.0);
@@ -322,8 +319,8 @@ TEST_CASE(
   // Impact reaching 5 % of R with n = 1.5 at the default factor 0.15: energy kept within 1 %.
   ContactParameters c;
   c.stiffness_exponent = 1.5;
-  const double k = pair_stiffness(c), d_ref = 0.005 * radius, m_star = 0.5 * mass_of(radius);
-  const double delta_max = 0.05 * radius, p = 2.5;
+  const double k = pair_stiffness(c), d_ref = 0.005 * kSphereRadius, m_star = 0.5 * sphere_mass(kSphereRadius);
+  const double delta_max = 0.05 * kSphereRadius, p = 2.5;
   const double v = std::sqrt(2.0 * k * std::pow(d_ref, -0.5) * std::pow(delta_max, p) / (p * m_star));
   CHECK(pair_impact(c, v, 0.15).restitution == Approx(1.0).epsilon(0.01));
 }

@@ -12,15 +12,10 @@
 #include "demfit/dem_core/contact_law_linear.hpp"
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
-
-namespace {
-
-const Material material{1.0e9, 2500.0, 0.3};
-constexpr double radius = 1.0e-3;
-
-}  // namespace
+using namespace demfit::dem_core::test;
 
 TEST_CASE("Polydispersity: radii uniform in [R(1-s), R(1+s)], mean volume R^3 (1+s^2), solid volume kept",
           "[dem_core][effects]") {
@@ -78,7 +73,7 @@ TEST_CASE("Runs with every effect on are bit-identical between 1 and 2 threads",
     settings.contact.surface_energy = 0.02;
     settings.contact.stiffness_exponent = 1.5;
     Simulation sim(settings);
-    sim.add_material(material);
+    sim.add_material(kTestMaterial);
     const double half = 0.008;
     for (const Vec3& n : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}, Vec3{0, 0, 1}}) {
       WallSpec w{PlaneGeometry{-half * n, n}};

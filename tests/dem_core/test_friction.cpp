@@ -5,29 +5,25 @@
 #include <numbers>
 
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
-
-constexpr double g = 9.81;
-const Material material{1.0e9, 2500.0, 0.3};
-constexpr double radius = 1.0e-3;
-
-double sphere_mass() { return material.density * 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3); }
 
 /// A sphere resting (at its static overlap) on the plane z = 0.
 Simulation sphere_on_plane(const WallContactParameters& wall, const Vec3& velocity, const Vec3& spin) {
   SimulationSettings settings;
-  settings.gravity = {0, 0, -g};
+  settings.gravity = {0, 0, -kGravity};
   settings.contact.frics = 0.5;  // > 0 so that rotation is enabled (FRICS = 0 freezes rotation)
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact = wall;
   sim.add_wall(plane);
-  const double k = 0.01 * material.bulk_modulus * radius;  // wall spring NORMK K R
-  sim.add_particle({0, 0, radius - sphere_mass() * g / k}, radius, 0, velocity, spin);
+  const double k = 0.01 * kTestMaterial.bulk_modulus * kSphereRadius;  // wall spring NORMK K R
+  sim.add_particle({0, 0, kSphereRadius - sphere_mass(kSphereRadius) * kGravity / k}, kSphereRadius, 0, velocity, spin);
   return sim;
 }
 
@@ -41,16 +37,16 @@ TEST_CASE("A sphere launched sliding decelerates at mu g and rolls at 5/7 of its
   wall.damp = 0.3;  // damps the stick oscillation; the sliding force stays limited to mu |F_n|
   Simulation sim = sphere_on_plane(wall, {v0, 0, 0}, {});
   // Rigid body: sliding ends at t* = 2 v0 / (7 mu g); then v = 5/7 v0 (no rolling friction).
-  const double t_star = 2.0 * v0 / (7.0 * mu * g);
+  const double t_star = 2.0 * v0 / (7.0 * mu * kGravity);
   sim.run_until(0.5 * t_star);
   const double deceleration = (v0 - sim.velocities()[0].x) / sim.time();
   sim.run_until(3.0 * t_star);
   const double rolling_speed = sim.velocities()[0].x;
   const double spin = sim.angular_velocities()[0].y;
-  INFO("deceleration " << deceleration << " expected " << mu * g << "; rolling speed " << rolling_speed);
-  CHECK(deceleration == Approx(mu * g).epsilon(0.01));           // 1 %
+  INFO("deceleration " << deceleration << " expected " << mu * kGravity << "; rolling speed " << rolling_speed);
+  CHECK(deceleration == Approx(mu * kGravity).epsilon(0.01));    // 1 %
   CHECK(rolling_speed == Approx(5.0 / 7.0 * v0).epsilon(0.01));  // 1 %
-  CHECK(spin * radius == Approx(rolling_speed).epsilon(0.01));   // rolling without slip
+  CHECK(spin * kSphereRadius == Approx(rolling_speed).epsilon(0.01));  // rolling without slip
 }
 
 TEST_CASE("Wall rolling friction (wall FRICD) decelerates a rolling sphere at 5/7 mu_r g", "[dem_core][friction]") {
@@ -61,8 +57,8 @@ TEST_CASE("Wall rolling friction (wall FRICD) decelerates a rolling sphere at 5/
   wall.frics = 0.5;  // enough to keep rolling without slip (needs 2/7 mu_r)
   wall.fricd = mu_r;
   wall.damp = 0.3;
-  Simulation sim = sphere_on_plane(wall, {v0, 0, 0}, {0, v0 / radius, 0});
-  const double expected = 5.0 / 7.0 * mu_r * g;
+  Simulation sim = sphere_on_plane(wall, {v0, 0, 0}, {0, v0 / kSphereRadius, 0});
+  const double expected = 5.0 / 7.0 * mu_r * kGravity;
   sim.run_until(0.05);
   const double v1 = sim.velocities()[0].x, t1 = sim.time();
   sim.run_until(0.10);
@@ -81,23 +77,23 @@ TEST_CASE("Particle-particle rolling friction (FRICR) decelerates the relative s
   // contact normal), so only the rolling-resistance torque acts: M = FRICR |F_n| R*, F_n = m_A g.
   const double mu_r = 0.1, spin0 = 200.0;
   SimulationSettings settings;
-  settings.gravity = {0, 0, -g};
+  settings.gravity = {0, 0, -kGravity};
   settings.contact.frics = 0.5;
   settings.contact.fricr = mu_r;
   settings.contact.ndamp = 0.5;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact.damp = 0.5;
   sim.add_wall(plane);
-  const double m = sphere_mass();
-  const double k = 0.01 * material.bulk_modulus * radius;
-  const double z_b = radius - 2.0 * m * g / k;              // wall spring carries both weights
-  const double z_a = z_b + 2.0 * radius - m * g / (k / 2);  // pair spring k/2 carries A
-  sim.add_particle({0, 0, z_b}, radius);
-  sim.add_particle({0, 0, z_a}, radius, 0, {}, {0, 0, spin0});
-  const double inertia = 0.4 * m * radius * radius;
-  const double expected = mu_r * m * g * (radius / 2) * (2.0 / inertia);  // d(omega_A - omega_B)/dt
+  const double m = sphere_mass(kSphereRadius);
+  const double k = 0.01 * kTestMaterial.bulk_modulus * kSphereRadius;
+  const double z_b = kSphereRadius - 2.0 * m * kGravity / k;              // wall spring carries both weights
+  const double z_a = z_b + 2.0 * kSphereRadius - m * kGravity / (k / 2);  // pair spring k/2 carries A
+  sim.add_particle({0, 0, z_b}, kSphereRadius);
+  sim.add_particle({0, 0, z_a}, kSphereRadius, 0, {}, {0, 0, spin0});
+  const double inertia = 0.4 * m * kSphereRadius * kSphereRadius;
+  const double expected = mu_r * m * kGravity * (kSphereRadius / 2) * (2.0 / inertia);  // d(omega_A - omega_B)/dt
   sim.run_until(0.01);
   const double w1 = sim.angular_velocities()[1].z - sim.angular_velocities()[0].z, t1 = sim.time();
   sim.run_until(0.03);
@@ -112,24 +108,25 @@ TEST_CASE("Hertz-Mindlin law: a sliding sphere also decelerates at mu g and roll
   const double mu = 0.3, v0 = 1.0;
   SimulationSettings settings;
   settings.law = ContactLawKind::hertz_mindlin;
-  settings.gravity = {0, 0, -g};
+  settings.gravity = {0, 0, -kGravity};
   settings.contact.frics = 0.5;
   settings.contact.restitution = 0.3;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact.frics = mu;
   sim.add_wall(plane);
   // Hertz static overlap on a rigid plane: m g = 4/3 E* sqrt(R) delta^{3/2}, E* = E/(1-nu^2).
-  const double e_star = 3.0 * material.bulk_modulus * (1.0 - 2.0 * material.poisson_ratio) /
-                        (1.0 - material.poisson_ratio * material.poisson_ratio);
-  const double delta = std::pow(3.0 * sphere_mass() * g / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
-  sim.add_particle({0, 0, radius - delta}, radius, 0, {v0, 0, 0});
-  const double t_star = 2.0 * v0 / (7.0 * mu * g);
+  const double e_star = 3.0 * kTestMaterial.bulk_modulus * (1.0 - 2.0 * kTestMaterial.poisson_ratio) /
+                        (1.0 - kTestMaterial.poisson_ratio * kTestMaterial.poisson_ratio);
+  const double delta =
+      std::pow(3.0 * sphere_mass(kSphereRadius) * kGravity / (4.0 * e_star * std::sqrt(kSphereRadius)), 2.0 / 3.0);
+  sim.add_particle({0, 0, kSphereRadius - delta}, kSphereRadius, 0, {v0, 0, 0});
+  const double t_star = 2.0 * v0 / (7.0 * mu * kGravity);
   sim.run_until(0.5 * t_star);
   const double deceleration = (v0 - sim.velocities()[0].x) / sim.time();
   sim.run_until(3.0 * t_star);
   INFO("deceleration " << deceleration << " rolling speed " << sim.velocities()[0].x);
-  CHECK(deceleration == Approx(mu * g).epsilon(0.01));
+  CHECK(deceleration == Approx(mu * kGravity).epsilon(0.01));
   CHECK(sim.velocities()[0].x == Approx(5.0 / 7.0 * v0).epsilon(0.01));
 }

@@ -8,15 +8,12 @@
 #include <string>
 
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
-
-constexpr double kYoung = 1.0e7;  // E [Pa]
-constexpr double kPoisson = 0.3;
-constexpr double kDensity = 2500.0;
-const Material kMaterial{kYoung / (3.0 * (1.0 - 2.0 * kPoisson)), kDensity, kPoisson};  // K from E, nu
 
 /// 4/3 E* sqrt(R*) delta^(3/2), computed in long double.
 long double hertz_force(long double e_star, long double r_star, long double delta) {
@@ -44,14 +41,15 @@ double pair_normal_force(double r_i, double r_j, double delta, double k_c, Cohes
   settings.time_step = 1e-15;
   settings.reorder_particles = false;
   Simulation sim(settings);
-  sim.add_material(kMaterial);
+  sim.add_material(kHertzMaterial);
   sim.add_particle({0, 0, 0}, r_i);
   sim.add_particle({r_i + r_j - delta, 0, 0}, r_j);
   sim.step();
   return -sim.particles().force[0].x;
 }
 
-const long double kPairModulus = kYoung / (2.0L * (1.0L - kPoisson * kPoisson));  // E* of two equal materials
+const long double kPairModulus =
+    kHertzYoung / (2.0L * (1.0L - kHertzPoisson * kHertzPoisson));  // E* of two equal materials
 
 }  // namespace
 
@@ -93,8 +91,8 @@ TEST_CASE("A sphere on a floor settles where Hertz minus SJKR cohesion carries i
   // Equilibrium: 4/3 E* sqrt(R) delta^(3/2) - k_c pi (2 R delta - delta^2) = m g, rigid floor
   // (E* = E/(1 - nu^2), R* = R), solved by bisection; the simulation damps out (e = 0.3).
   const double r = 1.0e-3, k_c = 5.0e4, g = 9.81;
-  const double weight = kDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
-  const double e_star = kYoung / (1.0 - kPoisson * kPoisson);
+  const double weight = kHertzDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
+  const double e_star = kHertzYoung / (1.0 - kHertzPoisson * kHertzPoisson);
   auto excess = [&](double d) {
     return 4.0 / 3.0 * e_star * std::sqrt(r) * d * std::sqrt(d) - k_c * std::numbers::pi * (2.0 * r * d - d * d) -
            weight;
@@ -114,7 +112,7 @@ TEST_CASE("A sphere on a floor settles where Hertz minus SJKR cohesion carries i
   settings.contact.cohesion_energy_density = k_c;
   settings.gravity = {0, 0, -g};
   Simulation sim(settings);
-  sim.add_material(kMaterial);
+  sim.add_material(kHertzMaterial);
   sim.add_wall({PlaneGeometry{{0, 0, 0}, {0, 0, 1}}});
   sim.add_particle({0, 0, r}, r);  // touching, at rest
   sim.run_until(0.03);
@@ -162,7 +160,7 @@ TEST_CASE("A cohesion above the time step's limit is refused with the limit; jus
     settings.contact.restitution = 0.5;
     settings.contact.cohesion_energy_density = k_c;
     Simulation sim(settings);
-    sim.add_material(kMaterial);
+    sim.add_material(kHertzMaterial);
     sim.add_wall({PlaneGeometry{{0, 0, 0}, {0, 0, 1}}});
     sim.add_particle({0, 0, 1.0e-3}, 1.0e-3);
     sim.step();

@@ -14,18 +14,19 @@
 #include "demfit/dem_core/drum_mesh.hpp"
 #include "demfit/dem_core/simulation.hpp"
 #include "mesh_shapes.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
 using namespace demfit::dem_core::test;
 
 namespace {
 
-constexpr double g = 9.81, r = 2.0e-3, half = 0.05;
-const Material material{1.0e9, 2500.0, 0.3};
+constexpr double kBallRadius = 2.0e-3;  // the sphere [m]
+constexpr double kHalfSide = 0.05;      // half the side of the box and of the floor [m]
 
 SimulationSettings settings_with_friction() {
   SimulationSettings s;
-  s.gravity = {0, 0, -g};
+  s.gravity = {0, 0, -kGravity};
   s.contact.frics = 0.5;  // rotation on
   s.reorder_particles = false;
   s.time_step = 2.0e-5;  // the same step in both runs
@@ -35,22 +36,23 @@ SimulationSettings settings_with_friction() {
 const WallContactParameters rough_damped{0.4, 0.0, 0.3, 1.0};  // FRICS, FRICD (rolling), DAMP, SFP
 
 /// Wall spring k_w = SFP NORMK K R of the linear law [N/m].
-double wall_stiffness(const Simulation& sim) { return 1.0 * sim.settings().contact.normk * material.bulk_modulus * r; }
-
-double mass() { return material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+double wall_stiffness(const Simulation& sim) {
+  return 1.0 * sim.settings().contact.normk * kTestMaterial.bulk_modulus * kBallRadius;
+}
 
 }  // namespace
 
 TEST_CASE("A sphere dropped on a flat face of a meshed box moves exactly as on the analytic plane",
           "[dem_core][mesh]") {
   Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
-  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
-  meshed.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), rough_damped));
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(kTestMaterial);
+  meshed.add_wall(
+      mesh_wall(box_triangles({-kHalfSide, -kHalfSide, -kHalfSide}, {kHalfSide, kHalfSide, 0}), rough_damped));
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact = rough_damped;
   analytic.add_wall(plane);
   for (Simulation* s : {&meshed, &analytic})  // oblique, spinning: normal, friction and rolling loads
-    s->add_particle({0.013, -0.007, 1.5 * r}, r, 0, {0.3, -0.1, -0.5}, {20.0, 5.0, -3.0});
+    s->add_particle({0.013, -0.007, 1.5 * kBallRadius}, kBallRadius, 0, {0.3, -0.1, -0.5}, {20.0, 5.0, -3.0});
   std::size_t contact_steps = 0;
   double largest_rise = 0.0;
   for (int step = 0; step < 5000; ++step) {
@@ -76,24 +78,24 @@ TEST_CASE("A sphere striking a convex edge of a meshed box is pushed along the l
   s.contact.frics = 0.0;
   s.time_step = 2.0e-6;  // ~100 steps per impact
   Simulation sim(s);
-  sim.add_material(material);
-  sim.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), {}));
+  sim.add_material(kTestMaterial);
+  sim.add_wall(mesh_wall(box_triangles({-kHalfSide, -kHalfSide, -kHalfSide}, {kHalfSide, kHalfSide, 0}), {}));
   const double v0 = 0.4;
-  sim.add_particle({half + 0.4 * r, 0.01, 1.2 * r}, r, 0, {0, 0, -v0});
+  sim.add_particle({kHalfSide + 0.4 * kBallRadius, 0.01, 1.2 * kBallRadius}, kBallRadius, 0, {0, 0, -v0});
   const double k = wall_stiffness(sim);
   int contact_steps = 0;
   for (int step = 0; step < 2000; ++step) {
     sim.step();
     const Vec3 c = sim.positions()[0];
-    const Vec3 q{half, c.y, 0.0};
+    const Vec3 q{kHalfSide, c.y, 0.0};
     const double d = norm(c - q);
-    if (d >= r || c.z <= 0.0 || c.x <= half) {  // away from the edge's region: no contact expected
-      if (c.z > 0.0 && c.x > half) CHECK(sim.wall_contact_count() == 0);
+    if (d >= kBallRadius || c.z <= 0.0 || c.x <= kHalfSide) {  // away from the edge's region: no contact expected
+      if (c.z > 0.0 && c.x > kHalfSide) CHECK(sim.wall_contact_count() == 0);
       continue;
     }
     ++contact_steps;
     REQUIRE(sim.wall_contact_count() == 1);
-    const Vec3 expected_on_wall = -(k * (r - d) / d) * (c - q);
+    const Vec3 expected_on_wall = -(k * (kBallRadius - d) / d) * (c - q);
     const Vec3 got = sim.wall_force(0);
     INFO("step " << step << " force " << got.x << " " << got.y << " " << got.z);
     CHECK(norm(got - expected_on_wall) <= 1e-9 * norm(expected_on_wall));
@@ -102,8 +104,8 @@ TEST_CASE("A sphere striking a convex edge of a meshed box is pushed along the l
   // Elastic and frictionless: kinetic plus potential energy per unit mass is kept, to the
   // integrator's error.
   const Vec3 v = sim.velocities()[0];
-  const double energy = 0.5 * norm2(v) + g * sim.positions()[0].z;
-  CHECK(energy == Approx(0.5 * v0 * v0 + g * 1.2 * r).epsilon(1e-3));
+  const double energy = 0.5 * norm2(v) + kGravity * sim.positions()[0].z;
+  CHECK(energy == Approx(0.5 * v0 * v0 + kGravity * 1.2 * kBallRadius).epsilon(1e-3));
   CHECK(v.x > 0.0);  // deflected off the edge, outwards
 }
 
@@ -114,23 +116,24 @@ TEST_CASE("A sphere striking a corner of a meshed box is pushed along the line f
   s.contact.frics = 0.0;
   s.time_step = 2.0e-6;  // ~100 steps per impact
   Simulation sim(s);
-  sim.add_material(material);
-  sim.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), {}));
-  sim.add_particle({half + 0.3 * r, half + 0.2 * r, 1.2 * r}, r, 0, {0, 0, -0.4});
+  sim.add_material(kTestMaterial);
+  sim.add_wall(mesh_wall(box_triangles({-kHalfSide, -kHalfSide, -kHalfSide}, {kHalfSide, kHalfSide, 0}), {}));
+  sim.add_particle({kHalfSide + 0.3 * kBallRadius, kHalfSide + 0.2 * kBallRadius, 1.2 * kBallRadius}, kBallRadius, 0,
+                   {0, 0, -0.4});
   const double k = wall_stiffness(sim);
-  const Vec3 corner{half, half, 0};
+  const Vec3 corner{kHalfSide, kHalfSide, 0};
   int contact_steps = 0;
   for (int step = 0; step < 2000; ++step) {
     sim.step();
     const Vec3 c = sim.positions()[0];
     const double d = norm(c - corner);
-    if (d >= r) {
+    if (d >= kBallRadius) {
       CHECK(sim.wall_contact_count() == 0);
       continue;
     }
     ++contact_steps;
     REQUIRE(sim.wall_contact_count() == 1);
-    const Vec3 expected_on_wall = -(k * (r - d) / d) * (c - corner);
+    const Vec3 expected_on_wall = -(k * (kBallRadius - d) / d) * (c - corner);
     CHECK(norm(sim.wall_force(0) - expected_on_wall) <= 1e-9 * norm(expected_on_wall));
   }
   CHECK(contact_steps > 20);
@@ -141,17 +144,19 @@ TEST_CASE("A sphere thrown into an inside corner of a meshed box moves as agains
   // Inside the box (contact is two-sided): floor and two side walls, three contacts at once. The
   // analytic walls add their loads in wall order, the mesh deepest first: round-off apart.
   SimulationSettings settings = settings_with_friction();
-  settings.gravity = {-4.0, -3.0, -g};  // pulls into the corner: three contacts at rest
+  settings.gravity = {-4.0, -3.0, -kGravity};  // pulls into the corner: three contacts at rest
   Simulation meshed(settings), analytic(settings);
-  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
-  meshed.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, half}), rough_damped));
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(kTestMaterial);
+  meshed.add_wall(
+      mesh_wall(box_triangles({-kHalfSide, -kHalfSide, -kHalfSide}, {kHalfSide, kHalfSide, kHalfSide}), rough_damped));
   for (const Vec3& n : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}) {
-    WallSpec plane{PlaneGeometry{-half * n, n}};
+    WallSpec plane{PlaneGeometry{-kHalfSide * n, n}};
     plane.contact = rough_damped;
     analytic.add_wall(plane);
   }
   for (Simulation* s : {&meshed, &analytic})
-    s->add_particle({-half + 1.3 * r, -half + 1.2 * r, -half + 1.1 * r}, r, 0, {-0.05, -0.02, 0.03}, {3, -2, 1});
+    s->add_particle({-kHalfSide + 1.3 * kBallRadius, -kHalfSide + 1.2 * kBallRadius, -kHalfSide + 1.1 * kBallRadius},
+                    kBallRadius, 0, {-0.05, -0.02, 0.03}, {3, -2, 1});
   std::size_t most_contacts = 0;
   for (int step = 0; step < 5000; ++step) {
     meshed.step();
@@ -159,7 +164,7 @@ TEST_CASE("A sphere thrown into an inside corner of a meshed box moves as agains
     most_contacts = std::max(most_contacts, analytic.wall_contact_count());
     REQUIRE(meshed.wall_contact_count() == analytic.wall_contact_count());
     const Vec3 dx = meshed.positions()[0] - analytic.positions()[0];
-    REQUIRE(norm(dx) <= 1e-12 * half);
+    REQUIRE(norm(dx) <= 1e-12 * kHalfSide);
     REQUIRE(norm(meshed.velocities()[0] - analytic.velocities()[0]) <= 1e-9 * (norm(analytic.velocities()[0]) + 1e-6));
   }
   CHECK(most_contacts == 3);
@@ -173,15 +178,16 @@ TEST_CASE("A sphere rolling across the shared edge of a flat two-triangle floor 
   // at every step: a reset tangential history or a double contact at the edge would show.
   for (const double spin_fraction : {1.0, 0.5}) {  // rolling, and sliding into rolling
     Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
-    for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
-    meshed.add_wall(mesh_wall(two_triangle_floor(half), rough_damped));
+    for (Simulation* s : {&meshed, &analytic}) s->add_material(kTestMaterial);
+    meshed.add_wall(mesh_wall(two_triangle_floor(kHalfSide), rough_damped));
     WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
     plane.contact = rough_damped;
     analytic.add_wall(plane);
-    const double v = 0.1, overlap = mass() * g / wall_stiffness(meshed);
+    const double v = 0.1, overlap = sphere_mass(kBallRadius) * kGravity / wall_stiffness(meshed);
     for (Simulation* s : {&meshed, &analytic})
       // No slip at the contact point, r - overlap below the centre.
-      s->add_particle({-0.01, 0.003, r - overlap}, r, 0, {v, 0, 0}, {0, spin_fraction * v / (r - overlap), 0});
+      s->add_particle({-0.01, 0.003, kBallRadius - overlap}, kBallRadius, 0, {v, 0, 0},
+                      {0, spin_fraction * v / (kBallRadius - overlap), 0});
     double largest_difference = 0.0, normal_min = 1e9, normal_max = 0.0;
     while (meshed.positions()[0].x < 0.015) {
       meshed.step();
@@ -198,7 +204,7 @@ TEST_CASE("A sphere rolling across the shared edge of a flat two-triangle floor 
     CHECK(std::abs(speed - analytic_speed) <= 1e-9 * analytic_speed);
     if (spin_fraction == 1.0) {
       CHECK(std::abs(speed - v) <= 1e-6 * v);                                  // no bump, no loss
-      CHECK((normal_max - normal_min) <= 1e-6 * mass() * g);                   // normal force continuous
+      CHECK((normal_max - normal_min) <= 1e-6 * sphere_mass(kBallRadius) * kGravity);  // normal force continuous
     }
   }
 }
@@ -218,13 +224,13 @@ TEST_CASE("A sphere on a finely triangulated flat floor feels the analytic plane
       else floor.insert(floor.end(), {{a, b, d}, {b, c, d}});
     }
   Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
-  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(kTestMaterial);
   meshed.add_wall(mesh_wall(floor, rough_damped));
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact = rough_damped;
   analytic.add_wall(plane);
   for (Simulation* s : {&meshed, &analytic})  // sliding diagonally through the vertex (0, 0)
-    s->add_particle({-0.012, -0.0121, 0.99 * r}, r, 0, {0.1, 0.1, 0}, {0, 0, 0});
+    s->add_particle({-0.012, -0.0121, 0.99 * kBallRadius}, kBallRadius, 0, {0.1, 0.1, 0}, {0, 0, 0});
   double largest_difference = 0.0;
   while (meshed.positions()[0].x < 0.012) {
     meshed.step();
@@ -242,16 +248,16 @@ TEST_CASE("A mesh wall turns and translates with its prescribed motion like the 
   // A turntable (rotation about +z through (0.01, 0, 0)) then a lift (translation +z): the
   // sphere is carried by friction; the mesh frame turns with the wall and keeps the plane's loads.
   Simulation meshed(settings_with_friction()), analytic(settings_with_friction());
-  for (Simulation* s : {&meshed, &analytic}) s->add_material(material);
-  WallSpec mesh = mesh_wall(two_triangle_floor(half), rough_damped);
+  for (Simulation* s : {&meshed, &analytic}) s->add_material(kTestMaterial);
+  WallSpec mesh = mesh_wall(two_triangle_floor(kHalfSide), rough_damped);
   WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   plane.contact = rough_damped;
   const RotatingMotion turn{{0.01, 0, 0}, {0, 0, 1}, 4.0};
   mesh.motion = plane.motion = turn;
   meshed.add_wall(mesh);
   analytic.add_wall(plane);
-  const double overlap = mass() * g / wall_stiffness(meshed);
-  for (Simulation* s : {&meshed, &analytic}) s->add_particle({0.03, 0.0, r - overlap}, r);
+  const double overlap = sphere_mass(kBallRadius) * kGravity / wall_stiffness(meshed);
+  for (Simulation* s : {&meshed, &analytic}) s->add_particle({0.03, 0.0, kBallRadius - overlap}, kBallRadius);
   for (Simulation* s : {&meshed, &analytic}) s->run_until(0.3);
   // Carried around the turntable axis: the angle swept is a good part of 4 rad/s x 0.3 s.
   const Vec3 x = meshed.positions()[0];
@@ -259,7 +265,7 @@ TEST_CASE("A mesh wall turns and translates with its prescribed motion like the 
   for (Simulation* s : {&meshed, &analytic}) s->set_wall_motion(0, TranslatingMotion{{0, 0, 0.05}});
   for (Simulation* s : {&meshed, &analytic}) s->run_until(0.4);
   CHECK(meshed.positions()[0].z > 0.004);  // lifted about 5 mm
-  CHECK(norm(meshed.positions()[0] - analytic.positions()[0]) <= 1e-9 * half);
+  CHECK(norm(meshed.positions()[0] - analytic.positions()[0]) <= 1e-9 * kHalfSide);
   CHECK(norm(meshed.velocities()[0] - analytic.velocities()[0]) <= 1e-7 * norm(analytic.velocities()[0]));
   CHECK(meshed.wall_force(0).z == Approx(analytic.wall_force(0).z).epsilon(1e-7));
 }
@@ -269,11 +275,12 @@ TEST_CASE("A sphere in a shallow concave crease feels one contact with the deepe
   // crease): near the crease the sphere overlaps both planes by almost the same depth; one
   // contact, the deeper, is the rule (triangle_mesh.hpp, rule 3), so the force is k_w times the
   // larger overlap (equal overlaps at the crease: the force passes continuously to the other face).
-  const double a = 3.0 * std::numbers::pi / 180.0, t = half * std::tan(a);
-  const std::vector<Triangle> valley{{Vec3{-half, -half, t}, Vec3{0, -half, 0}, Vec3{0, half, 0}},
-                                     {Vec3{-half, -half, t}, Vec3{0, half, 0}, Vec3{-half, half, t}},
-                                     {Vec3{0, -half, 0}, Vec3{half, -half, t}, Vec3{half, half, t}},
-                                     {Vec3{0, -half, 0}, Vec3{half, half, t}, Vec3{0, half, 0}}};
+  const double a = 3.0 * std::numbers::pi / 180.0, t = kHalfSide * std::tan(a);
+  const std::vector<Triangle> valley{
+      {Vec3{-kHalfSide, -kHalfSide, t}, Vec3{0, -kHalfSide, 0}, Vec3{0, kHalfSide, 0}},
+      {Vec3{-kHalfSide, -kHalfSide, t}, Vec3{0, kHalfSide, 0}, Vec3{-kHalfSide, kHalfSide, t}},
+      {Vec3{0, -kHalfSide, 0}, Vec3{kHalfSide, -kHalfSide, t}, Vec3{kHalfSide, kHalfSide, t}},
+      {Vec3{0, -kHalfSide, 0}, Vec3{kHalfSide, kHalfSide, t}, Vec3{0, kHalfSide, 0}}};
   const Vec3 left{std::sin(a), 0, std::cos(a)}, right{-std::sin(a), 0, std::cos(a)};  // planes through 0
   SimulationSettings s = settings_with_friction();
   s.gravity = {0, 0, 0};
@@ -281,17 +288,17 @@ TEST_CASE("A sphere in a shallow concave crease feels one contact with the deepe
   int both_faces_overlapped = 0;  // offsets where counting both faces would have doubled the force
   for (int k = -10; k <= 10; ++k) {
     Simulation sim(s);
-    sim.add_material(material);
+    sim.add_material(kTestMaterial);
     sim.add_wall(mesh_wall(valley, {}));
-    sim.add_particle({0.02 * r * k, 0.0, 0.99 * r}, r);
+    sim.add_particle({0.02 * kBallRadius * k, 0.0, 0.99 * kBallRadius}, kBallRadius);
     sim.step();
     const Vec3 c = sim.positions()[0];
-    const double deeper = std::max(r - dot(c, left), r - dot(c, right));
+    const double deeper = std::max(kBallRadius - dot(c, left), kBallRadius - dot(c, right));
     const double expected = wall_stiffness(sim) * deeper;
     INFO("offset " << 0.02 * k << " r");
     REQUIRE(sim.wall_contact_count() == 1);
     CHECK(norm(sim.wall_force(0)) == Approx(expected).epsilon(1e-9));
-    const double shallower = std::min(r - dot(c, left), r - dot(c, right));
+    const double shallower = std::min(kBallRadius - dot(c, left), kBallRadius - dot(c, right));
     if (shallower > 0.5 * deeper) ++both_faces_overlapped;
   }
   CHECK(both_faces_overlapped >= 3);
@@ -303,13 +310,14 @@ TEST_CASE("Runs with a rotating mesh wall are bit-identical between 1 and 2 thre
     s.threads = threads;
     s.reorder_particles = true;  // particle order changes at rebuilds: slots and histories follow
     Simulation sim(s);
-    sim.add_material(material);
+    sim.add_material(kTestMaterial);
     WallSpec box = mesh_wall(box_triangles({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}), rough_damped);
     box.motion = RotatingMotion{{0, 0, 0}, {1, 0, 0}, 3.0};  // a tumbling box: contacts move across edges
     sim.add_wall(box);
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)
-        for (int k = 0; k < 4; ++k) sim.add_particle({-0.006 + 0.004 * i, -0.006 + 0.004 * j, -0.006 + 0.004 * k}, r);
+        for (int k = 0; k < 4; ++k)
+          sim.add_particle({-0.006 + 0.004 * i, -0.006 + 0.004 * j, -0.006 + 0.004 * k}, kBallRadius);
     std::vector<double> torques;  // every 100 steps, 2000 in all
     std::size_t most_contacts = 0;
     for (int chunk = 0; chunk < 20; ++chunk) {
@@ -330,16 +338,18 @@ TEST_CASE("A sphere pressed into a face next to a convex edge or corner feels on
   // Overlap 5 % of r, centre 0.2 r inside the edge: the side faces' triangles hold the edge (and
   // corner) within r of the centre, at a point other than the face contact and with a normal
   // 12 degrees off the face's. Rule 2 of triangle_mesh.hpp drops them: the loads are the plane's.
-  for (const Vec3& at : {Vec3{half - 0.2 * r, 0.0, 0.95 * r}, Vec3{half - 0.2 * r, half - 0.15 * r, 0.95 * r}}) {
+  for (const Vec3& at : {Vec3{kHalfSide - 0.2 * kBallRadius, 0.0, 0.95 * kBallRadius},
+                         Vec3{kHalfSide - 0.2 * kBallRadius, kHalfSide - 0.15 * kBallRadius, 0.95 * kBallRadius}}) {
     SimulationSettings s = settings_with_friction();
     s.gravity = {0, 0, 0};
     Simulation meshed(s), analytic(s);
-    for (Simulation* sim : {&meshed, &analytic}) sim->add_material(material);
-    meshed.add_wall(mesh_wall(box_triangles({-half, -half, -half}, {half, half, 0}), rough_damped));
+    for (Simulation* sim : {&meshed, &analytic}) sim->add_material(kTestMaterial);
+    meshed.add_wall(
+        mesh_wall(box_triangles({-kHalfSide, -kHalfSide, -kHalfSide}, {kHalfSide, kHalfSide, 0}), rough_damped));
     WallSpec plane{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
     plane.contact = rough_damped;
     analytic.add_wall(plane);
-    for (Simulation* sim : {&meshed, &analytic}) sim->add_particle(at, r);
+    for (Simulation* sim : {&meshed, &analytic}) sim->add_particle(at, kBallRadius);
     for (int step = 0; step < 5; ++step) {
       meshed.step();
       analytic.step();

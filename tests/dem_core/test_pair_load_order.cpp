@@ -11,8 +11,10 @@
 
 #include "demfit/dem_core/simulation.hpp"
 #include "turning_drum.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
 
@@ -32,10 +34,6 @@ std::vector<Vec3> final_state(const Simulation& sim) {
   state.insert(state.end(), sim.angular_velocities().begin(), sim.angular_velocities().end());
   state.push_back({sim.wall_torque(0), sim.elastic_energy(), static_cast<double>(sim.contact_count())});
   return state;
-}
-
-bool bitwise_equal(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 
 /// Pairs of the current list whose members fall in different halves of the particle range.

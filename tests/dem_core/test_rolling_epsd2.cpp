@@ -13,20 +13,19 @@
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/pair_history_permutation.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
 
-constexpr double kYoung = 1.0e7;  // E [Pa]
-constexpr double kPoisson = 0.3;
-constexpr double kDensity = 2500.0;
-constexpr double kShear = kYoung / (2.0 * (1.0 + kPoisson));  // G [Pa]
+constexpr double kShear = kHertzYoung / (2.0 * (1.0 + kHertzPoisson));  // G [Pa]
 
 /// Two equal spheres of radius 1 mm pressed together by `overlap` [m] and turning relative to
 /// each other at `spin` [rad/s] (no sliding velocity).
 ContactGeometry pressed_pair(double overlap, const Vec3& spin) {
-  const double r = 1.0e-3, m = kDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double r = 1.0e-3, m = kHertzDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   ContactGeometry g;
   g.normal = {0, 0, 1};
   g.overlap = overlap;
@@ -35,8 +34,8 @@ ContactGeometry pressed_pair(double overlap, const Vec3& spin) {
   g.effective_radius = 0.5 * r;
   g.first_radius = r;
   g.second_radius = r;
-  g.normal_compliance = 2.0 * (1.0 - kPoisson * kPoisson) / kYoung;
-  g.shear_compliance = 2.0 * (2.0 - kPoisson) / kShear;
+  g.normal_compliance = 2.0 * (1.0 - kHertzPoisson * kHertzPoisson) / kHertzYoung;
+  g.shear_compliance = 2.0 * (2.0 - kHertzPoisson) / kShear;
   g.inverse_inertia_sum = 2.0 / (0.4 * m * r * r);
   return g;
 }
@@ -64,7 +63,7 @@ std::vector<Vec3> epsd2_bed(int threads, bool reorder, bool force_rebuilds) {
   settings.contact.rolling_model = RollingModel::elastic_plastic;
   settings.contact.cohesion_energy_density = 2.0e4;
   Simulation sim(settings);
-  sim.add_material({kYoung / (3.0 * (1.0 - 2.0 * kPoisson)), kDensity, kPoisson});
+  sim.add_material(kHertzMaterial);
   const double half = 0.006;
   for (const Vec3& n : {Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}, Vec3{0, 0, 1}}) {
     WallSpec w{PlaneGeometry{-half * n, n}};
@@ -121,7 +120,7 @@ TEST_CASE("The epsd2 torque grows as -k_t R*^2 times the rolling rotation, twist
   for (int k = 0; k < steps; ++k) f = law.force(g, history, dt);
   // k_t = 8 G* a, G* = 1/sum((2 - nu)/G), a = sqrt(R* delta) (Hertz–Mindlin), R* = R/2.
   const double r_star = 0.5e-3;
-  const double k_t = 8.0 * (kShear / (2.0 * (2.0 - kPoisson))) * std::sqrt(r_star * overlap);
+  const double k_t = 8.0 * (kShear / (2.0 * (2.0 - kHertzPoisson))) * std::sqrt(r_star * overlap);
   const double k_r = k_t * r_star * r_star;
   const Vec3 expected = -(k_r * dt * steps) * Vec3{spin.x, spin.y, 0.0};
   INFO("torque (" << f.rolling_torque.x << ", " << f.rolling_torque.y << ", " << f.rolling_torque.z << ")");
@@ -140,7 +139,7 @@ TEST_CASE("Under a steady rolling rotation the epsd2 torque saturates at mu_r R*
   ContactForce f;
   for (int k = 0; k < 20000; ++k) f = law.force(g, history, dt);
   const double r_star = 0.5e-3;
-  const double e_star = kYoung / (2.0 * (1.0 - kPoisson * kPoisson));
+  const double e_star = kHertzYoung / (2.0 * (1.0 - kHertzPoisson * kHertzPoisson));
   const double f_n = 4.0 / 3.0 * e_star * std::sqrt(r_star) * std::pow(overlap, 1.5);
   const double cap = mu_r * r_star * f_n;
   INFO("|M_r| " << norm(f.rolling_torque) << " N m, cap " << cap << " N m");
@@ -157,9 +156,10 @@ TEST_CASE("A sphere spun slightly on a floor rocks at the epsd2 period 2 pi sqrt
   // turn); k_r = k_t R*^2 with R* = R, k_t = 8 G* a, G* = G/(2 - nu), a = sqrt(R delta) at the
   // static Hertz overlap delta = (m g / (4/3 E* sqrt(R)))^(2/3), E* = E/(1 - nu^2).
   const double r = 1.0e-3, g = 9.81;
-  const double m = kDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  const double delta = std::pow(m * g / (4.0 / 3.0 * kYoung / (1.0 - kPoisson * kPoisson) * std::sqrt(r)), 2.0 / 3.0);
-  const double k_t = 8.0 * kShear / (2.0 - kPoisson) * std::sqrt(r * delta);
+  const double m = kHertzDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double delta =
+      std::pow(m * g / (4.0 / 3.0 * kHertzYoung / (1.0 - kHertzPoisson * kHertzPoisson) * std::sqrt(r)), 2.0 / 3.0);
+  const double k_t = 8.0 * kShear / (2.0 - kHertzPoisson) * std::sqrt(r * delta);
   const double inertia = 0.4 * m * r * r;
   const double period = 2.0 * std::numbers::pi * std::sqrt(inertia / (k_t * r * r));
 
@@ -170,7 +170,7 @@ TEST_CASE("A sphere spun slightly on a floor rocks at the epsd2 period 2 pi sqrt
   settings.contact.rolling_model = RollingModel::elastic_plastic;
   settings.gravity = {0, 0, -g};
   Simulation sim(settings);
-  sim.add_material({kYoung / (3.0 * (1.0 - 2.0 * kPoisson)), kDensity, kPoisson});
+  sim.add_material(kHertzMaterial);
   WallContactParameters floor;
   floor.frics = 0.0;
   floor.fricd = 1.0;  // wall rolling friction: the cap stays far above the spring's torque

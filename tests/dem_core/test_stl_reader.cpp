@@ -62,7 +62,7 @@ std::string ascii_stl(const std::vector<Triangle>& ts, const std::string& x_of_f
 }
 
 /// The error message of parsing `bytes`, "" when it parses.
-std::string error_of(const std::string& bytes, std::size_t max_triangles = 5'000'000) {
+std::string stl_parse_error(const std::string& bytes, std::size_t max_triangles = 5'000'000) {
   try {
     parse_stl(bytes, {1e-3, max_triangles}, "case.stl");
   } catch (const std::runtime_error& e) {
@@ -100,49 +100,50 @@ TEST_CASE("Binary and ASCII STL files of the same box give the same triangles, s
 
 TEST_CASE("A truncated binary STL is refused, naming the declared and actual sizes", "[dem_core][stl]") {
   const std::string whole = binary_stl(box_mm);
-  const std::string message = error_of(whole.substr(0, whole.size() - 10));
+  const std::string message = stl_parse_error(whole.substr(0, whole.size() - 10));
   CHECK(message.find("truncated") != std::string::npos);
   CHECK(message.find("12 triangles") != std::string::npos);
-  CHECK(error_of(whole.substr(0, 40)).find("shorter than a binary STL header") != std::string::npos);
+  CHECK(stl_parse_error(whole.substr(0, 40)).find("shorter than a binary STL header") != std::string::npos);
 }
 
 TEST_CASE("A truncated or misspelt ASCII STL is refused, naming the facet", "[dem_core][stl]") {
   const std::string whole = ascii_stl(box_mm);
-  CHECK(error_of(whole.substr(0, whole.size() / 2)).find("malformed or truncated ASCII STL") != std::string::npos);
+  CHECK(stl_parse_error(whole.substr(0, whole.size() / 2)).find("malformed or truncated ASCII STL") !=
+        std::string::npos);
   std::string misspelt = whole;
   misspelt.replace(misspelt.find("outer loop"), 10, "outer lop ");
-  const std::string message = error_of(misspelt);
+  const std::string message = stl_parse_error(misspelt);
   CHECK(message.find("facet 0: expected 'loop'") != std::string::npos);
   CHECK(message.find('\n') == std::string::npos);  // one line
 }
 
 TEST_CASE("NaN coordinates are refused in both STL forms", "[dem_core][stl]") {
-  CHECK(error_of(ascii_stl(box_mm, "nan")).find("triangle 0: a vertex coordinate is not a finite number") !=
+  CHECK(stl_parse_error(ascii_stl(box_mm, "nan")).find("triangle 0: a vertex coordinate is not a finite number") !=
         std::string::npos);
   auto broken = box_mm;
   broken[3][1].y = std::numeric_limits<double>::quiet_NaN();
-  CHECK(error_of(binary_stl(broken)).find("triangle 3: a vertex coordinate is not a finite number") !=
+  CHECK(stl_parse_error(binary_stl(broken)).find("triangle 3: a vertex coordinate is not a finite number") !=
         std::string::npos);
 }
 
 TEST_CASE("An STL normal pointing against the vertex winding is refused; a zero normal is accepted",
           "[dem_core][stl]") {
-  CHECK(error_of(binary_stl(box_mm, -1.0)).find("triangle 0: inverted normal") != std::string::npos);
-  CHECK(error_of(binary_stl(box_mm, 0.0)).empty());
+  CHECK(stl_parse_error(binary_stl(box_mm, -1.0)).find("triangle 0: inverted normal") != std::string::npos);
+  CHECK(stl_parse_error(binary_stl(box_mm, 0.0)).empty());
 }
 
 TEST_CASE("A zero-area STL triangle is refused", "[dem_core][stl]") {
   auto broken = box_mm;
   broken[5][2] = broken[5][0];
-  CHECK(error_of(binary_stl(broken, 0.0)).find("triangle 5: zero area") != std::string::npos);
+  CHECK(stl_parse_error(binary_stl(broken, 0.0)).find("triangle 5: zero area") != std::string::npos);
 }
 
 TEST_CASE("An STL above the triangle limit is refused from its header, before allocating", "[dem_core][stl]") {
   std::string header(80, ' ');
   put_u32(header, 10'000'000);  // claims 10 million triangles (500 MB) in an 84-byte file
-  const std::string message = error_of(header);
+  const std::string message = stl_parse_error(header);
   CHECK(message.find("declares 10000000 triangles, above the limit of 5000000") != std::string::npos);
-  CHECK(error_of(ascii_stl(box_mm), 11).find("more than 11 triangles") != std::string::npos);
+  CHECK(stl_parse_error(ascii_stl(box_mm), 11).find("more than 11 triangles") != std::string::npos);
 }
 
 TEST_CASE("An STL without a stated positive unit is refused", "[dem_core][stl]") {

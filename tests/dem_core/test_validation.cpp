@@ -13,7 +13,7 @@ namespace {
 
 /// Message of the runtime_error thrown by f ("" if none); checks it is one line.
 template <class F>
-std::string error_of(F&& f) {
+std::string refusal_message(F&& f) {
   try {
     f();
   } catch (const std::runtime_error& e) {
@@ -28,33 +28,33 @@ std::string error_of(F&& f) {
 
 TEST_CASE("Invalid particles and materials are refused with a message naming the field", "[dem_core][validation]") {
   Simulation sim;
-  CHECK_THAT(error_of([&] { sim.add_material({1e9, 0.0, 0.3}); }), Catch::Contains("density"));
-  CHECK_THAT(error_of([&] { sim.add_material({-1.0, 2500.0, 0.3}); }), Catch::Contains("bulk_modulus"));
-  CHECK_THAT(error_of([&] { sim.add_particle({0, 0, 0}, 1e-3); }), Catch::Contains("material"));
+  CHECK_THAT(refusal_message([&] { sim.add_material({1e9, 0.0, 0.3}); }), Catch::Contains("density"));
+  CHECK_THAT(refusal_message([&] { sim.add_material({-1.0, 2500.0, 0.3}); }), Catch::Contains("bulk_modulus"));
+  CHECK_THAT(refusal_message([&] { sim.add_particle({0, 0, 0}, 1e-3); }), Catch::Contains("material"));
   sim.add_material({1e9, 2500.0, 0.3});
-  CHECK_THAT(error_of([&] { sim.add_particle({0, 0, 0}, -1e-3); }), Catch::Contains("radius"));
-  CHECK_THAT(error_of([&] { sim.add_particle({0, 0, 0}, 0.0); }), Catch::Contains("radius"));
+  CHECK_THAT(refusal_message([&] { sim.add_particle({0, 0, 0}, -1e-3); }), Catch::Contains("radius"));
+  CHECK_THAT(refusal_message([&] { sim.add_particle({0, 0, 0}, 0.0); }), Catch::Contains("radius"));
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THAT(error_of([&] { sim.add_particle({nan, 0, 0}, 1e-3); }), Catch::Contains("position"));
-  CHECK_THAT(error_of([&] { sim.add_particle({0, 0, 0}, 1e-3, 0, {0, nan, 0}); }), Catch::Contains("velocity"));
+  CHECK_THAT(refusal_message([&] { sim.add_particle({nan, 0, 0}, 1e-3); }), Catch::Contains("position"));
+  CHECK_THAT(refusal_message([&] { sim.add_particle({0, 0, 0}, 1e-3, 0, {0, nan, 0}); }), Catch::Contains("velocity"));
   CHECK(sim.particle_count() == 0);
 }
 
 TEST_CASE("Invalid contact and wall parameters are refused with a message naming the field", "[dem_core][validation]") {
   ContactParameters c;
   c.normk = -0.01;
-  CHECK_THAT(error_of([&] { Simulation s(SimulationSettings{.contact = c}); }), Catch::Contains("NORMK"));
+  CHECK_THAT(refusal_message([&] { Simulation s(SimulationSettings{.contact = c}); }), Catch::Contains("NORMK"));
   c = {};
   c.ndamp = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THAT(error_of([&] { Simulation s(SimulationSettings{.contact = c}); }), Catch::Contains("NDAMP"));
+  CHECK_THAT(refusal_message([&] { Simulation s(SimulationSettings{.contact = c}); }), Catch::Contains("NDAMP"));
   Simulation sim;
   WallSpec w{CylinderGeometry{{0, 0, 0}, {0, 0, 1}, -1.0, 1.0}};
-  CHECK_THAT(error_of([&] { sim.add_wall(w); }), Catch::Contains("cylinder.radius"));
+  CHECK_THAT(refusal_message([&] { sim.add_wall(w); }), Catch::Contains("cylinder.radius"));
   WallSpec p{PlaneGeometry{{0, 0, 0}, {0, 0, 0}}};
-  CHECK_THAT(error_of([&] { sim.add_wall(p); }), Catch::Contains("plane.normal"));
+  CHECK_THAT(refusal_message([&] { sim.add_wall(p); }), Catch::Contains("plane.normal"));
   WallSpec d{DiskGeometry{{0, 0, 0}, {0, 0, 1}, 1.0}};
   d.contact.damp = 1.5;
-  CHECK_THAT(error_of([&] { sim.add_wall(d); }), Catch::Contains("DAMP"));
+  CHECK_THAT(refusal_message([&] { sim.add_wall(d); }), Catch::Contains("DAMP"));
 }
 
 TEST_CASE("A user time step above the stable limit is refused naming both numbers", "[dem_core][validation]") {
@@ -64,7 +64,7 @@ TEST_CASE("A user time step above the stable limit is refused naming both number
   sim.add_material({1e9, 2500.0, 0.3});
   sim.add_particle({0, 0, 0}, 1e-3);
   const double limit = sim.stable_time_step();
-  const std::string m = error_of([&] { sim.step(); });
+  const std::string m = refusal_message([&] { sim.step(); });
   INFO(m);
   CHECK_THAT(m, Catch::Contains("time_step = 0.001 s"));
   std::ostringstream limit_text;

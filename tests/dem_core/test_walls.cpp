@@ -7,15 +7,12 @@
 
 #include "demfit/dem_core/packing.hpp"
 #include "demfit/dem_core/simulation.hpp"
+#include "test_particles.hpp"
 
 using namespace demfit::dem_core;
+using namespace demfit::dem_core::test;
 
 namespace {
-
-constexpr double g = 9.81;
-const Material material{1.0e9, 2500.0, 0.3};
-
-double mass_of(double r) { return material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
 /// Moment of the particles' weight about an axis: sum (x_i - a) x m_i g · u.
 double weight_moment(const Simulation& sim, const Axis& axis) {
@@ -36,17 +33,17 @@ TEST_CASE("A sphere resting on a slowly rotating drum wall: overlap m g cos(thet
   // the couple argument in Simulation::reduce_diagnostics).
   const double r = 2.0e-3, drum_radius = 0.05, omega = 0.1;
   SimulationSettings settings;
-  settings.gravity = {0, 0, -g};
+  settings.gravity = {0, 0, -kGravity};
   settings.contact.frics = 0.5;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec shell{CylinderGeometry{{0, -0.01, 0}, {0, 1, 0}, drum_radius, 0.02}};
   shell.motion = RotatingMotion{{0, 0, 0}, {0, 1, 0}, omega};
   shell.contact = {0.8, 0.6, 0.5, 1.0};
   const std::size_t drum = sim.add_wall(shell);
   const double theta0 = 10.0 * std::numbers::pi / 180.0;
-  const double k_w = 0.01 * material.bulk_modulus * r;
-  const double delta0 = mass_of(r) * g * std::cos(theta0) / k_w;
+  const double k_w = 0.01 * kTestMaterial.bulk_modulus * r;
+  const double delta0 = sphere_mass(r) * kGravity * std::cos(theta0) / k_w;
   const double rc = drum_radius - r + delta0;
   // Rotation +omega about +y carries a point at angle theta (from -z towards -x) upwards.
   sim.add_particle({-rc * std::sin(theta0), 0, -rc * std::cos(theta0)}, r);
@@ -54,7 +51,7 @@ TEST_CASE("A sphere resting on a slowly rotating drum wall: overlap m g cos(thet
   const Vec3 x = sim.positions()[0];
   const double theta = std::atan2(-x.x, -x.z);
   const double overlap = r - (drum_radius - norm(Vec3{x.x, 0, x.z}));
-  const double expected_overlap = mass_of(r) * g * std::cos(theta) / k_w;
+  const double expected_overlap = sphere_mass(r) * kGravity * std::cos(theta) / k_w;
   INFO("theta " << theta << " overlap " << overlap << " expected " << expected_overlap);
   CHECK(theta == Approx(theta0 + omega * sim.time()).epsilon(0.02));
   CHECK(overlap == Approx(expected_overlap).epsilon(0.005));
@@ -72,7 +69,7 @@ TEST_CASE("A piston pushing a column of spheres feels the springs in series", "[
   settings.gravity = {0, 0, 0};
   settings.contact.ndamp = 0.5;
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   WallSpec bottom{PlaneGeometry{{0, 0, 0}, {0, 0, 1}}};
   bottom.contact.damp = 0.5;
   const std::size_t floor = sim.add_wall(bottom);
@@ -86,7 +83,7 @@ TEST_CASE("A piston pushing a column of spheres feels the springs in series", "[
   sim.set_wall_motion(top, FixedMotion{});
   sim.run_until(sim.time() + 0.05);
   const double advanced = -sim.wall(top).displacement.z;
-  const double k_w = 0.01 * material.bulk_modulus * r;
+  const double k_w = 0.01 * kTestMaterial.bulk_modulus * r;
   const double expected = advanced / (2.0 / k_w + (n - 1) / (k_w / 2.0));
   INFO("piston force " << sim.wall_force(top).z << " bottom " << sim.wall_force(floor).z << " expected " << expected);
   CHECK(advanced == Approx(travel).epsilon(0.01));
@@ -100,10 +97,10 @@ TEST_CASE("A bed in a slowly rotating drum loads the drum with the moment of its
   // dL/dt; averaged over a quasi-steady window dL/dt ~ 0, so <wall torque> = <weight moment>.
   const double r = 2.0e-3, drum_radius = 0.03, length = 0.012, omega = 0.5;
   SimulationSettings settings;
-  settings.gravity = {0, 0, -g};
+  settings.gravity = {0, 0, -kGravity};
   settings.contact = {0.01, 2.0 / 7.0, 0.5, 0.5, 0.5, -1.0, 0.0, 0.1, 1.0};
   Simulation sim(settings);
-  sim.add_material(material);
+  sim.add_material(kTestMaterial);
   const Axis axis{{0, 0, 0}, {0, 1, 0}};
   const RotatingMotion rotation{axis.point, axis.direction, omega};
   const WallContactParameters wall_contact{0.5, 0.1, 0.5, 1.0};

@@ -21,7 +21,7 @@ using namespace demfit::diagnose;
 
 namespace {
 
-constexpr double kNoise = 0.01;  // data noise [y units]
+constexpr double kScatteringDataNoise = 0.01;  // data noise [y units]
 constexpr double kScatter =
     0.007;                      // the model's own scatter: 0.7 x the data noise (s = 4 drum: 0.69 mm against 0.94 mm)
 constexpr double kLag1 = 0.85;  // smooth along the curve, as a free surface's error
@@ -53,7 +53,7 @@ class ScatteringModel final : public identify::Model {
 // Measured data as a real experiment gives them: the true curve plus white measurement noise (the
 // model's trajectory scatter is the model's, not the data's).
 identify::StudySpec scattering_study(const identify::ParameterSet& truth, unsigned seed) {
-  return analytic_effects_study(truth, seed, kNoise);
+  return analytic_effects_study(truth, seed, kScatteringDataNoise);
 }
 
 identify::ParameterSet truth_with(const std::string& effect, double value) {
@@ -65,7 +65,7 @@ identify::ParameterSet truth_with(const std::string& effect, double value) {
 // As for a DEM model (large difference steps, 4 replicas), with the data noise given.
 DiagnoseOptions scattering_options() {
   DiagnoseOptions options = expensive_model_options();
-  options.noise_sigma = kNoise;
+  options.noise_sigma = kScatteringDataNoise;
   return options;
 }
 

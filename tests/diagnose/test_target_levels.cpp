@@ -10,7 +10,7 @@ using namespace demfit::diagnose;
 
 namespace {
 
-FitTarget target(const std::string& name, int points, double sigma) {
+FitTarget flat_target(const std::string& name, int points, double sigma) {
   FitTarget t;
   t.name = name;
   t.sigma = sigma;
@@ -26,11 +26,11 @@ FitTarget target(const std::string& name, int points, double sigma) {
 TEST_CASE("Target levels are the means of the residuals in each target's units and their share of its squares") {
   // Target a: raw residual 1 + (-0.5, 0.5, -0.5, 0.5) -> mean 1, mean square 1.25, share 0.8.
   // Target b, whitened by L: raw residual -2 everywhere -> mean -2, share 1.
-  std::vector<FitTarget> targets{target("a", 4, 0.5), target("b", 3, 0.25)};
+  std::vector<FitTarget> targets{flat_target("a", 4, 0.5), flat_target("b", 3, 0.25)};
   Eigen::MatrixXd factor(3, 3);
   factor << 0.25, 0, 0, 0.1, 0.2, 0, 0.05, 0.1, 0.3;
   targets[1].noise_factor = factor;
-  const Eigen::VectorXd raw_a = (Eigen::VectorXd(4) << 0.5, 1.5, 0.5, 1.5).finished();
+  const Eigen::Vector4d raw_a(0.5, 1.5, 0.5, 1.5);
   const Eigen::VectorXd raw_b = Eigen::VectorXd::Constant(3, -2.0);
   Eigen::VectorXd residual(7);
   residual << raw_a / 0.5, factor.triangularView<Eigen::Lower>().solve(raw_b);

@@ -17,10 +17,10 @@ using namespace demfit::diagnose;
 
 namespace {
 
-constexpr double kNoise = 0.01;
+constexpr double kDataNoise = 0.01;
 
 identify::StudySpec synthetic_study(const identify::ParameterSet& truth, unsigned seed, int points = 101) {
-  return analytic_effects_study(truth, seed, kNoise, points);
+  return analytic_effects_study(truth, seed, kDataNoise, points);
 }
 
 identify::ParameterSet base_truth() { return {{"amplitude", 1.0}, {"rate", 3.0}, {"slope", 0.5}}; }
@@ -41,8 +41,8 @@ void check_named(const Diagnosis& d, const std::string& effect) {
   CHECK(d.refits[d.chosen].effect == effect);
   CHECK(d.refits[d.chosen].delta_bic > 10.0);
   // Gap after: RMS within 1.5x the true noise (the acceptance criterion).
-  CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
-  CHECK(d.base_analysis.rms > 1.5 * kNoise);
+  CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kDataNoise);
+  CHECK(d.base_analysis.rms > 1.5 * kDataNoise);
 }
 
 }  // namespace
@@ -90,7 +90,7 @@ TEST_CASE("Without a hidden effect the workflow reports no missing effect") {
     CHECK(d.verdict == Verdict::no_missing_effect);
     CHECK(d.chosen < 0);
     // The estimated noise level is the true one within 15 %.
-    CHECK(d.targets[0].sigma == Approx(kNoise).epsilon(0.15));
+    CHECK(d.targets[0].sigma == Approx(kDataNoise).epsilon(0.15));
   }
 }
 
@@ -134,9 +134,9 @@ TEST_CASE("A given noise level replaces the estimate and inconsistent candidates
   identify::StudySpec spec = synthetic_study(base_truth(), 51);
   const AnalyticEffectsModel model(101);
   DiagnoseOptions options;
-  options.noise_sigma = kNoise;
+  options.noise_sigma = kDataNoise;
   const Diagnosis d = run_diagnosis(spec, model, analytic_effect_candidates(), options);
-  CHECK(d.targets[0].sigma == kNoise);
+  CHECK(d.targets[0].sigma == kDataNoise);
   CHECK(d.verdict == Verdict::no_missing_effect);
   auto bad = analytic_effect_candidates();
   bad[0].parameters[0].off_value = 5.0;
@@ -171,7 +171,7 @@ TEST_CASE("An effect candidate whose range leaves the model's valid range is ref
   const identify::StudySpec spec = synthetic_study(base_truth(), 52);
   const NarrowToeShiftModel model;
   DiagnoseOptions options;
-  options.noise_sigma = kNoise;
+  options.noise_sigma = kDataNoise;
   // analytic_effect_candidates' toe_shift range is [0, 0.2].
   CHECK_THROWS_WITH(
       run_diagnosis(spec, model, analytic_effect_candidates(), options),
@@ -199,7 +199,7 @@ TEST_CASE("Over 20 noise seeds hidden effects are named correctly at least 85 pe
       CHECK(d.verdict != Verdict::no_missing_effect);
       if (d.chosen < 0) continue;
       CHECK(d.refits[d.chosen].effect == effect);
-      CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kNoise);
+      CHECK(d.refits[d.chosen].analysis.rms < 1.5 * kDataNoise);
       named[effect] += d.refits[d.chosen].effect == effect;
     }
     const Diagnosis none = diagnose_hidden("", 0.0, seed);

@@ -18,7 +18,7 @@ using namespace demfit::identify;
 
 namespace {
 
-struct SimulatedKill {};
+using test::SimulatedKill;
 
 // The analytic model with a smooth bias on its curves (a coarser simulation of the same physics),
 // counting its evaluations.

@@ -53,4 +53,8 @@ inline nlohmann::json analytic_study(double noise = 0.0, int max_iterations = 12
           {"seed", 11}};
 }
 
+// Thrown from a run's completion callback to stop a study where a kill would; not a
+// std::exception, so nothing in the loop can swallow it.
+struct SimulatedKill {};
+
 }  // namespace demfit::identify::test

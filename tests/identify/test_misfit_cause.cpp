@@ -38,7 +38,7 @@ id::StudySpec spec_with_target() {
   return spec;
 }
 
-id::EvaluationRecord run(int point, const std::vector<double>& y) {
+id::EvaluationRecord stored_run(int point, const std::vector<double>& y) {
   id::EvaluationRecord r;
   r.point = point;
   r.kind = "design";
@@ -66,7 +66,7 @@ std::string misfit_warning(const std::vector<std::string>& warnings) {
 
 TEST_CASE("an answer missing the data while another stored run fits within the noise says the search has not converged") {
   const auto spec = spec_with_target();
-  const std::vector<id::EvaluationRecord> runs{run(0, shifted_line(0.5)), run(1, shifted_line(0.0))};
+  const std::vector<id::EvaluationRecord> runs{stored_run(0, shifted_line(0.5)), stored_run(1, shifted_line(0.0))};
   const auto d = id::study_diagnostics(spec, runs, {}, &runs[0], nlohmann::json{{"converged", false}});
   const std::string w = misfit_warning(d.warnings);
   INFO(w);
@@ -76,8 +76,8 @@ TEST_CASE("an answer missing the data while another stored run fits within the n
 
 TEST_CASE("an answer missing the data when no stored run fits better blames the model, the units or the fill") {
   const auto spec = spec_with_target();
-  const std::vector<id::EvaluationRecord> runs{run(0, shifted_line(0.5)), run(1, shifted_line(0.6)),
-                                               run(2, shifted_line(-0.45))};
+  const std::vector<id::EvaluationRecord> runs{stored_run(0, shifted_line(0.5)), stored_run(1, shifted_line(0.6)),
+                                               stored_run(2, shifted_line(-0.45))};
   const auto d = id::study_diagnostics(spec, runs, {}, &runs[0], nlohmann::json{{"converged", true}});
   const std::string w = misfit_warning(d.warnings);
   INFO(w);
@@ -104,7 +104,7 @@ std::string identifiability_warning(const std::vector<std::string>& warnings) {
 TEST_CASE("a variable the data cannot pin is named in a warning that says what would pin it") {
   auto spec = spec_with_target();
   spec.variables.push_back({"w", 0.0, 1.0, 0.5, false, 1.0});
-  auto answer = run(0, noisy_line());
+  auto answer = stored_run(0, noisy_line());
   answer.parameters["w"] = 0.2;
   const std::vector<id::EvaluationRecord> runs{answer};
   const auto flagged = id::study_diagnostics(spec, runs, {}, &runs[0], result_with_posterior(true));

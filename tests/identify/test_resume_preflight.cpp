@@ -20,7 +20,7 @@ using namespace demfit::identify;
 
 namespace {
 
-struct SimulatedKill {};  // not a std::exception: nothing in the loop can swallow it
+using test::SimulatedKill;
 
 // The analytic model counting its evaluations; with `fail_initial`, a run at the study's initial
 // values (amplitude 1, rate 3) fails like a diverged simulation.
@@ -66,7 +66,7 @@ StudyResult checked_run(const StudySpec& parsed, const CountingModel& model, Run
   return run_study(spec, model, options);
 }
 
-std::string stored_runs(const std::filesystem::path& dir) {
+std::string stored_runs_json(const std::filesystem::path& dir) {
   nlohmann::json runs = nlohmann::json::array();
   for (const EvaluationRecord& r : StudyStore::open_existing(dir / "study.db").evaluations()) {
     nlohmann::json run = to_json(r);
@@ -98,7 +98,7 @@ TEST_CASE("Resuming a finished study runs no model evaluation, the initial-point
   int check_calls = -1;
   const CountingModel first;
   const StudyResult reference = checked_run(spec, first, run_options(dir, false), check_calls);
-  const std::string stored_before = stored_runs(dir);
+  const std::string stored_before = stored_runs_json(dir);
 
   const CountingModel again;
   const StudyResult resumed = checked_run(spec, again, run_options(dir, true), check_calls);
@@ -108,7 +108,7 @@ TEST_CASE("Resuming a finished study runs no model evaluation, the initial-point
   CHECK(resumed.best == reference.best);  // bit-identical
   CHECK(resumed.best_objective == reference.best_objective);
   CHECK(resumed.ci_half_width == reference.ci_half_width);
-  CHECK(stored_runs(dir) == stored_before);
+  CHECK(stored_runs_json(dir) == stored_before);
 }
 
 TEST_CASE("Resuming a killed study does not evaluate the stored initial point for the check",

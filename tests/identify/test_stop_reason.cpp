@@ -12,7 +12,7 @@ using namespace demfit::identify;
 
 namespace {
 
-EvaluationRecord run(std::vector<double> unit, bool ok) {
+EvaluationRecord evaluated_run(std::vector<double> unit, bool ok) {
   EvaluationRecord r;
   r.unit_x = std::move(unit);
   r.ok = ok;
@@ -22,7 +22,7 @@ EvaluationRecord run(std::vector<double> unit, bool ok) {
 
 std::vector<EvaluationRecord> spread_runs(int count) {
   std::vector<EvaluationRecord> runs;
-  for (int i = 0; i < count; ++i) runs.push_back(run({0.1 * i, 0.05 * i}, true));
+  for (int i = 0; i < count; ++i) runs.push_back(evaluated_run({0.1 * i, 0.05 * i}, true));
   return runs;
 }
 
@@ -60,8 +60,8 @@ TEST_CASE("a failed share at the stated limit still converges, one run above it 
 }
 
 TEST_CASE("a design collapsed onto the start point never says converged") {
-  std::vector<EvaluationRecord> runs(9, run({0.3, 0.7}, true));
-  runs.push_back(run({0.3 + 1e-12, 0.7}, true));  // round-off apart: the same point
+  std::vector<EvaluationRecord> runs(9, evaluated_run({0.3, 0.7}, true));
+  runs.push_back(evaluated_run({0.3 + 1e-12, 0.7}, true));  // round-off apart: the same point
   CHECK(distinct_successful_points(runs) == 1);
   const StopReason r = stop_reason(true, 10, runs, 2);
   CHECK_FALSE(r.converged);

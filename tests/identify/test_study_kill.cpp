@@ -31,7 +31,7 @@ class SlowModel final : public Model {
   AnalyticCurveModel inner_;
 };
 
-std::size_t stored_runs(const std::filesystem::path& db) {
+std::size_t stored_run_count(const std::filesystem::path& db) {
   try {
     return StudyStore::open_existing(db).evaluations().size();
   } catch (const std::exception&) {
@@ -64,13 +64,13 @@ TEST_CASE("A study killed with SIGKILL resumes to the uninterrupted result witho
   }
   const std::size_t kill_after = spec.points_per_iteration + 2;  // inside iteration 1
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (stored_runs(db) < kill_after && std::chrono::steady_clock::now() < deadline)
+  while (stored_run_count(db) < kill_after && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
   REQUIRE(WIFSIGNALED(status));
-  const std::size_t survived = stored_runs(db);
+  const std::size_t survived = stored_run_count(db);
   CHECK(survived >= kill_after);
   CHECK(survived < static_cast<std::size_t>(reference.runs));
 

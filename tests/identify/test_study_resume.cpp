@@ -15,7 +15,7 @@ using namespace demfit::identify;
 
 namespace {
 
-struct SimulatedKill {};  // not a std::exception: nothing in the loop can swallow it
+using test::SimulatedKill;
 
 using test::quiet_options;
 

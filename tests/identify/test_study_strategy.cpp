@@ -13,7 +13,7 @@ using namespace demfit::identify;
 
 namespace {
 
-struct SimulatedKill {};
+using test::SimulatedKill;
 
 using test::quiet_options;
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string>
 
 #include "demfit/imaging/image.hpp"
 #include "demfit/imaging/surface.hpp"
@@ -16,6 +17,11 @@ namespace demfit::imaging::test {
 inline void write_png(const std::filesystem::path& file, const RgbImage& image) {
   std::ofstream out(file, std::ios::binary);
   out << encode_png(image);
+}
+
+// Raw bytes to a file (an image file made by hand, or a damaged one).
+inline void write_bytes(const std::filesystem::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary) << bytes;
 }
 
 struct DrawnDrum {

@@ -27,14 +27,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
+fs::path hostile_images_scratch(const std::string& name) {
   const fs::path dir = fs::path(DEMFIT_BINARY_DIR) / "test_hostile_images_scratch" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
 
-void write_bytes(const fs::path& file, const std::string& bytes) { std::ofstream(file, std::ios::binary) << bytes; }
+using test::write_bytes;
 
 void put_le(std::string& out, std::uint32_t value, int bytes) {
   for (int k = 0; k < bytes; ++k) out.push_back(static_cast<char>((value >> (8 * k)) & 0xFF));
@@ -138,7 +138,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 TEST_CASE("BMP, PNG and JPEG headers declaring far more pixels than the limit are refused before decoding") {
-  const fs::path dir = scratch("declared");
+  const fs::path dir = hostile_images_scratch("declared");
   std::string bmp = "BM";  // 100000 x 100000 x 24 bits would be 30 GB of pixels; 126 bytes here
   put_le(bmp, 126, 4);
   put_le(bmp, 0, 4);
@@ -173,7 +173,7 @@ TEST_CASE("BMP, PNG and JPEG headers declaring far more pixels than the limit ar
 }
 
 TEST_CASE("a PNG whose compressed data inflates far beyond its declared size is stopped by the decoding budget") {
-  const fs::path dir = scratch("inflate");
+  const fs::path dir = hostile_images_scratch("inflate");
   // 100 x 100 pixels need 10 100 inflated bytes; this 1.3 MB stream inflates to 258 MB.
   write_bytes(dir / "inflate.png", grey_png(100, 100, zero_bomb(1000000)));
   const auto start = std::chrono::steady_clock::now();
@@ -183,7 +183,7 @@ TEST_CASE("a PNG whose compressed data inflates far beyond its declared size is 
 }
 
 TEST_CASE("a PNG with one flipped byte in a chunk is refused, naming the chunk") {
-  const fs::path dir = scratch("crc");
+  const fs::path dir = hostile_images_scratch("crc");
   const std::string png = encode_png(to_rgb(small_drum()));
   write_bytes(dir / "whole.png", png);
   CHECK(read_grey_image(dir / "whole.png").width == 64);
@@ -199,7 +199,7 @@ TEST_CASE("a PNG with one flipped byte in a chunk is refused, naming the chunk")
 }
 
 TEST_CASE("a BMP is refused as truncated when it holds one row less than its header declares, for both header kinds") {
-  const fs::path dir = scratch("bmp_rows");
+  const fs::path dir = hostile_images_scratch("bmp_rows");
   const GreyImage drawn = small_drum();
   for (const bool core : {true, false}) {
     const std::string bmp = encode_bmp(drawn, core);
@@ -220,7 +220,7 @@ TEST_CASE("a BMP is refused as truncated when it holds one row less than its hea
 }
 
 TEST_CASE("a JPEG followed by a 4 KiB phone trailer decodes to the same pixels as without it") {
-  const fs::path dir = scratch("trailer");
+  const fs::path dir = hostile_images_scratch("trailer");
   const std::string jpeg = encode_jpeg(to_rgb(small_drum()), 90);
   // Trailer bytes as phones append them (metadata blocks, an embedded preview): random bytes that
   // include Start Of Image, End Of Image and Start Of Scan markers.
@@ -297,7 +297,7 @@ TEST_CASE("a drum diameter outside 1 mm .. 100 m is refused by the surface extra
 }
 
 TEST_CASE("an 8-bit BMP reads all 256 palette entries with the OS/2 header as with the Windows header") {
-  const fs::path dir = scratch("palette");
+  const fs::path dir = hostile_images_scratch("palette");
   for (const bool core : {true, false}) {
     // 16 x 16 pixels holding the indices 0..255; entry i is the grey level 255 - i, so an entry left
     // unset (0) is told apart from the last ones.
@@ -332,7 +332,7 @@ TEST_CASE("an 8-bit BMP reads all 256 palette entries with the OS/2 header as wi
 }
 
 TEST_CASE("a JPEG with stray bytes between its header segments decodes to the same pixels") {
-  const fs::path dir = scratch("stray");
+  const fs::path dir = hostile_images_scratch("stray");
   const std::string jpeg = encode_jpeg(to_rgb(small_drum()), 90);
   REQUIRE(jpeg.compare(0, 4, "\xFF\xD8\xFF\xE0") == 0);  // Start Of Image, then the JFIF segment
   const std::size_t after_jfif = 4 + (static_cast<unsigned char>(jpeg[4]) << 8 | static_cast<unsigned char>(jpeg[5]));

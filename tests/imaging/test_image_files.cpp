@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
+fs::path image_files_scratch(const std::string& name) {
   const fs::path dir = fs::path(DEMFIT_BINARY_DIR) / "test_imaging_scratch" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -30,7 +30,7 @@ void put(std::string& out, std::uint32_t value, int bytes) {
 }
 
 // A 24-bit uncompressed BMP (BITMAPINFOHEADER, rows stored bottom-up, padded to 4 bytes).
-std::string encode_bmp(const GreyImage& image) {
+std::string encode_bmp_with_resolution(const GreyImage& image) {
   const std::uint32_t stride = (3 * image.width + 3) / 4 * 4, data = stride * image.height;
   std::string out = "BM";
   put(out, 54 + data, 4);
@@ -58,7 +58,7 @@ std::string encode_bmp(const GreyImage& image) {
   return out;
 }
 
-void write_bytes(const fs::path& file, const std::string& bytes) { std::ofstream(file, std::ios::binary) << bytes; }
+using test::write_bytes;
 
 std::string read_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -75,7 +75,7 @@ double max_difference(const GreyImage& a, const GreyImage& b) {
 }  // namespace
 
 TEST_CASE("a PNG encoded by encode_png reads back with the same grey levels to 8-bit rounding") {
-  const fs::path dir = scratch("png");
+  const fs::path dir = image_files_scratch("png");
   const GreyImage drawn = test::draw_surface(test::DrawnDrum{}, [](double x) { return -0.6 * x; });
   test::write_png(dir / "drum.png", to_rgb(drawn));
   CHECK(fs::directory_iterator(dir) != fs::directory_iterator());
@@ -88,11 +88,11 @@ TEST_CASE("a PNG encoded by encode_png reads back with the same grey levels to 8
 }
 
 TEST_CASE("a BMP drawn with a known surface reads back with row 0 at the top and gives that surface") {
-  const fs::path dir = scratch("bmp");
+  const fs::path dir = image_files_scratch("bmp");
   const test::DrawnDrum drum;
   const auto surface = [](double x) { return 0.003 - std::tan(33.0 * M_PI / 180.0) * x; };
   const GreyImage drawn = test::draw_surface(drum, surface);
-  write_bytes(dir / "drum.bmp", encode_bmp(drawn));
+  write_bytes(dir / "drum.bmp", encode_bmp_with_resolution(drawn));
   const GreyImage read = read_grey_image(dir / "drum.bmp");
   REQUIRE(read.width == drum.pixels);
   CHECK(max_difference(read, drawn) <= 0.5 / 255.0 + 1e-6);
@@ -102,7 +102,7 @@ TEST_CASE("a BMP drawn with a known surface reads back with row 0 at the top and
 }
 
 TEST_CASE("a JPEG of a drawn drum reads back close to the drawing and gives its surface") {
-  const fs::path dir = scratch("jpeg");
+  const fs::path dir = image_files_scratch("jpeg");
   const test::DrawnDrum drum;
   const auto surface = [](double x) { return -0.001 - std::tan(28.0 * M_PI / 180.0) * x; };
   const GreyImage drawn = test::draw_surface(drum, surface);
@@ -119,9 +119,9 @@ TEST_CASE("a JPEG of a drawn drum reads back close to the drawing and gives its 
 }
 
 TEST_CASE("truncated BMP and PNG files are refused as truncated, naming the file") {
-  const fs::path dir = scratch("truncated");
+  const fs::path dir = image_files_scratch("truncated");
   const GreyImage drawn = test::draw_surface(test::DrawnDrum{}, [](double x) { return -0.6 * x; });
-  const std::string bmp = encode_bmp(drawn);
+  const std::string bmp = encode_bmp_with_resolution(drawn);
   write_bytes(dir / "cut.bmp", bmp.substr(0, bmp.size() * 2 / 3));
   CHECK_THROWS_WITH(read_grey_image(dir / "cut.bmp"), Catch::Contains("cut.bmp") && Catch::Contains("truncated"));
   test::write_png(dir / "whole.png", to_rgb(drawn));
@@ -131,7 +131,7 @@ TEST_CASE("truncated BMP and PNG files are refused as truncated, naming the file
 }
 
 TEST_CASE("a missing file, an empty file and a file that is not an image are refused with the fix") {
-  const fs::path dir = scratch("not_image");
+  const fs::path dir = image_files_scratch("not_image");
   CHECK_THROWS_WITH(read_grey_image(dir / "absent.png"),
                     Catch::Contains("absent.png") && Catch::Contains("check the path"));
   write_bytes(dir / "empty.bmp", "");

@@ -12,8 +12,6 @@ using namespace demfit::rbf_surrogate;
 
 namespace {
 
-const std::vector<Variable> kBraninVars{{"x1", -5.0, 10.0}, {"x2", 0.0, 15.0}};
-
 std::vector<Variable> hartmann_vars() {
   std::vector<Variable> v;
   for (int i = 0; i < 6; ++i) {
@@ -31,7 +29,7 @@ TEST_CASE("SRSM loop reaches Branin's global minimum within 1e-3 in at most 60 e
   ExpensiveOptions o;
   o.strategy = InfillStrategy::srsm;
   o.max_evaluations = 60;
-  const ExpensiveResult r = minimise_expensive(testfn::branin, kBraninVars, o);
+  const ExpensiveResult r = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
   INFO("best " << r.value << " after " << r.evaluations);
   CHECK(r.evaluations <= 60);
   CHECK(r.value - testfn::kBraninMinimum < 1e-3);
@@ -43,7 +41,7 @@ TEST_CASE("Adaptive infill loop reaches Branin's global minimum within 1e-3 in a
   ExpensiveOptions o;
   o.strategy = InfillStrategy::adaptive;
   o.max_evaluations = 60;
-  const ExpensiveResult r = minimise_expensive(testfn::branin, kBraninVars, o);
+  const ExpensiveResult r = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
   INFO("best " << r.value << " after " << r.evaluations);
   CHECK(r.value - testfn::kBraninMinimum < 1e-3);
 }
@@ -71,8 +69,8 @@ TEST_CASE("Adaptive infill loop reaches Hartmann-6 within 1 % in at most 200 eva
 TEST_CASE("Expensive minimisation is deterministic for a seed", "[rbf_surrogate][expensive]") {
   ExpensiveOptions o;
   o.max_evaluations = 25;
-  const ExpensiveResult a = minimise_expensive(testfn::branin, kBraninVars, o);
-  const ExpensiveResult b = minimise_expensive(testfn::branin, kBraninVars, o);
+  const ExpensiveResult a = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
+  const ExpensiveResult b = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
   CHECK(a.points == b.points);
   CHECK(a.values == b.values);
   REQUIRE(a.best_so_far.size() == 25);
@@ -86,7 +84,7 @@ TEST_CASE("Expected-improvement loop reaches Branin's global minimum within 1e-3
     o.strategy = InfillStrategy::expected_improvement;
     o.max_evaluations = 60;
     o.seed = seed;
-    const ExpensiveResult r = minimise_expensive(testfn::branin, kBraninVars, o);
+    const ExpensiveResult r = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
     INFO("seed " << seed << " best " << r.value << " after " << r.evaluations);
     CHECK(r.value - testfn::kBraninMinimum < 1e-3);
     CHECK(r.value == Approx(testfn::branin(r.x)).epsilon(1e-15));
@@ -164,7 +162,7 @@ TEST_CASE("Expected-improvement loop with noisy values is deterministic and smoo
     o.strategy = InfillStrategy::expected_improvement;
     o.max_evaluations = 40;
     o.rbf.smoothing = true;  // -> nugget estimated
-    return minimise_expensive(noisy, kBraninVars, o);
+    return minimise_expensive(noisy, testfn::kBraninVariables, o);
   };
   const ExpensiveResult a = run(), b = run();
   CHECK(a.points == b.points);

@@ -4,6 +4,9 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <vector>
+
+#include "demfit/rbf_surrogate/bounds.hpp"
 
 namespace demfit::rbf_surrogate::testfn {
 
@@ -15,8 +18,16 @@ inline double franke(double x, double y) {
          0.2 * std::exp(-(9 * x - 4) * (9 * x - 4) - (9 * y - 7) * (9 * y - 7));
 }
 
+// Franke's function at each row (x, y) of `points`.
+inline Eigen::VectorXd franke_values(const Eigen::MatrixXd& points) {
+  Eigen::VectorXd values(points.rows());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) values[i] = franke(points(i, 0), points(i, 1));
+  return values;
+}
+
 // Branin on x1 in [-5, 10], x2 in [0, 15]; global minimum 0.397887 (three minimisers).
 constexpr double kBraninMinimum = 0.397887357729739;
+inline const std::vector<Variable> kBraninVariables{{"x1", -5.0, 10.0}, {"x2", 0.0, 15.0}};
 inline double branin(const Eigen::VectorXd& x) {
   const double pi = 3.141592653589793;
   const double b = 5.1 / (4 * pi * pi), c = 5 / pi, t = 1 / (8 * pi);

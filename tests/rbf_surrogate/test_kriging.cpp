@@ -15,12 +15,6 @@ namespace {
 
 MatrixXd design(int n, int d, std::uint64_t seed) { return latin_hypercube_maximin(n, d, seed, Box::unit(d)); }
 
-VectorXd franke_values(const MatrixXd& x) {
-  VectorXd y(x.rows());
-  for (Eigen::Index i = 0; i < x.rows(); ++i) y[i] = testfn::franke(x(i, 0), x(i, 1));
-  return y;
-}
-
 // Matérn-5/2 written out independently of the library (Rasmussen & Williams 2006, eq. 4.17).
 double matern_reference(double r) {
   return (1.0 + std::sqrt(5.0) * r + 5.0 * r * r / 3.0) * std::exp(-std::sqrt(5.0) * r);
@@ -35,7 +29,7 @@ double scaled_distance(const VectorXd& a, const VectorXd& b, const VectorXd& len
 TEST_CASE("Kriging interpolates its data with zero predictive deviation at the data points",
           "[rbf_surrogate][kriging]") {
   const MatrixXd x = design(30, 2, 3);
-  const VectorXd y = franke_values(x);
+  const VectorXd y = testfn::franke_values(x);
   const KrigingModel m = KrigingModel::fit(x, y);
   const double range = y.maxCoeff() - y.minCoeff();
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
@@ -91,7 +85,7 @@ TEST_CASE("Kriging prediction equals the GP posterior from an independent dense 
 
 TEST_CASE("Kriging mean gradient matches central finite differences for both kernels", "[rbf_surrogate][kriging]") {
   const MatrixXd x = design(25, 2, 7);
-  const VectorXd y = franke_values(x);
+  const VectorXd y = testfn::franke_values(x);
   for (const KrigingKernel kernel : {KrigingKernel::matern52, KrigingKernel::gaussian}) {
     KrigingOptions o;
     o.kernel = kernel;

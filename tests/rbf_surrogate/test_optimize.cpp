@@ -10,7 +10,7 @@ using namespace demfit::rbf_surrogate;
 namespace {
 
 // Branin on the unit square (x1 = -5 + 15u, x2 = 15v) with its analytic gradient.
-double branin_unit(const VectorXd& u, VectorXd* g) {
+double branin_unit_with_gradient(const VectorXd& u, VectorXd* g) {
   VectorXd x(2);
   x << -5 + 15 * u[0], 15 * u[1];
   const double pi = 3.141592653589793;
@@ -31,10 +31,10 @@ TEST_CASE("Minimize finds Branin's global minimum with and without gradients", "
     MinimizeOptions o;
     o.use_gradient = use_gradient;
     o.global_evaluations = 500;
-    const MinimizeResult r = minimize(branin_unit, Box::unit(2), o);
+    const MinimizeResult r = minimize(branin_unit_with_gradient, Box::unit(2), o);
     INFO("gradient " << use_gradient << " value " << r.value);
     CHECK(r.value == Approx(testfn::kBraninMinimum).epsilon(1e-8));
-    CHECK(r.value == Approx(branin_unit(r.x, nullptr)).epsilon(1e-14));
+    CHECK(r.value == Approx(branin_unit_with_gradient(r.x, nullptr)).epsilon(1e-14));
   }
 }
 
@@ -74,7 +74,8 @@ TEST_CASE("Minimize respects the box and handles zero-width dimensions", "[rbf_s
 TEST_CASE("Minimize is deterministic and propagates objective errors", "[rbf_surrogate][optimize]") {
   MinimizeOptions o;
   o.global_evaluations = 300;
-  const MinimizeResult a = minimize(branin_unit, Box::unit(2), o), b = minimize(branin_unit, Box::unit(2), o);
+  const MinimizeResult a = minimize(branin_unit_with_gradient, Box::unit(2), o),
+                       b = minimize(branin_unit_with_gradient, Box::unit(2), o);
   CHECK(a.x == b.x);
   CHECK(a.value == b.value);
   const Objective bad = [](const VectorXd&, VectorXd*) -> double { throw std::invalid_argument("boom"); };

@@ -9,19 +9,9 @@
 
 using namespace demfit::rbf_surrogate;
 
-namespace {
-
-MatrixXd franke_values(const MatrixXd& x) {
-  MatrixXd y(x.rows(), 1);
-  for (Eigen::Index i = 0; i < x.rows(); ++i) y(i, 0) = testfn::franke(x(i, 0), x(i, 1));
-  return y;
-}
-
-}  // namespace
-
 TEST_CASE("RBF network reproduces the data at the nodes for every basis", "[rbf_surrogate][rbf]") {
   const MatrixXd x = latin_hypercube_maximin(30, 2, 3, Box::unit(2));
-  const MatrixXd y = franke_values(x);
+  const MatrixXd y = testfn::franke_values(x);
   for (Basis basis :
        {Basis::multiquadric, Basis::gaussian, Basis::inverse_multiquadric, Basis::cubic, Basis::thin_plate}) {
     for (Tail tail : {Tail::constant, Tail::linear}) {
@@ -177,7 +167,7 @@ TEST_CASE("Smoothing chosen by leave-one-out reduces the error on noisy data", "
 
 TEST_CASE("Degenerate input fails with a one-line invalid_argument", "[rbf_surrogate][rbf]") {
   MatrixXd x = latin_hypercube_maximin(10, 2, 1, Box::unit(2));
-  MatrixXd y = franke_values(x);
+  MatrixXd y = testfn::franke_values(x);
   MatrixXd dup = x;
   dup.row(3) = dup.row(7);
   CHECK_THROWS_WITH(RbfNetwork::fit(dup, y), Catch::Contains("duplicate"));
@@ -190,7 +180,7 @@ TEST_CASE("Degenerate input fails with a one-line invalid_argument", "[rbf_surro
   CHECK_THROWS_WITH(RbfNetwork::fit(x.topRows(3), y.topRows(3)), Catch::Contains("tail"));
   MatrixXd line(5, 2);
   line << 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1;
-  CHECK_THROWS_WITH(RbfNetwork::fit(line, franke_values(line)), Catch::Contains("affinely"));
+  CHECK_THROWS_WITH(RbfNetwork::fit(line, testfn::franke_values(line)), Catch::Contains("affinely"));
   RbfOptions cubic_no_tail;
   cubic_no_tail.basis = Basis::cubic;
   cubic_no_tail.tail = Tail::constant;

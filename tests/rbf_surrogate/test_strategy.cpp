@@ -11,9 +11,7 @@ using namespace demfit::rbf_surrogate;
 
 namespace {
 
-const std::vector<Variable> kBraninVars{{"x1", -5.0, 10.0}, {"x2", 0.0, 15.0}};
-
-double branin_unit(const VectorXd& unit) { return testfn::branin(from_unit(kBraninVars, unit)); }
+double branin_unit(const VectorXd& unit) { return testfn::branin(from_unit(testfn::kBraninVariables, unit)); }
 
 ExpensiveOptions options_for(InfillStrategy s) {
   ExpensiveOptions o;
@@ -45,12 +43,13 @@ TEST_CASE("minimise_expensive gives the same points as driving the strategy by h
   for (InfillStrategy s : {InfillStrategy::srsm, InfillStrategy::adaptive, InfillStrategy::expected_improvement}) {
     ExpensiveOptions o = options_for(s);
     o.max_evaluations = 30;
-    const ExpensiveResult r = minimise_expensive(testfn::branin, kBraninVars, o);
+    const ExpensiveResult r = minimise_expensive(testfn::branin, testfn::kBraninVariables, o);
     const auto strategy = make_strategy(2, o);
     drive(*strategy, default_batch_size(2, o), 30, branin_unit);
     // The hand loop tells whole batches, so it may run past 30; compare the first 30.
     for (int i = 0; i < 30; ++i)
-      CHECK((from_unit(kBraninVars, strategy->history().point(i)) - r.points.row(i).transpose()).norm() == 0.0);
+      CHECK((from_unit(testfn::kBraninVariables, strategy->history().point(i)) - r.points.row(i).transpose()).norm() ==
+            0.0);
     CHECK(r.stop_reason == "evaluation budget reached");
   }
 }
