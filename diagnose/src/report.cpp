@@ -163,6 +163,7 @@ nlohmann::json to_json(const Diagnosis& d) {
           {"summary", d.summary},
           {"bic_threshold", d.bic_threshold},
           {"noise_given", d.noise_given},
+          {"data_scatter_ratio", d.data_scatter_ratio},
           {"targets", targets},
           {"base",
            {{"parameters", d.base.parameters},
@@ -195,10 +196,16 @@ std::string markdown_report(const Diagnosis& d) {
   for (std::size_t i = 0; i < d.targets.size(); ++i) {
     const FitTarget& t = d.targets[i];
     std::string scatter = "not measured";
-    if (i < d.scatter.size())
-      scatter = format("%.4g, %.3f, %d%s", d.scatter[i].sigma, d.scatter[i].lag1, d.scatter[i].replicas,
-                       t.noise_factor.size() > 0 ? " (in the noise model: sigma is the total, residuals whitened)"
-                                                 : " (below the threshold)");
+    if (i < d.scatter.size()) {
+      std::string use = " (below the threshold)";
+      if (t.noise_factor.size() > 0)
+        use = d.data_scatter_ratio > 0.0
+                  ? format(" (in the noise model for the model run and, x %.3g, for the data's own run: sigma is the "
+                           "total, residuals whitened)",
+                           d.data_scatter_ratio)
+                  : " (in the noise model: sigma is the total, residuals whitened)";
+      scatter = format("%.4g, %.3f, %d%s", d.scatter[i].sigma, d.scatter[i].lag1, d.scatter[i].replicas, use.c_str());
+    }
     md << format("| %s | %zu | %.4g | %s | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
                  d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)",
                  scatter.c_str());

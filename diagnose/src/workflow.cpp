@@ -280,6 +280,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   d.candidates = candidates;
   d.bic_threshold = options.bic_threshold;
   d.noise_given = options.noise_sigma > 0.0;
+  d.data_scatter_ratio = options.data_scatter_ratio;
   d.targets = make_targets(study, options.noise_sigma, d.notes);
   // Fixed: model defaults, the study's fixed values, every effect at its off value.
   identify::ParameterSet fixed = model.default_parameters();

@@ -125,6 +125,7 @@ struct Diagnosis {
   // already run (mapped to the whitened targets); if it did, of fresh replicas of the new optimum.
   bool base_refined = false;
   bool noise_given = false;        // sigma given (--noise) rather than estimated
+  double data_scatter_ratio = 0.0;  // the data's own scatter counted in the noise model (--data-scatter)
   std::vector<std::string> notes;  // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
