@@ -38,7 +38,7 @@ struct DiagnoseCliOptions {
 // Documented upper limits: each replica or re-fit costs whole model runs.
 constexpr int kMaxScatterReplicas = 64;
 constexpr int kMaxRefitBest = 64;
-constexpr double kMaxDataScatter = 16.0;
+constexpr int kMaxDataScatter = 16;
 
 void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
@@ -55,8 +55,9 @@ void run_diagnose(const DiagnoseCliOptions& o) {
                   "a few replica runs measure the scatter (default 4 for DEM studies)");
   require_finite(o.data_scatter, "--data-scatter");
   if (o.data_scatter < 0.0 || o.data_scatter > kMaxDataScatter)
-    throw std::runtime_error("--data-scatter: must be in [0, 16] (0 = the data's own scatter is negligible, 1 = the "
-                             "data are one run of a model like this one, 1/m = a mean of m such runs)");
+    throw std::runtime_error("--data-scatter: must be in [0, " + std::to_string(kMaxDataScatter) +
+                             "] (0 = the data's own scatter is negligible, 1 = the data are one run of a model like "
+                             "this one, 1/m = a mean of m such runs)");
   require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
   const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
@@ -144,7 +145,7 @@ void register_diagnose(CLI::App& app) {
                   "units), counted in the noise model beside the model run's: 0 (default) = negligible (data averaged "
                   "over many realisations, or a material with far more particles than the model); 1 = the data are one "
                   "run of a model like this one (a synthetic twin from `demfit simulate`); 1/m for a mean of m such "
-                  "runs; at most 16");
+                  "runs; at most " + std::to_string(kMaxDataScatter));
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }
