@@ -184,7 +184,8 @@ bool assess(const FitContext& c, Diagnosis& d, const std::vector<FitVariable>& v
 // sensitivities (no finite differences). The augmented problem can have local minima (e.g. a toe
 // shift traded against a lower rate), so if that start does not pass the criterion, further
 // starts follow: study initial values + the estimate, study initial values + mid-range effect.
-// The lowest chi-square wins. Returns false if every start failed.
+// Kept: the first start that passes, else the one of lowest criterion chi-square
+// (replaces_kept_start). Returns false if every start failed.
 bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
                      CandidateFit& f) {
   f.effect = effect.name;
@@ -215,22 +216,27 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
       fixed.erase(p.name);
     }
     try {
-      FitResult trial =
+      CandidateFit trial;
+      trial.effect = effect.name;
+      trial.fit =
           fit_least_squares(c.model, fixed, vars, d.targets, fit, start == 0 && seed.size() > 0 ? &seed : nullptr);
-      d.refit_evaluations += trial.evaluations;
-      if (!fitted || trial.chi_square < f.fit.chi_square) f.fit = std::move(trial);
+      d.refit_evaluations += trial.fit.evaluations;
+      const bool passes = assess(c, d, vars, trial);
+      if (!fitted || replaces_kept_start(f, trial)) f = std::move(trial);
       fitted = true;
+      if (passes) break;
     } catch (const std::exception& e) {
       d.notes.push_back("effect '" + effect.name + "': a re-identification start failed (" + e.what() + ")");
     }
-    // Passes: the ranking uses this first passing start. A later start could only raise its
-    // delta BIC, which matters only against another passing candidate within the threshold.
-    if (fitted && assess(c, d, vars, f)) break;
   }
   return fitted;
 }
 
 }  // namespace
+
+bool replaces_kept_start(const CandidateFit& kept, const CandidateFit& trial) {
+  return trial.passes || trial.criterion_chi_square < kept.criterion_chi_square;
+}
 
 // 4-5. The verdict from the re-fits: the passing candidate with the largest delta BIC, unless
 // another plausible candidate fits about as well — its delta BIC also exceeds the threshold and is

@@ -68,6 +68,23 @@ TEST_CASE("A passing candidate is named when every other one is worse by more th
   CHECK(e.refits[e.chosen].effect == "a");
 }
 
+TEST_CASE("A re-fit start that passes is kept although an earlier failing start had the lower chi-square",
+          "[diagnose][verdict]") {
+  // The two-speed Hertz twin's seed 44 as measured: the first start's fit run had chi-square 128.5
+  // (criterion, the mean of 4 fresh replicas: 147.3), a later one 124.2 (148.5).
+  CandidateFit first, later;
+  first.fit.chi_square = 128.46;
+  first.criterion_chi_square = 147.31;
+  later.fit.chi_square = 124.17;
+  later.criterion_chi_square = 148.53;
+  // Neither passes: the lower criterion chi-square is kept, not the luckier fit run.
+  CHECK_FALSE(replaces_kept_start(first, later));
+  CHECK(replaces_kept_start(later, first));
+  // A passing start replaces whatever was kept, whatever its chi-squares.
+  later.passes = true;
+  CHECK(replaces_kept_start(first, later));
+}
+
 TEST_CASE("Residual sizes are reported with each target divided by its own noise level", "[diagnose][verdict]") {
   // Two targets in different units: pressure in MPa (sigma 0.5) and angle in degrees (sigma 0.01).
   ResidualSegment pressure{"pressure", {0, 1, 2, 3, 4, 5}, {1.0, -1.0, 1.0, -1.0, 1.0, -1.0}, 0.5};

@@ -142,6 +142,13 @@ double aicc(double chi_square, int parameters, int points);
 // options.refit_score_ratio x the best, and at least the options.refit_best highest.
 std::vector<int> refit_order(const std::vector<ScreeningScore>& screening, const DiagnoseOptions& options);
 
+// Whether a candidate's re-fit start `trial` (assessed) replaces the start kept so far: when it
+// passes the criterion (the starts stop there), or when its criterion chi-square is lower. A start
+// is judged on its own: a passing one is not discarded because an earlier, failing one had the lower
+// chi-square, and on a scattering model the fit's own chi-square, which rewards a lucky trajectory,
+// does not choose between starts.
+bool replaces_kept_start(const CandidateFit& kept, const CandidateFit& trial);
+
 // Sets verdict/chosen/tied from d.refits: the passing re-fit with the largest delta BIC is named
 // unless another plausible one (delta BIC > threshold, residual tests passed or not) has a delta
 // BIC within the threshold of it: then "ambiguous" and nothing is named.
