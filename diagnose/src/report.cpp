@@ -14,6 +14,7 @@ namespace demfit::diagnose {
 namespace {
 
 using detail::format;
+using detail::scatter_use;
 
 nlohmann::json analysis_json(const ResidualAnalysis& a) {
   nlohmann::json regions = nlohmann::json::array();
@@ -197,14 +198,9 @@ std::string markdown_report(const Diagnosis& d) {
     const FitTarget& t = d.targets[i];
     std::string scatter = "not measured";
     if (i < d.scatter.size()) {
-      std::string use = " (below the threshold)";
-      if (t.noise_factor.size() > 0)
-        use = d.data_scatter_ratio > 0.0
-                  ? format(" (in the noise model for the model run and, x %.3g, for the data's own run: sigma is the "
-                           "total, residuals whitened)",
-                           d.data_scatter_ratio)
-                  : " (in the noise model: sigma is the total, residuals whitened)";
-      scatter = format("%.4g, %.3f, %d%s", d.scatter[i].sigma, d.scatter[i].lag1, d.scatter[i].replicas, use.c_str());
+      const bool whitened = t.noise_factor.size() > 0;
+      scatter = format("%.4g, %.3f, %d (%s%s)", d.scatter[i].sigma, d.scatter[i].lag1, d.scatter[i].replicas,
+                       scatter_use(whitened, d.data_scatter_ratio).c_str(), whitened ? "; sigma is the total" : "");
     }
     md << format("| %s | %zu | %.4g | %s | %s |\n", t.name.c_str(), t.data.x.size(), t.sigma,
                  d.noise_given ? "given (--noise)" : "estimated (Gasser-Sroka-Jennen-Steinmetz differences)",

@@ -71,11 +71,7 @@ void account_for_scatter(const FitContext& c, Diagnosis& d) {
     d.notes.push_back(format(
         "target '%s': model scatter %.4g (lag-1 correlation %.3f, %d runs) against data noise %.4g: %s",
         d.targets[t].name.c_str(), d.scatter[t].sigma, d.scatter[t].lag1, d.scatter[t].replicas, d.targets[t].sigma,
-        whitened[t] ? (c.options.data_scatter_ratio > 0.0
-                           ? "added to the noise model (AR(1) along the curve) for the model run and, as stated, "
-                             "for the data's own run; residuals whitened"
-                           : "added to the noise model (AR(1) along the curve), residuals whitened")
-                    : "below the threshold, data noise alone"));
+        scatter_use(whitened[t], c.options.data_scatter_ratio).c_str()));
   d.scatter_in_noise_model = std::find(whitened.begin(), whitened.end(), true) != whitened.end();
   progress(c.options, c.started,
            format("model scatter measured from %zu runs%s", replicas.size(),

@@ -80,9 +80,13 @@ TEST_CASE("A re-fit start that passes is kept although an earlier failing start 
   // Neither passes: the lower criterion chi-square is kept, not the luckier fit run.
   CHECK_FALSE(replaces_kept_start(first, later));
   CHECK(replaces_kept_start(later, first));
-  // A passing start replaces whatever was kept, whatever its chi-squares.
-  later.passes = true;
-  CHECK(replaces_kept_start(first, later));
+  // A later start that passes replaces the kept one although both of its chi-squares are higher.
+  CandidateFit passing;
+  passing.fit.chi_square = 131.0;
+  passing.criterion_chi_square = 150.0;
+  passing.passes = true;
+  CHECK(replaces_kept_start(first, passing));
+  CHECK(replaces_kept_start(later, passing));
 }
 
 TEST_CASE("Residual sizes are reported with each target divided by its own noise level", "[diagnose][verdict]") {
