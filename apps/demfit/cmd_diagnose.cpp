@@ -32,6 +32,7 @@ struct DiagnoseCliOptions {
   int refit_best = 2;
   int scatter_replicas = -1;  // -1: the model's default (4 for DEM studies, 0 for the analytic model)
   double data_scatter = 0.0;  // the data's own run-to-run scatter variance / one model run's
+  int refit_search = 0;       // model runs of the surrogate search per re-fit that no local start passed
   bool no_plots = false;
 };
 
@@ -39,6 +40,7 @@ struct DiagnoseCliOptions {
 constexpr int kMaxScatterReplicas = 64;
 constexpr int kMaxRefitBest = 64;
 constexpr int kMaxDataScatter = 16;
+constexpr int kMaxRefitSearch = 400;
 
 void run_diagnose(const DiagnoseCliOptions& o) {
   if (o.jobs < 1) throw std::runtime_error("--jobs: must be >= 1");
@@ -59,6 +61,9 @@ void run_diagnose(const DiagnoseCliOptions& o) {
                              "] (0 = the data's own scatter is negligible, 1 = the data are one run of a model like "
                              "this one, 1/m = a mean of m such runs)");
   require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
+  if (o.refit_search < 0) throw std::runtime_error("--refit-search: must be >= 0 (0 = none; e.g. 30 model runs)");
+  require_at_most(o.refit_search, kMaxRefitSearch, "--refit-search",
+                  "each is a model run; 10-20 per re-fitted variable suffice");
   const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
@@ -77,6 +82,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   options.refit_best = o.refit_best;
   if (o.scatter_replicas >= 0) options.scatter_replicas = o.scatter_replicas;
   options.data_scatter_ratio = o.data_scatter;
+  options.refit_search_evaluations = o.refit_search;
   options.progress = true;  // DEM diagnoses take minutes: say what is running
   options.fit.jobs = o.jobs;
   options.fit.seed = spec.seed;
@@ -146,6 +152,10 @@ void register_diagnose(CLI::App& app) {
                   "over many realisations, or a material with far more particles than the model); 1 = the data are one "
                   "run of a model like this one (a synthetic twin from `demfit simulate`); 1/m for a mean of m such "
                   "runs; at most " + std::to_string(kMaxDataScatter));
+  cmd->add_option("--refit-search", o->refit_search,
+                  "Model runs of a global surrogate search (maximin design + kriging expected improvement over base + "
+                  "effect variables) made for a candidate when no local re-fit start passed; its best predicted point "
+                  "starts one more re-fit (default 0 = none; at most " + std::to_string(kMaxRefitSearch) + ")");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

@@ -165,6 +165,7 @@ nlohmann::json to_json(const Diagnosis& d) {
           {"bic_threshold", d.bic_threshold},
           {"noise_given", d.noise_given},
           {"data_scatter_ratio", d.data_scatter_ratio},
+          {"refit_search_evaluations", d.refit_search_evaluations},
           {"targets", targets},
           {"base",
            {{"parameters", d.base.parameters},

@@ -1,5 +1,6 @@
 // The diagnosis workflow; see workflow.hpp and docs/diagnose.md.
 #include "demfit/diagnose/workflow.hpp"
+#include "demfit/diagnose/surrogate_start.hpp"
 #include "fit_context.hpp"
 #include "text_format.hpp"
 #include "verdict_summary.hpp"
@@ -179,11 +180,112 @@ bool assess(const FitContext& c, Diagnosis& d, const std::vector<FitVariable>& v
   return f.passes;
 }
 
+// The variables of a re-fit (base + the effect's) and the fixed set without the effect's
+// parameters. Starts: 0 the base optimum + the score test's estimate, 1 study initial values + the
+// estimate, 2 and later study initial values + mid-range effect.
+std::vector<FitVariable> refit_variables(const Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
+                                         int start, identify::ParameterSet& fixed) {
+  std::vector<FitVariable> vars = d.base_variables;
+  if (start == 0)
+    for (auto& v : vars) v.start = d.base.parameters.at(v.name);
+  for (std::size_t j = 0; j < effect.parameters.size(); ++j) {
+    const auto& p = effect.parameters[j];
+    const double towards = (p.upper - p.off_value) >= (p.off_value - p.lower) ? p.upper : p.lower;
+    const double mid = 0.5 * (p.off_value + towards);
+    vars.push_back({p.name, p.lower, p.upper, start < 2 ? score.start[j] : mid});
+    fixed.erase(p.name);
+  }
+  return vars;
+}
+
+// Fits from `vars`' starts, assesses the fit and keeps it in `f` by replaces_kept_start. True when
+// it passes; a start that cannot be evaluated is noted and skipped.
+bool try_refit_start(const FitContext& c, Diagnosis& d, const identify::ParameterSet& fixed,
+                     const std::vector<FitVariable>& vars, const Eigen::MatrixXd* jacobian, CandidateFit& f,
+                     bool& fitted) {
+  const FitOptions fit = stage_fit_options(c.options, c.started, "re-fit base + " + f.effect);
+  try {
+    CandidateFit trial;
+    trial.effect = f.effect;
+    trial.fit = fit_least_squares(c.model, fixed, vars, d.targets, fit, jacobian);
+    d.refit_evaluations += trial.fit.evaluations;
+    const bool passes = assess(c, d, vars, trial);
+    if (!fitted || replaces_kept_start(f, trial)) f = std::move(trial);
+    fitted = true;
+    return passes;
+  } catch (const std::exception& e) {
+    d.notes.push_back("effect '" + f.effect + "': a re-identification start failed (" + e.what() + ")");
+    return false;
+  }
+}
+
+// The search's point itself as a re-fit (its one run's residual; no Jacobian is needed by the
+// assessment), so the smoothed optimum is judged before a local descent follows one run's noise.
+bool assess_surrogate_point(const FitContext& c, Diagnosis& d, const identify::ParameterSet& fixed,
+                            const std::vector<FitVariable>& vars, CandidateFit& f, bool& fitted) {
+  CandidateFit trial;
+  trial.effect = f.effect;
+  trial.fit.parameters = fixed;
+  for (const auto& v : vars) {
+    trial.fit.parameters[v.name] = v.start;
+    trial.fit.values.push_back(v.start);
+  }
+  const auto residual = residuals_at(c.model, {trial.fit.parameters}, d.targets, c.options.fit).front();
+  d.refit_evaluations += 1;
+  if (residual.size() == 0) return false;
+  trial.fit.residual = residual;
+  trial.fit.chi_square = residual.squaredNorm();
+  trial.fit.evaluations = 1;
+  const bool passes = assess(c, d, vars, trial);
+  if (!fitted || replaces_kept_start(f, trial)) f = std::move(trial);
+  fitted = true;
+  return passes;
+}
+
+// When no local start passed: a surrogate search over base + effect variables
+// (surrogate_start.hpp), told the base optimum (effect off) and the kept fit's point; its point of
+// lowest predicted chi-square is assessed as it is and, if it does not pass, starts a local fit.
+bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const EffectCandidate& effect,
+                                 const ScreeningScore& score, CandidateFit& f, bool& fitted) {
+  identify::ParameterSet fixed = c.fixed;
+  std::vector<FitVariable> vars = refit_variables(d, effect, score, 0, fixed);
+  std::vector<double> base_point = d.base.values;
+  for (const auto& p : effect.parameters) base_point.push_back(p.off_value);
+  std::vector<std::vector<double>> known{base_point};
+  std::vector<double> known_chi_squares{d.base.chi_square};
+  if (fitted) {
+    known.push_back(f.fit.values);
+    known_chi_squares.push_back(f.fit.chi_square);
+  }
+  const int runs = c.options.refit_search_evaluations;
+  progress(c.options, c.started, "surrogate search over base + " + effect.name + " (" + std::to_string(runs) + " runs)");
+  try {
+    const SurrogateStart s =
+        surrogate_search_start(c.model, fixed, vars, d.targets, c.options.fit, runs, c.options.fit.seed, known,
+                               known_chi_squares);
+    d.refit_evaluations += s.evaluations;
+    std::string at;
+    for (std::size_t j = 0; j < vars.size(); ++j) {
+      vars[j].start = s.values[j];
+      at += (j ? ", " : "") + vars[j].name + " " + format("%.6g", s.values[j]);
+    }
+    d.notes.push_back("effect '" + effect.name + "': no local re-fit start passed; a surrogate search (" +
+                      std::to_string(s.evaluations) + " runs) predicts chi-square " +
+                      format("%.4g", s.predicted_chi_square) + " at " + at + " (its run: " +
+                      format("%.4g", s.run_chi_square) + ")");
+  } catch (const std::exception& e) {
+    d.notes.push_back("effect '" + effect.name + "': the surrogate search failed (" + e.what() + ")");
+    return false;
+  }
+  if (assess_surrogate_point(c, d, fixed, vars, f, fitted)) return true;
+  return try_refit_start(c, d, fixed, vars, nullptr, f, fitted);
+}
+
 // Re-identifies base variables + one effect's parameters. Start 0: the base optimum with the
 // score test's linearised estimate, its Jacobian assembled from the base fit's and the screening
 // sensitivities (no finite differences). The augmented problem can have local minima (e.g. a toe
 // shift traded against a lower rate), so if that start does not pass the criterion, further
-// starts follow: study initial values + the estimate, study initial values + mid-range effect.
+// starts follow (refit_variables), then the surrogate search if options.refit_search_evaluations.
 // Kept: the first start that passes, else the one of lowest criterion chi-square
 // (replaces_kept_start). Returns false if every start failed.
 bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
@@ -201,34 +303,13 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
           score.sensitivity.col(static_cast<Eigen::Index>(j)) *
           (effect.parameters[j].upper - effect.parameters[j].lower);
   }
-  const FitOptions fit = stage_fit_options(c.options, c.started, "re-fit base + " + effect.name);
   bool fitted = false;
   for (int start = 0; start < std::max(1, c.options.refit_starts); ++start) {
-    std::vector<FitVariable> vars = d.base_variables;
-    if (start == 0)
-      for (auto& v : vars) v.start = d.base.parameters.at(v.name);
     identify::ParameterSet fixed = c.fixed;
-    for (std::size_t j = 0; j < effect.parameters.size(); ++j) {
-      const auto& p = effect.parameters[j];
-      const double towards = (p.upper - p.off_value) >= (p.off_value - p.lower) ? p.upper : p.lower;
-      const double mid = 0.5 * (p.off_value + towards);
-      vars.push_back({p.name, p.lower, p.upper, start < 2 ? score.start[j] : mid});
-      fixed.erase(p.name);
-    }
-    try {
-      CandidateFit trial;
-      trial.effect = effect.name;
-      trial.fit =
-          fit_least_squares(c.model, fixed, vars, d.targets, fit, start == 0 && seed.size() > 0 ? &seed : nullptr);
-      d.refit_evaluations += trial.fit.evaluations;
-      const bool passes = assess(c, d, vars, trial);
-      if (!fitted || replaces_kept_start(f, trial)) f = std::move(trial);
-      fitted = true;
-      if (passes) break;
-    } catch (const std::exception& e) {
-      d.notes.push_back("effect '" + effect.name + "': a re-identification start failed (" + e.what() + ")");
-    }
+    const std::vector<FitVariable> vars = refit_variables(d, effect, score, start, fixed);
+    if (try_refit_start(c, d, fixed, vars, start == 0 && seed.size() > 0 ? &seed : nullptr, f, fitted)) return true;
   }
+  if (c.options.refit_search_evaluations > 0) refit_from_surrogate_search(c, d, effect, score, f, fitted);
   return fitted;
 }
 
@@ -287,6 +368,7 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
   d.bic_threshold = options.bic_threshold;
   d.noise_given = options.noise_sigma > 0.0;
   d.data_scatter_ratio = options.data_scatter_ratio;
+  d.refit_search_evaluations = options.refit_search_evaluations;
   d.targets = make_targets(study, options.noise_sigma, d.notes);
   // Fixed: model defaults, the study's fixed values, every effect at its off value.
   identify::ParameterSet fixed = model.default_parameters();

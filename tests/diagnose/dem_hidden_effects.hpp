@@ -125,6 +125,7 @@ inline Outcome diagnose_and_report(const std::string& label, const identify::Stu
   // (`demfit diagnose --data-scatter 1`).
   options.data_scatter_ratio = 1.0;
   if (const char* starts = std::getenv("DEMFIT_DIAGNOSE_REFIT_STARTS")) options.refit_starts = std::atoi(starts);
+  if (const char* search = std::getenv("DEMFIT_DIAGNOSE_REFIT_SEARCH")) options.refit_search_evaluations = std::atoi(search);
   out.diagnosis = run_diagnosis(study, model, candidates, options);
   // The figures of the closing note.
   const Diagnosis& d = out.diagnosis;
@@ -171,6 +172,7 @@ inline Outcome diagnose_and_report(const std::string& label, const identify::Stu
         r.analysis.variance.ratio, r.analysis.variance.p_value, r.analysis.smooth.p_value,
         values(r.fit, d.base_variables, extra).c_str(), r.fit.evaluations);
   }
+  for (const auto& note : d.notes) std::printf("  note: %s\n", note.c_str());
   std::printf("  evaluations %d (base %d, screening %d, re-fits %d), wall time %.1f s\n", d.evaluations,
               d.base_evaluations, d.screening_evaluations, d.refit_evaluations, d.wall_seconds);
   return out;

@@ -38,6 +38,11 @@ struct DiagnoseOptions {
   // score test's estimate and the base/screening Jacobian (no new finite differences); the others
   // (study initial values + estimate, + mid-range effect) run only if the first does not pass.
   int refit_starts = 3;
+  // Model runs of a global surrogate search over base + effect variables (surrogate_start.hpp),
+  // made only when no local start passed; its start is then fitted and assessed like the others.
+  // 0 = none. A DEM chi-square whose run-to-run scatter is as deep as the effect's valley can hide
+  // that valley from every local start (docs/diagnose.md, "Re-fit starts").
+  int refit_search_evaluations = 0;
   double screen_step = 0.02;  // score-test perturbation, fraction of the effect range
   // Replicas of the base optimum, each with the variables moved by k x 1e-7 of their ranges (a
   // round-off-sized change), that measure the model's own scatter (model_scatter.hpp); 0 = none
@@ -126,6 +131,7 @@ struct Diagnosis {
   bool base_refined = false;
   bool noise_given = false;        // sigma given (--noise) rather than estimated
   double data_scatter_ratio = 0.0;  // the data's own scatter counted in the noise model (--data-scatter)
+  int refit_search_evaluations = 0;  // runs of the surrogate search per failing re-fit (--refit-search)
   std::vector<std::string> notes;  // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
