@@ -285,7 +285,7 @@ bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const Effect
 // score test's linearised estimate, its Jacobian assembled from the base fit's and the screening
 // sensitivities (no finite differences). The augmented problem can have local minima (e.g. a toe
 // shift traded against a lower rate), so if that start does not pass the criterion, further
-// starts follow (refit_variables), then the surrogate search if options.refit_search_evaluations.
+// starts follow (refit_variables).
 // Kept: the first start that passes, else the one of lowest criterion chi-square
 // (replaces_kept_start). Returns false if every start failed.
 bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
@@ -309,8 +309,28 @@ bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& e
     const std::vector<FitVariable> vars = refit_variables(d, effect, score, start, fixed);
     if (try_refit_start(c, d, fixed, vars, start == 0 && seed.size() > 0 ? &seed : nullptr, f, fitted)) return true;
   }
-  if (c.options.refit_search_evaluations > 0) refit_from_surrogate_search(c, d, effect, score, f, fitted);
   return fitted;
+}
+
+// 3c. When no re-fitted candidate passed: the surrogate search for each of them, in screening
+// order, the search's fit replacing the kept one by replaces_kept_start (a candidate whose every
+// local start failed gets its first fit here).
+void search_failed_refits(const FitContext& c, Diagnosis& d, const std::vector<EffectCandidate>& candidates,
+                          const std::vector<int>& order) {
+  for (const int index : order) {
+    const EffectCandidate& effect = candidates[static_cast<std::size_t>(index)];
+    auto kept = std::find_if(d.refits.begin(), d.refits.end(), [&](const auto& r) { return r.effect == effect.name; });
+    CandidateFit f;
+    bool fitted = kept != d.refits.end();
+    if (fitted) f = *kept;
+    f.effect = effect.name;
+    refit_from_surrogate_search(c, d, effect, d.screening[static_cast<std::size_t>(index)], f, fitted);
+    if (!fitted) continue;
+    if (kept != d.refits.end())
+      *kept = std::move(f);
+    else
+      d.refits.push_back(std::move(f));
+  }
 }
 
 }  // namespace
@@ -428,6 +448,11 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
     if (refit_candidate(context, d, candidates[order[rank]], d.screening[order[rank]], f))
       d.refits.push_back(std::move(f));
   }
+  // A search is made only when the local fits name nothing: it can turn "unexplained" into a name
+  // where one run's scatter hid an effect's optimum; rivals of a passing candidate are compared by
+  // their local fits (docs/diagnose.md, step 4).
+  const bool any_passes = std::any_of(d.refits.begin(), d.refits.end(), [](const auto& r) { return r.passes; });
+  if (!any_passes && options.refit_search_evaluations > 0) search_failed_refits(context, d, candidates, order);
   decide_verdict(d, d.bic_threshold);
   if (d.verdict == Verdict::unexplained_structural && d.scatter_in_noise_model && !d.base_analysis.structural) {
     // Structure against the data noise alone, but within the model's own scatter, and no candidate

@@ -199,3 +199,24 @@ TEST_CASE("Without cohesion the s = 4 Hertz-Mindlin drum twin does not name cohe
   INFO(d.summary);
   CHECK_FALSE((d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "cohesion"));
 }
+
+// The two-speed control: the same two-speed twin without cohesion must name nothing (any name is
+// a wrong name here). Run it by name, seeds as above (default 41-45; ~10 min per seed).
+TEST_CASE("Without cohesion the s = 4 Hertz-Mindlin drum twin seen at 15 and 45 rpm names no effect",
+          "[.][slow][drum]") {
+  const auto [first, last] = twin_seeds();
+  for (std::uint64_t seed = first; seed <= last; ++seed) {
+    identify::StudySpec study = two_speed_study(seed);
+    study.name = "Hertz drum twin at 15 and 45 rpm, no cohesion, seed " + std::to_string(seed);
+    std::vector<EffectCandidate> candidates;
+    const auto model = cases::diagnosis_model_and_candidates(study, candidates);
+    std::vector<double> sigma;
+    add_synthetic_targets(study, *model, {{"frics", 0.5}}, {"rpm15/free_surface_image", "rpm45/free_surface_image"},
+                          0.03, seed, sigma);
+    const Outcome o = diagnose_and_report(study.name, study, *model, candidates, sigma, false);
+    print_load_average();
+    INFO("seed " << seed << ": " << o.diagnosis.summary);
+    CHECK(o.diagnosis.chosen < 0);
+    CHECK(o.diagnosis.verdict != Verdict::ambiguous);
+  }
+}

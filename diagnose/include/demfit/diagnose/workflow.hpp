@@ -38,10 +38,11 @@ struct DiagnoseOptions {
   // score test's estimate and the base/screening Jacobian (no new finite differences); the others
   // (study initial values + estimate, + mid-range effect) run only if the first does not pass.
   int refit_starts = 3;
-  // Model runs of a global surrogate search over base + effect variables (surrogate_start.hpp),
-  // made only when no local start passed; its start is then fitted and assessed like the others.
-  // 0 = none. A DEM chi-square whose run-to-run scatter is as deep as the effect's valley can hide
-  // that valley from every local start (docs/diagnose.md, "Re-fit starts").
+  // Model runs of a global surrogate search over base + effect variables (surrogate_start.hpp) per
+  // re-fitted candidate, made only when no candidate passed with its local starts; its point is
+  // assessed, then fitted locally and assessed, like the other starts. 0 = none. A DEM chi-square
+  // whose run-to-run scatter is as deep as an effect's valley can hide that valley from every
+  // local start (docs/diagnose.md, step 4).
   int refit_search_evaluations = 0;
   double screen_step = 0.02;  // score-test perturbation, fraction of the effect range
   // Replicas of the base optimum, each with the variables moved by k x 1e-7 of their ranges (a
