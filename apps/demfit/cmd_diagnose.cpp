@@ -32,7 +32,7 @@ struct DiagnoseCliOptions {
   int refit_best = 2;
   int scatter_replicas = -1;  // -1: the model's default (4 for DEM studies, 0 for the analytic model)
   double data_scatter = 0.0;  // the data's own run-to-run scatter variance / one model run's
-  int refit_search = 0;       // model runs of the surrogate search per re-fit that no local start passed
+  int refit_search = 0;       // model runs of the surrogate search per re-fitted candidate when none passed
   bool no_plots = false;
 };
 
@@ -63,7 +63,7 @@ void run_diagnose(const DiagnoseCliOptions& o) {
   require_at_most(o.refit_best, kMaxRefitBest, "--refit-best", "each re-fit is a full identification (default 2)");
   if (o.refit_search < 0) throw std::runtime_error("--refit-search: must be >= 0 (0 = none; e.g. 30 model runs)");
   require_at_most(o.refit_search, kMaxRefitSearch, "--refit-search",
-                  "each is a model run; 10-20 per re-fitted variable suffice");
+                  "each is a model run; 30 were measured for two variables");
   const identify::StudySpec spec = cases::with_pointwise_metrics(identify::load_study_file(o.study_file));
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path(std::filesystem::path(o.study_file).stem().string() + "_diagnosis")
@@ -154,8 +154,9 @@ void register_diagnose(CLI::App& app) {
                   "runs; at most " + std::to_string(kMaxDataScatter));
   cmd->add_option("--refit-search", o->refit_search,
                   "Model runs of a global surrogate search (maximin design + kriging expected improvement over base + "
-                  "effect variables) made for a candidate when no local re-fit start passed; its best predicted point "
-                  "starts one more re-fit (default 0 = none; at most " + std::to_string(kMaxRefitSearch) + ")");
+                  "effect variables) made for each re-fitted candidate when none passed with its local starts; its "
+                  "point of lowest predicted chi-square is assessed, then fitted locally (default 0 = none; 30 measured "
+                  "for two variables; at most " + std::to_string(kMaxRefitSearch) + ")");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }

