@@ -42,4 +42,18 @@ double replicated_chi_square(const FitContext& c, const identify::ParameterSet& 
 // criterion chi-square is set (Diagnosis::base_criterion_chi_square).
 void account_for_scatter(const FitContext& c, Diagnosis& d);
 
+// Residual tests of `fit` under `targets` (`fitted` parameters; workflow.cpp).
+ResidualAnalysis analyse(const FitResult& fit, const std::vector<FitTarget>& targets, int fitted, double dof_noise,
+                         double alpha);
+
+// Re-identifies base variables + one effect's parameters from its local starts (refit.cpp); the
+// kept fit in `f`; false if every start failed.
+bool refit_candidate(const FitContext& c, Diagnosis& d, const EffectCandidate& effect, const ScreeningScore& score,
+                     CandidateFit& f);
+
+// When no re-fitted candidate passed: the surrogate search for each candidate of `order`
+// (refit.cpp), replacing or adding its entry of d.refits.
+void search_failed_refits(const FitContext& c, Diagnosis& d, const std::vector<EffectCandidate>& candidates,
+                          const std::vector<int>& order);
+
 }  // namespace demfit::diagnose::detail
