@@ -41,20 +41,14 @@ execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json 
 if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --scatter-replicas: must be >= 0" OR EXISTS ${OUT}/bad_replicas)
   message(FATAL_ERROR "a negative --scatter-replicas must be refused with a one-line error, nothing written (${rc}): ${err}")
 endif()
-foreach(bad -0.5 nan 17)
-  execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/bad_data_scatter
-                          --data-scatter ${bad}
+# Each option value below is refused with a one-line error naming the option, nothing written.
+foreach(refused "--data-scatter;-0.5" "--data-scatter;nan" "--data-scatter;17" "--refit-search;-1"
+                "--refit-search;401")
+  list(GET refused 0 option)
+  execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/refused ${refused}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --data-scatter: " OR EXISTS ${OUT}/bad_data_scatter)
-    message(FATAL_ERROR "--data-scatter ${bad} must be refused with a one-line error, nothing written (${rc}): ${err}")
-  endif()
-endforeach()
-foreach(bad -1 401)
-  execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/bad_refit_search
-                          --refit-search ${bad}
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: --refit-search: " OR EXISTS ${OUT}/bad_refit_search)
-    message(FATAL_ERROR "--refit-search ${bad} must be refused with a one-line error, nothing written (${rc}): ${err}")
+  if(rc EQUAL 0 OR NOT err MATCHES "demfit: error: ${option}: " OR EXISTS ${OUT}/refused)
+    message(FATAL_ERROR "${refused} must be refused with a one-line error, nothing written (${rc}): ${err}")
   endif()
 endforeach()
 execute_process(COMMAND ${DEMFIT} diagnose ${DATA}/hidden_stiffening_study.json --out ${OUT}/replicas --no-plots
