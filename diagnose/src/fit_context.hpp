@@ -42,6 +42,12 @@ double replicated_chi_square(const FitContext& c, const identify::ParameterSet& 
 // criterion chi-square is set (Diagnosis::base_criterion_chi_square).
 void account_for_scatter(const FitContext& c, Diagnosis& d);
 
+// With the model's scatter in the criterion and DiagnoseOptions::refit_search_evaluations > 0: a
+// surrogate search over the base variables (base_search.cpp); when the mean of fresh replicas at
+// its point is lower than the base's criterion chi-square, it becomes the base's. The base fit
+// itself (its residual, Jacobian and the re-fits' starts) is unchanged.
+void search_base_optimum(const FitContext& c, Diagnosis& d);
+
 // Residual tests of `fit` under `targets` (`fitted` parameters; workflow.cpp).
 ResidualAnalysis analyse(const FitResult& fit, const std::vector<FitTarget>& targets, int fitted, double dof_noise,
                          double alpha);

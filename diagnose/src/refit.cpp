@@ -69,10 +69,12 @@ bool try_refit_start(const FitContext& c, Diagnosis& d, const identify::Paramete
   }
 }
 
-// The search's point itself as a re-fit (its one run's residual; no Jacobian is needed by the
-// assessment), so the smoothed optimum is judged before a local descent follows one run's noise.
+// The search's point itself as a re-fit (its one run's residual, `known_residual` when the search
+// ran it, else run here; no Jacobian is needed by the assessment), so the smoothed optimum is
+// judged before a local descent follows one run's noise.
 bool assess_surrogate_point(const FitContext& c, Diagnosis& d, const identify::ParameterSet& fixed,
-                            const std::vector<FitVariable>& vars, CandidateFit& f, bool& fitted) {
+                            const std::vector<FitVariable>& vars, const Eigen::VectorXd& known_residual,
+                            CandidateFit& f, bool& fitted) {
   CandidateFit trial;
   trial.effect = f.effect;
   trial.fit.parameters = fixed;
@@ -80,8 +82,11 @@ bool assess_surrogate_point(const FitContext& c, Diagnosis& d, const identify::P
     trial.fit.parameters[v.name] = v.start;
     trial.fit.values.push_back(v.start);
   }
-  const auto residual = residuals_at(c.model, {trial.fit.parameters}, d.targets, c.options.fit).front();
-  d.refit_evaluations += 1;
+  Eigen::VectorXd residual = known_residual;
+  if (residual.size() == 0) {
+    residual = residuals_at(c.model, {trial.fit.parameters}, d.targets, c.options.fit).front();
+    d.refit_evaluations += 1;
+  }
   if (residual.size() == 0) return false;
   trial.fit.residual = residual;
   trial.fit.chi_square = residual.squaredNorm();
@@ -99,6 +104,7 @@ bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const Effect
                                  const ScreeningScore& score, CandidateFit& f, bool& fitted) {
   identify::ParameterSet fixed = c.fixed;
   std::vector<FitVariable> vars = refit_variables(d, effect, score, 0, fixed);
+  Eigen::VectorXd search_residual;
   std::vector<double> base_point = d.base.values;
   for (const auto& p : effect.parameters) base_point.push_back(p.off_value);
   std::vector<std::vector<double>> known{base_point};
@@ -114,6 +120,7 @@ bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const Effect
         surrogate_search_start(c.model, fixed, vars, d.targets, c.options.fit, runs, c.options.fit.seed, known,
                                known_chi_squares);
     d.refit_evaluations += s.evaluations;
+    search_residual = s.run_residual;
     std::string at;
     for (std::size_t j = 0; j < vars.size(); ++j) {
       vars[j].start = s.values[j];
@@ -127,7 +134,7 @@ bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const Effect
     d.notes.push_back("effect '" + effect.name + "': the surrogate search failed (" + e.what() + ")");
     return false;
   }
-  if (assess_surrogate_point(c, d, fixed, vars, f, fitted)) return true;
+  if (assess_surrogate_point(c, d, fixed, vars, search_residual, f, fitted)) return true;
   return try_refit_start(c, d, fixed, vars, nullptr, f, fitted);
 }
 

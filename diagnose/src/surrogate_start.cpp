@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "demfit/rbf_surrogate/bounds.hpp"
 #include "demfit/rbf_surrogate/expensive.hpp"
@@ -65,6 +66,7 @@ SurrogateStart surrogate_search_start(const identify::Model& model, const identi
     strategy->tell(unit.transpose(), Eigen::VectorXd::Constant(1, known_chi_squares[i]));
   }
   SurrogateStart out;
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> runs;  // unit point, its residual
   while (out.evaluations < evaluations) {
     Eigen::MatrixXd asked = strategy->ask(kBatch);
     asked.conservativeResize(std::min<Eigen::Index>(asked.rows(), evaluations - out.evaluations), Eigen::NoChange);
@@ -76,6 +78,7 @@ SurrogateStart surrogate_search_start(const identify::Model& model, const identi
     for (Eigen::Index i = 0; i < asked.rows(); ++i) {
       const Eigen::VectorXd& r = residuals[static_cast<std::size_t>(i)];
       chi_squares[i] = r.size() > 0 && r.allFinite() ? r.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+      if (std::isfinite(chi_squares[i])) runs.emplace_back(asked.row(i).transpose(), r);
     }
     strategy->tell(asked, chi_squares);
     out.evaluations += static_cast<int>(asked.rows());
@@ -98,6 +101,9 @@ SurrogateStart surrogate_search_start(const identify::Model& model, const identi
   out.values.assign(physical.data(), physical.data() + physical.size());
   out.predicted_chi_square = std::exp(means[best]);
   out.run_chi_square = values[best];
+  const Eigen::VectorXd chosen = points.row(best).transpose();
+  for (const auto& [unit, residual] : runs)
+    if (unit == chosen) out.run_residual = residual;
   return out;
 }
 

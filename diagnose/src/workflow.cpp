@@ -249,6 +249,8 @@ Diagnosis run_diagnosis(const identify::StudySpec& study, const identify::Model&
       d.base_analysis = analyse(d.base, d.targets, k_base, context.dof_noise, options.alpha);
   }
   if (d.criterion_replicas == 0) d.base_criterion_chi_square = d.base.chi_square;
+  if (d.criterion_replicas > 0 && options.refit_search_evaluations > 0 && d.base_analysis_data_noise.structural)
+    detail::search_base_optimum(context, d);
   d.base_bic = bic(d.base_criterion_chi_square, k_base, context.points);
   d.base_aicc = aicc(d.base_criterion_chi_square, k_base, context.points);
   progress(options, started,

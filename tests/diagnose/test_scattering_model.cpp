@@ -5,6 +5,7 @@
 // leads to.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -69,10 +70,11 @@ DiagnoseOptions scattering_options() {
   return options;
 }
 
-// Independently of the workflow: the four replica sets of the base optimum, evaluated here, and
-// their whitened residuals' mean squared norm.
-double replica_mean_chi_square(const ScatteringModel& model, const Diagnosis& d) {
-  const auto sets = replica_parameter_sets(d.base.parameters, d.base_variables, 4);
+// Independently of the workflow: the four replica sets of `optimum` (default: the base optimum),
+// evaluated here, and their whitened residuals' mean squared norm.
+double replica_mean_chi_square(const ScatteringModel& model, const Diagnosis& d,
+                               const identify::ParameterSet* optimum = nullptr) {
+  const auto sets = replica_parameter_sets(optimum ? *optimum : d.base.parameters, d.base_variables, 4);
   double sum = 0.0;
   for (const auto& set : sets) {
     const identify::CurveSet curves = model.evaluate(set, {});
@@ -138,4 +140,33 @@ TEST_CASE("With a scattering model and no hidden effect no effect is named", "[d
     CHECK(d.verdict != Verdict::effect_identified);
     CHECK(d.verdict != Verdict::ambiguous);
   }
+}
+
+// Seed 61 (its base refinement keeps the first optimum, so the base's replicas are those the test
+// recomputes). The searched point's replicas are recomputed here too.
+TEST_CASE("With the surrogate search on, the base criterion is the lower replica mean of the base fit's and the "
+          "searched optimum",
+          "[diagnose][scatter][surrogate]") {
+  const ScatteringModel model;
+  DiagnoseOptions options = scattering_options();
+  options.refit_search_evaluations = 20;
+  const Diagnosis d = run_diagnosis(scattering_study(truth_with("stiffening_coefficient", 1.5), 61u), model,
+                                    analytic_effect_candidates(), options);
+  INFO(d.summary);
+  REQUIRE(d.criterion_replicas == 4);
+  REQUIRE_FALSE(d.base_refined);
+  CHECK(d.base_search_evaluations == 20);
+  REQUIRE(d.base_search_values.size() == d.base_variables.size());
+  identify::ParameterSet searched = d.base.parameters;
+  for (std::size_t j = 0; j < d.base_variables.size(); ++j) {
+    const FitVariable& v = d.base_variables[j];
+    CHECK(d.base_search_values[j] >= v.lower);
+    CHECK(d.base_search_values[j] <= v.upper);
+    searched[v.name] = d.base_search_values[j];
+  }
+  const double at_base = replica_mean_chi_square(model, d);
+  const double at_search = replica_mean_chi_square(model, d, &searched);
+  CHECK(d.base_search_criterion_chi_square == Approx(at_search).epsilon(1e-9));
+  CHECK(d.base_criterion_chi_square == Approx(std::min(at_base, at_search)).epsilon(1e-9));
+  CHECK(d.base_bic == Approx(d.base_criterion_chi_square + 3.0 * std::log(101.0)).epsilon(1e-12));
 }

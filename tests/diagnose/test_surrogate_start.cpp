@@ -90,3 +90,16 @@ TEST_CASE("The surrogate search start is the same for the same seed whatever the
   CHECK(a.values == b.values);
   CHECK(a.run_chi_square == b.run_chi_square);
 }
+
+TEST_CASE("The surrogate search start returns the residual of its chosen run, equal to a fresh run there",
+          "[diagnose][surrogate]") {
+  const ChaoticBumpModel model;
+  const FitOptions fit;
+  const SurrogateStart s = surrogate_search_start(model, {}, kBumpVariables, bump_targets(), fit, 16, 9);
+  identify::ParameterSet at;
+  for (std::size_t j = 0; j < kBumpVariables.size(); ++j) at[kBumpVariables[j].name] = s.values[j];
+  const Eigen::VectorXd fresh = residuals_at(model, {at}, bump_targets(), fit).front();
+  REQUIRE(s.run_residual.size() == fresh.size());
+  CHECK(s.run_residual == fresh);  // the model is deterministic for one parameter set
+  CHECK(s.run_residual.squaredNorm() == s.run_chi_square);
+}

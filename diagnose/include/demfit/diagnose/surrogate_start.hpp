@@ -18,6 +18,9 @@ struct SurrogateStart {
   std::vector<double> values;  // physical, FitVariable order
   double predicted_chi_square = 0.0;
   double run_chi_square = 0.0;  // of the one run at `values`
+  // That run's residual (normalised, targets' order), so the point is judged without running it
+  // again; empty when the point chosen is one of the known points (it was not run here).
+  Eigen::VectorXd run_residual;
   int evaluations = 0;          // model evaluations the search spent (failed ones included)
 };
 

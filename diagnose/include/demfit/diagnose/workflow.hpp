@@ -42,7 +42,9 @@ struct DiagnoseOptions {
   // re-fitted candidate, made only when no candidate passed with its local starts; its point is
   // assessed, then fitted locally and assessed, like the other starts. 0 = none. A DEM chi-square
   // whose run-to-run scatter is as deep as an effect's valley can hide that valley from every
-  // local start (docs/diagnose.md, step 4).
+  // local start (docs/diagnose.md, step 4). With the model's scatter in the criterion, the base
+  // variables get the same search first, so that the base is not judged at a worse optimum than
+  // the re-fits it is compared with.
   int refit_search_evaluations = 0;
   double screen_step = 0.02;  // score-test perturbation, fraction of the effect range
   // Replicas of the base optimum, each with the variables moved by k x 1e-7 of their ranges (a
@@ -133,6 +135,13 @@ struct Diagnosis {
   bool noise_given = false;        // sigma given (--noise) rather than estimated
   double data_scatter_ratio = 0.0;  // the data's own scatter counted in the noise model (--data-scatter)
   int refit_search_evaluations = 0;  // runs of the surrogate search per failing re-fit (--refit-search)
+  // The surrogate search over the base variables (made when refit_search_evaluations > 0 and the
+  // criterion is replicated): its runs, its point (empty: not made, or it chose the base fit's own
+  // point) and the mean chi-square of criterion_replicas fresh runs there. base_criterion_chi_square
+  // is the lower of this and the base fit's optimum's.
+  int base_search_evaluations = 0;
+  std::vector<double> base_search_values;
+  double base_search_criterion_chi_square = 0.0;
   std::vector<std::string> notes;  // plain-language statements for the report
   // Model evaluations spent: base fit (with the scatter replicas), screening, re-fits, total; wall time [s].
   int base_evaluations = 0, screening_evaluations = 0, refit_evaluations = 0, evaluations = 0;
