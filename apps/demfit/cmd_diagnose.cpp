@@ -155,8 +155,9 @@ void register_diagnose(CLI::App& app) {
   cmd->add_option("--refit-search", o->refit_search,
                   "Model runs of a global surrogate search (maximin design + kriging expected improvement over base + "
                   "effect variables) made for each re-fitted candidate when none passed with its local starts; its "
-                  "point of lowest predicted chi-square is assessed, then fitted locally (default 0 = none; 30 measured "
-                  "for two variables; at most " + std::to_string(kMaxRefitSearch) + ")");
+                  "point of lowest predicted chi-square is assessed, then fitted locally; when the model scatters, the "
+                  "base variables get the same search first and the base is judged at the better of its two optima "
+                  "(default 0 = none; 30 measured for two variables; at most " + std::to_string(kMaxRefitSearch) + ")");
   cmd->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   cmd->callback([o] { run_diagnose(*o); });
 }
