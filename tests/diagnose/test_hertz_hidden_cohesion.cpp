@@ -23,6 +23,9 @@
 
 #include "dem_hidden_effects.hpp"
 #include "demfit/cases/diagnosis_model.hpp"
+#include "demfit/diagnose/least_squares.hpp"
+#include "demfit/diagnose/model_scatter.hpp"
+#include "demfit/diagnose/workflow.hpp"
 
 using namespace demfit;
 using namespace demfit::diagnose;
@@ -170,6 +173,39 @@ identify::StudySpec two_speed_study(std::uint64_t seed) {
   return study;
 }
 
+// Whether the verdict names an effect other than cohesion, or calls it ambiguous without cohesion
+// among the tied.
+bool names_another_effect(const Diagnosis& d) {
+  if (d.verdict == Verdict::effect_identified) return d.refits[d.chosen].effect != "cohesion";
+  return d.verdict == Verdict::ambiguous && !names_cohesion_or_ties_it(d);
+}
+
+// Delta BIC the hidden values themselves earn against the diagnosis's base, computed here from 4
+// fresh runs at (frics 0.5, cohesion kHiddenCohesion), moved by round-off as the workflow's
+// replicas are, under the diagnosis's whitened targets: the evidence the data hold for cohesion
+// whatever a re-fit finds. A seed where it stays below the threshold cannot be asked to name it.
+double delta_bic_at_hidden_values(const identify::Model& model, const Diagnosis& d,
+                                  const std::vector<EffectCandidate>& candidates) {
+  identify::ParameterSet truth = d.base.parameters;
+  truth["frics"] = 0.5;
+  truth["cohesion_energy_density"] = kHiddenCohesion;
+  std::vector<FitVariable> variables = d.base_variables;
+  for (const auto& c : candidates)
+    if (c.name == "cohesion")
+      for (const auto& p : c.parameters) variables.push_back({p.name, p.lower, p.upper, p.off_value});
+  double chi_square = 0.0;
+  int runs = 0;
+  for (const Eigen::VectorXd& r : residuals_at(model, replica_parameter_sets(truth, variables, 4), d.targets, {}))
+    if (r.size() > 0) chi_square += r.squaredNorm(), ++runs;
+  REQUIRE(runs > 0);
+  int points = 0;
+  for (const auto& t : d.targets) points += static_cast<int>(t.data.x.size());
+  const double gain = d.base_bic - bic(chi_square / runs, static_cast<int>(variables.size()), points);
+  std::printf("  the hidden values (4 fresh runs): chi-square %.4g, delta BIC %.4g against a threshold of %.4g\n",
+              chi_square / runs, gain, d.bic_threshold);
+  return gain;
+}
+
 }  // namespace
 
 // Measured 2026-12-06 with 1.5 s at 15 rpm (docs/measurements/2026-12-06-hertz-twin-hidden-cohesion.md:
@@ -181,7 +217,7 @@ identify::StudySpec two_speed_study(std::uint64_t seed) {
 // seed 44 at 8,479 J/m^3. Run it by name, seeds as the one-speed test (DEMFIT_HERTZ_TWIN_SEEDS),
 // ~2x its cost per seed; DEMFIT_DIAGNOSE_REFIT_STARTS=3 as measured.
 TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin seen at 15 and 45 rpm is named or called "
-          "ambiguous on every seed",
+          "ambiguous wherever the hidden values pass the criterion, and no other effect is named",
           "[.][slow][drum]") {
   const auto [first, last] = twin_seeds();
   for (std::uint64_t seed = first; seed <= last; ++seed) {
@@ -196,7 +232,9 @@ TEST_CASE("A hidden SJKR cohesion in an s = 4 Hertz-Mindlin drum twin seen at 15
     print_load_average();
     const Diagnosis& d = o.diagnosis;
     INFO("seed " << seed << ": " << d.summary);
-    CHECK(names_cohesion_or_ties_it(d));
+    const double gain_at_truth = delta_bic_at_hidden_values(*model, d, candidates);
+    if (gain_at_truth > d.bic_threshold) CHECK(names_cohesion_or_ties_it(d));
+    CHECK_FALSE(names_another_effect(d));
     check_named_cohesion_value(d);
   }
 }
