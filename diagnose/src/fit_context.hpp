@@ -44,8 +44,9 @@ void account_for_scatter(const FitContext& c, Diagnosis& d);
 
 // With the model's scatter in the criterion and DiagnoseOptions::refit_search_evaluations > 0: a
 // surrogate search over the base variables (base_search.cpp); when the mean of fresh replicas at
-// its point is lower than the base's criterion chi-square, it becomes the base's. The base fit
-// itself (its residual, Jacobian and the re-fits' starts) is unchanged.
+// its point is lower than the base's criterion chi-square, it becomes the base's, and the BIC
+// threshold is raised by the chi-square spread at that point instead of the base fit's. The base
+// fit itself (its residual, Jacobian and the re-fits' starts) is unchanged.
 void search_base_optimum(const FitContext& c, Diagnosis& d);
 
 // Residual tests of `fit` under `targets` (`fitted` parameters; workflow.cpp).

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "demfit/diagnose/analytic_effects_model.hpp"
 #include "demfit/diagnose/effect.hpp"
@@ -72,19 +73,32 @@ DiagnoseOptions scattering_options() {
 
 // Independently of the workflow: the four replica sets of `optimum` (default: the base optimum),
 // evaluated here, and their whitened residuals' mean squared norm.
+double whitened_chi_square(const ScatteringModel& model, const Diagnosis& d, const identify::ParameterSet& set) {
+  const identify::CurveSet curves = model.evaluate(set, {});
+  const auto& y = curves.at("response").y;
+  const auto& data = d.targets[0].data.y;
+  Eigen::VectorXd raw(static_cast<Eigen::Index>(y.size()));
+  for (std::size_t i = 0; i < y.size(); ++i) raw(static_cast<Eigen::Index>(i)) = y[i] - data[i];
+  return d.targets[0].noise_factor.triangularView<Eigen::Lower>().solve(raw).squaredNorm();
+}
+
 double replica_mean_chi_square(const ScatteringModel& model, const Diagnosis& d,
                                const identify::ParameterSet* optimum = nullptr) {
   const auto sets = replica_parameter_sets(optimum ? *optimum : d.base.parameters, d.base_variables, 4);
   double sum = 0.0;
-  for (const auto& set : sets) {
-    const identify::CurveSet curves = model.evaluate(set, {});
-    const auto& y = curves.at("response").y;
-    const auto& data = d.targets[0].data.y;
-    Eigen::VectorXd raw(static_cast<Eigen::Index>(y.size()));
-    for (std::size_t i = 0; i < y.size(); ++i) raw(static_cast<Eigen::Index>(i)) = y[i] - data[i];
-    sum += d.targets[0].noise_factor.triangularView<Eigen::Lower>().solve(raw).squaredNorm();
-  }
+  for (const auto& set : sets) sum += whitened_chi_square(model, d, set);
   return sum / 4.0;
+}
+
+// Standard deviation (n - 1) of the chi-squares of `optimum`'s own run and its four replicas.
+double chi_square_sd_at(const ScatteringModel& model, const Diagnosis& d, const identify::ParameterSet& optimum) {
+  std::vector<double> values{whitened_chi_square(model, d, optimum)};
+  for (const auto& set : replica_parameter_sets(optimum, d.base_variables, 4))
+    values.push_back(whitened_chi_square(model, d, set));
+  double mean = 0.0, sum = 0.0;
+  for (double v : values) mean += v / 5.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / 4.0);
 }
 
 }  // namespace
@@ -169,4 +183,10 @@ TEST_CASE("With the surrogate search on, the base criterion is the lower replica
   CHECK(d.base_search_criterion_chi_square == Approx(at_search).epsilon(1e-9));
   CHECK(d.base_criterion_chi_square == Approx(std::min(at_base, at_search)).epsilon(1e-9));
   CHECK(d.base_bic == Approx(d.base_criterion_chi_square + 3.0 * std::log(101.0)).epsilon(1e-12));
+  // Measured on this seed: the searched point's mean is the lower one, so the threshold's spread is
+  // that point's (its own run and the four replicas).
+  REQUIRE(at_search < at_base);
+  const double sd = chi_square_sd_at(model, d, searched);
+  CHECK(d.scatter_chi_square_sd == Approx(sd).epsilon(1e-9));
+  CHECK(d.bic_threshold == Approx(10.0 + 2.0 * std::sqrt(0.5) * sd).epsilon(1e-12));
 }
