@@ -123,7 +123,9 @@ struct Diagnosis {
   // scatter_chi_square_sd when the model's scatter is in the noise model (the chi-square of one
   // evaluation is itself that noisy; the criterion compares means over that many replicas).
   double bic_threshold = 10.0;
-  double scatter_chi_square_sd = 0.0;  // spread of the replicas' chi-squares (0: not measured)
+  // Spread of the base's replicas' chi-squares (0: not measured); of the searched base point's runs
+  // when that point supplies the base criterion (base_search_*).
+  double scatter_chi_square_sd = 0.0;
   // > 0: the criterion's chi-squares (base and re-fits) are means over this many fresh replicas of
   // each optimum (runs differing only in round-off), not the one lucky run a fit keeps.
   int criterion_replicas = 0;
