@@ -31,11 +31,9 @@ struct Variant {
   bool reorder = true;
   dem_core::PairLoadOrder order = dem_core::PairLoadOrder::ascending_first_member;
   const char* label = "";
-  bool laned = true;
 };
 const Variant kStoredOrder{false, dem_core::PairLoadOrder::ascending_first_member, " stored order"};
 const Variant kOwnRowFirst{true, dem_core::PairLoadOrder::own_row_first, " own_row_first"};
-const Variant kScalarPairLaw{true, dem_core::PairLoadOrder::ascending_first_member, " scalar pair law", false};
 
 /// Share of the neighbour list's pairs whose second member lies past the row where half of the
 /// pairs are reached: the pairs two equal chunks would have to exchange (a property of the
@@ -63,7 +61,6 @@ double time_demfit(const Simulation& prepared, const Walls& walls, int threads, 
   sim.set_threads(threads);
   sim.set_reorder_particles(v.reorder);
   sim.set_pair_load_order(v.order);
-  sim.set_laned_pair_law(v.laned);
   const std::size_t builds = sim.neighbor_list().build_count();
   const std::uint64_t faults = minor_page_faults();
   const double seconds = wall_seconds_for_steps(sim, static_cast<std::uint64_t>(steps));
@@ -165,7 +162,7 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
     std::printf("demfit on the STL drum: %zu triangles, %zu contact cells, same shape and angle as LIGGGHTS'\n", meshed,
                 mesh->cell_count());
   }
-  Series d1, d2, l1, l2, l1_bound, d1_stored, d2_stored, d1_own, d2_own, d1_scalar, d2_scalar;
+  Series d1, d2, l1, l2, l1_bound, d1_stored, d2_stored, d1_own, d2_own;
   Simulation demfit_end;
   LiggghtsRun liggghts_end;
   for (int r = 0; r < o.repeats; ++r) {
@@ -180,8 +177,6 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
     d2_stored.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr, kStoredOrder));
     d1_own.rates.push_back(time_demfit(demfit_bed, walls, 1, o.steps, nullptr, kOwnRowFirst));
     d2_own.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr, kOwnRowFirst));
-    d1_scalar.rates.push_back(time_demfit(demfit_bed, walls, 1, o.steps, nullptr, kScalarPairLaw));
-    d2_scalar.rates.push_back(time_demfit(demfit_bed, walls, 2, o.steps, nullptr, kScalarPairLaw));
     if (have_liggghts) {
       const double a = time_liggghts(o.dir, walls, 2, 1, 1, nullptr);
       const double b = time_liggghts(o.dir, walls, 1, 2, 1, nullptr);
@@ -209,11 +204,6 @@ void compare_drum_with_liggghts(const DrumComparisonOptions& o) {
       "         1 thread %.3g (default x%.2f faster), 2 threads %.3g (default x%.2f), speed-up %.2f\n",
       d1_own.median_rate() / 1e6, d1.median_rate() / d1_own.median_rate(), d2_own.median_rate() / 1e6,
       d2.median_rate() / d2_own.median_rate(), d2_own.median_rate() / d1_own.median_rate());
-  std::printf(
-      "  demfit with the scalar pair law (laned_pair_law off; one contact's law at a time, same bits):\n"
-      "         1 thread %.3g (default x%.2f faster), 2 threads %.3g (default x%.2f)\n",
-      d1_scalar.median_rate() / 1e6, d1.median_rate() / d1_scalar.median_rate(), d2_scalar.median_rate() / 1e6,
-      d2.median_rate() / d2_scalar.median_rate());
   std::printf("  speed-up 1 -> 2 cores: demfit %.2f [target >= 1.85]", d2.median_rate() / d1.median_rate());
   if (have_liggghts) std::printf("  LIGGGHTS %.2f", l2.median_rate() / l1.median_rate());
   std::printf("\n");

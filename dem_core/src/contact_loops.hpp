@@ -50,7 +50,6 @@ struct StepInputs {
   double closing_kick;
   bool rotation;
   int threads;
-  bool laned_pair_law;  ///< SimulationSettings::laned_pair_law
 };
 
 /// Geometry and kinematics of the pair (i, j), i < j, when the spheres overlap (false: apart).

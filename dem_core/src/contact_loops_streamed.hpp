@@ -17,11 +17,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 #include <vector>
 
 #include "contact_loops.hpp"
-#include "contact_loops_lanes.hpp"
 #include "demfit/dem_core/chunk_balance.hpp"
 
 namespace demfit::dem_core {
@@ -121,13 +119,6 @@ void stream_chunk(const StreamedPairSide<Law>& pairs, const WallSide<Law>& walls
     }
   const auto second = pairs.list.second();
   CrossingCursor own(crossing, buffers, rows[begin]);
-  if constexpr (std::is_same_v<Law, HertzMindlinLaw>) {
-    if (hertz_lanes_apply(pairs.law, step)) {
-      stream_rows_laned(pairs, p, step, begin, end, own);
-      for (std::size_t i = begin; i < end; ++i) finish_particle(i, walls, p, step);
-      return;
-    }
-  }
   for (std::size_t i = begin; i < end; ++i) {
     Vec3 f = p.force[i], t = p.torque[i];
     for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {

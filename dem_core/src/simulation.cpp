@@ -186,8 +186,6 @@ void Simulation::set_pair_load_order(PairLoadOrder order) {
   settings_.pair_load_order = order;
 }
 
-void Simulation::set_laned_pair_law(bool laned) { settings_.laned_pair_law = laned; }
-
 void Simulation::set_reorder_particles(bool reorder) {
   if (reorder && !settings_.reorder_particles) rebuild_requested_ = true;
   settings_.reorder_particles = reorder;

@@ -124,8 +124,7 @@ void Simulation::evaluate_loads(double dt, double closing_kick) {
                             slots.touching.data(),
                             slots.triangle_rows.data(),
                             slots.triangles.data()};
-  const StepInputs step{settings_.gravity, dt, closing_kick, c.rotation_enabled(), settings_.threads,
-                         settings_.laned_pair_law};
+  const StepInputs step{settings_.gravity, dt, closing_kick, c.rotation_enabled(), settings_.threads};
   switch (settings_.pair_load_order) {
     case PairLoadOrder::own_row_first: {
       const PairSide<Law> pairs{pair_law,

@@ -71,10 +71,6 @@ struct SimulationSettings {
   /// dem_core's default is the leaner order; cases keep own_row_first unless they ask
   /// (cases' "numerics.pair_load_order"), so their results stay as published.
   PairLoadOrder pair_load_order = PairLoadOrder::ascending_first_member;
-  /// Compute the plain Hertz–Mindlin pair law (no cohesion, no slip-speed friction decay) several
-  /// touching pairs at a time in SIMD lanes (src/hertz_pair_lanes.hpp), in ascending_first_member
-  /// order. The results are bit-identical either way; off only to time or test the scalar loop.
-  bool laned_pair_law = true;
 };
 
 class Simulation;
@@ -110,8 +106,6 @@ class Simulation {
   void set_reorder_particles(bool reorder);
   /// Switch SimulationSettings::pair_load_order (the neighbour list is rebuilt at the next step).
   void set_pair_load_order(PairLoadOrder order);
-  /// Switch SimulationSettings::laned_pair_law (results do not change).
-  void set_laned_pair_law(bool laned);
   void set_wall_motion(std::size_t wall, const WallMotion& motion);
   /// Velocity of a translating wall [m/s] (makes the wall translating if it was fixed).
   void set_wall_velocity(std::size_t wall, const Vec3& velocity);
