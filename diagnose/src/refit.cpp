@@ -98,8 +98,9 @@ bool assess_surrogate_point(const FitContext& c, Diagnosis& d, const identify::P
 }
 
 // When no local start passed: a surrogate search over base + effect variables
-// (surrogate_start.hpp), told the base optimum (effect off) and the kept fit's point; its point of
-// lowest predicted chi-square is assessed as it is and, if it does not pass, starts a local fit.
+// (surrogate_start.hpp), told the base optimum and the base search's point (effect off) and the
+// kept fit's point; its point of lowest predicted chi-square is assessed as it is and, if it does
+// not pass, starts a local fit.
 bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const EffectCandidate& effect,
                                  const ScreeningScore& score, CandidateFit& f, bool& fitted) {
   identify::ParameterSet fixed = c.fixed;
@@ -109,6 +110,14 @@ bool refit_from_surrogate_search(const FitContext& c, Diagnosis& d, const Effect
   for (const auto& p : effect.parameters) base_point.push_back(p.off_value);
   std::vector<std::vector<double>> known{base_point};
   std::vector<double> known_chi_squares{d.base.chi_square};
+  if (!d.base_search_values.empty()) {
+    // The base search's point with the effect off, at the mean of its fresh runs: the nested
+    // search starts from the best base point known, not only from the local fit's.
+    std::vector<double> searched = d.base_search_values;
+    for (const auto& p : effect.parameters) searched.push_back(p.off_value);
+    known.push_back(std::move(searched));
+    known_chi_squares.push_back(d.base_search_criterion_chi_square);
+  }
   if (fitted) {
     known.push_back(f.fit.values);
     known_chi_squares.push_back(f.fit.chi_square);
